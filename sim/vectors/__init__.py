@@ -1,0 +1,44 @@
+"""Stimulus for the harness: seeded random, directed extremes, exhaustive sets.
+
+Each block has a module here with ``vectors(config, count, seed)`` returning raw
+input codes ``{port: int64 array}``: its directed extremes first, then an
+exhaustive set where the input space has at most 2**16 codes, then ``count``
+seeded random vectors.  The helpers below are shared by all of them.
+"""
+
+import numpy as np
+
+from ...golden.fixed import Fixed
+
+__all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "EXHAUSTIVE_LIMIT"]
+
+#: Largest input space that is checked exhaustively.
+EXHAUSTIVE_LIMIT = 1 << 16
+
+
+def rng(seed):
+    return np.random.default_rng(seed)
+
+
+def random_codes(fmt, shape, generator, lo=None, hi=None):
+    """Uniform raw codes of ``fmt`` (optionally limited to ``lo..hi`` raw)."""
+    lo = fmt.min_raw if lo is None else lo
+    hi = fmt.max_raw if hi is None else hi
+    return generator.integers(lo, hi, size=shape, endpoint=True, dtype=np.int64)
+
+
+def unit_vectors(count, generator):
+    """``count`` float unit vectors, uniform on the sphere."""
+    v = generator.normal(size=(count, 3))
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def codes(values, fmt):
+    """Float values to raw codes of ``fmt``, rounded half up and saturated (for stimulus)."""
+    return Fixed.from_float(values, fmt, rounding="round_half_up", overflow="saturate").raw
+
+
+def concat(*parts):
+    """Concatenate dicts of raw code arrays port by port."""
+    return {name: np.concatenate([np.asarray(part[name], dtype=np.int64) for part in parts])
+            for name in parts[0]}
