@@ -198,6 +198,24 @@ class Fixed:
         """Exact dot product over the last axis (three multipliers and an adder tree)."""
         return (self * _coerce(other)).sum(axis=-1)
 
+    def _compare_raw(self, other):
+        # comparisons against a number use its exact raw code in this format
+        if isinstance(other, Fixed):
+            f = max(self.fmt.frac_bits, other.fmt.frac_bits)
+            return self.raw << (f - self.fmt.frac_bits), other.raw << (f - other.fmt.frac_bits)
+        raw = other * self.fmt.one
+        if raw != int(raw):
+            raise ValueError(f"comparison constant {other} is not exactly representable in {self.fmt}")
+        return self.raw, int(raw)
+
+    def __ge__(self, other):
+        a, b = self._compare_raw(other)
+        return a >= b
+
+    def __lt__(self, other):
+        a, b = self._compare_raw(other)
+        return a < b
+
     def quantize(self, to, rounding, overflow, op="quantize"):
         """The one narrowing step: to format ``to`` with named rounding and overflow."""
         to = Format.parse(to)

@@ -95,6 +95,24 @@ class FixedValue:
     def __rshift__(self, amount):
         return self.shift(-amount)
 
+    def _compare_values(self, other):
+        # same rule as the golden model: a number compares by its exact raw code
+        if isinstance(other, FixedValue):
+            f = max(self.fmt.frac_bits, other.fmt.frac_bits)
+            return self._align(Format(0, f)), other._align(Format(0, f))
+        raw = other * self.fmt.one
+        if raw != int(raw):
+            raise ValueError(f"comparison constant {other} is not exactly representable in {self.fmt}")
+        return self.value, int(raw)
+
+    def __ge__(self, other):
+        a, b = self._compare_values(other)
+        return a >= b
+
+    def __lt__(self, other):
+        a, b = self._compare_values(other)
+        return a < b
+
     def quantize(self, to, rounding, overflow):
         to = Format.parse(to)
         return FixedValue(quantize(self.value, self.fmt, to, rounding, overflow), to)
