@@ -56,15 +56,38 @@ class PipelinedBlock(wiring.Component):
         raise NotImplementedError
 
     def datapath(self, m, inputs):
+        """Build the datapath; return ``{output: FixedValue | FixedVector}``.
+
+        A composite block whose sub-blocks carry ``valid`` may also return
+        ``"valid"``; otherwise ``i.valid`` is delayed by ``latency`` here.
+        """
         raise NotImplementedError
+
+    def feed(self, m, valid, values):
+        """Drive this block's ``i`` from ``valid`` and ``{input: FixedValue | FixedVector}``
+        (used by composite blocks; formats must match the config's)."""
+        m.d.comb += self.i.valid.eq(valid)
+        for name, (fmt, lanes) in self.config.inputs.items():
+            value = values[name]
+            if value.fmt != fmt:
+                raise ValueError(f"{type(self).__name__} input {name} wants format {fmt}, "
+                                 f"not {value.fmt}")
+            if lanes == 1:
+                m.d.comb += self.i.payload[name].eq(value.value)
+            else:
+                for lane, item in enumerate(value):
+                    m.d.comb += self.i.payload[name][lane].eq(item.value)
+
+    def results(self):
+        """This block's outputs as ``{output: FixedValue | FixedVector}``."""
+        return _wrap(self.o.payload, self.config.outputs)
 
     def elaborate(self, platform):
         m = Module()
-        inputs = {}
-        for name, (fmt, lanes) in self.config.inputs.items():
-            field = self.i.payload[name]
-            inputs[name] = FixedValue(field, fmt) if lanes == 1 else FixedVector.from_array(field, fmt)
-        outputs = self.datapath(m, inputs)
+        outputs = self.datapath(m, _wrap(self.i.payload, self.config.inputs))
+        valid = outputs.pop("valid", None)
+        if valid is None:
+            valid = delay(m, self.i.valid, self.latency, name="valid")
         for name, (fmt, lanes) in self.config.outputs.items():
             value = outputs[name]
             if value.fmt != fmt:
@@ -75,5 +98,10 @@ class PipelinedBlock(wiring.Component):
             else:
                 for lane, item in enumerate(value):
                     m.d.comb += self.o.payload[name][lane].eq(item.value)
-        m.d.comb += self.o.valid.eq(delay(m, self.i.valid, self.latency, name="valid"))
+        m.d.comb += self.o.valid.eq(valid)
         return m
+
+
+def _wrap(payload, ports):
+    return {name: FixedValue(payload[name], fmt) if lanes == 1 else FixedVector.from_array(payload[name], fmt)
+            for name, (fmt, lanes) in ports.items()}

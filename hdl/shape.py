@@ -1,0 +1,40 @@
+"""Shape function component, Lyon (1993) Figure 7d: ``f_k(x) = (1 - x/2^k)^(2^k)``."""
+
+from ..config import ShapeConfig
+from ..format import Format
+from .block import PipelinedBlock
+from .fixed import FixedValue, delay, stage
+
+__all__ = ["Shape"]
+
+
+class Shape(PipelinedBlock):
+    """Shifter, comparator, "1-" block, ``k`` squarers and output multiplexer (Figure 7d).
+
+    The shift by ``k+1`` is wiring; the comparator and the "1-" block see only the
+    shifted bits.  ``k`` squaring multipliers (17×17 for ``t`` = ``1.15``) follow.
+    Formats, rounding and the error bound are as in :func:`phongfx.golden.shape.shape`.
+
+    Latency: ``1 + k`` (``1 - u`` and ``ge1``; then each squarer's rounded output).
+    ``ge1`` is delayed alongside the squarers; the multiplexer after the last
+    register selects 0 or ``t``.
+
+    Ports: ``i.payload`` = ``x2`` (``config.x2``); ``o.payload`` = ``spec`` (``config.t``).
+    """
+
+    config_class = ShapeConfig
+
+    @property
+    def latency(self):
+        return 1 + self.config.k
+
+    def datapath(self, m, i):
+        cfg = self.config
+        v = i["x2"] >> (cfg.k + 1)
+        ge1 = stage(m, v >= 1, "ge1")
+        u = v.quantize(Format(0, v.fmt.frac_bits), "truncate", "wrap")
+        t = stage(m, (FixedValue.const(1, "1.0") - u).quantize(cfg.t, cfg.rounding, "error"), "t0")
+        for index in range(cfg.k):
+            t = stage(m, (t * t).quantize(cfg.t, cfg.rounding, "error"), f"t{index + 1}")
+        ge1 = delay(m, ge1, cfg.k, "ge1")
+        return {"spec": FixedValue.const(0, cfg.t).where(ge1, t)}

@@ -1,0 +1,156 @@
+"""The ``phongfx`` command line.
+
+``phongfx blocks`` lists the datapath blocks; ``phongfx verilog NAME -o FILE`` emits
+one as Verilog; ``phongfx sim NAME`` checks it cycle by cycle against its golden
+model; ``phongfx render`` is ``make sim``: Lyon's scene through Figure 7, golden and
+RTL.  ``--set field=value`` (repeatable; ``shape.k=1`` inside a composite) changes
+the block's configuration.  Errors go to stderr with exit code 2 (bad input) or 1
+(a mismatch).
+"""
+
+import argparse
+import dataclasses
+import sys
+
+from .blocks import block_names, get_block
+from .sim.harness import BACKENDS
+
+__all__ = ["main", "apply_settings"]
+
+
+def apply_settings(config, settings):
+    """``config`` with ``["field=value", "sub.field=value"]`` applied (types follow the field)."""
+    for setting in settings:
+        if "=" not in setting:
+            raise ValueError(f"--set wants field=value, not {setting!r}")
+        path, text = setting.split("=", 1)
+        config = _set(config, path.split("."), text, path)
+    return config
+
+
+def _set(config, parts, text, path):
+    names = [f.name for f in dataclasses.fields(config)]
+    if parts[0] not in names:
+        raise ValueError(f"--set {path}: {type(config).__name__} has no field {parts[0]!r}; "
+                         f"fields: {', '.join(names)}")
+    current = getattr(config, parts[0])
+    if len(parts) > 1:
+        if not dataclasses.is_dataclass(current):
+            raise ValueError(f"--set {path}: {parts[0]} has no sub-fields")
+        value = _set(current, parts[1:], text, path)
+    elif isinstance(current, bool) or not isinstance(current, int):
+        value = text
+    else:
+        try:
+            value = int(text)
+        except ValueError:
+            raise ValueError(f"--set {path}: {parts[0]} must be an integer, not {text!r}") from None
+    return dataclasses.replace(config, **{parts[0]: value})
+
+
+def _block(args):
+    block = get_block(args.name)
+    if args.set:
+        block = get_block(args.name, config=apply_settings(block.config, args.set))
+    return block
+
+
+def _cmd_blocks(args):
+    for name in block_names():
+        block = get_block(name)
+        print(f"{name:12s} latency {block.component().latency:3d}  {block.config}")
+    return 0
+
+
+def _cmd_verilog(args):
+    from .hdl.emit import write_verilog
+    block = _block(args)
+    write_verilog(block.component(), args.name, args.output)
+    print(f"wrote {args.output}", file=sys.stderr)
+    return 0
+
+
+def _cmd_sim(args):
+    from .sim.harness import check
+    block = _block(args)
+    options = {"vcd": args.vcd} if args.vcd else {}
+    if args.vcd and args.backend != "amaranth":
+        raise ValueError("--vcd is written by the amaranth back end; add --backend amaranth")
+    result = check(block, backend=args.backend, count=args.vectors, seed=args.seed,
+                   bubbles=args.bubbles, **options)
+    print(result.describe())
+    print(f"{result.cycles_per_second:.0f} cycles/s")
+    return 0 if result.ok else 1
+
+
+def _cmd_render(args):
+    from .config import Fig7Config
+    from .render import run
+    config = apply_settings(Fig7Config(), args.set or [])
+    summary = run(config, radius=args.radius, span=args.span, backend=args.backend,
+                  out_dir=args.out, quiet=args.quiet)
+    print(f"pixels checked {summary['pixels_checked']}, mismatches {summary['mismatches']}, "
+          f"cycles {summary['cycles']}")
+    for name, speed in summary["cycles_per_second"].items():
+        print(f"  {name}: {speed['cycles_per_second']:.0f} cycles/s")
+    for mode, errors in summary["error_8bit"].items():
+        for what, value in errors.items():
+            if isinstance(value, dict):
+                print(f"  {mode:6s} {what:22s} max {value['max']:7.2f}  mean {value['mean']:7.3f} levels")
+    print(f"wrote {args.out}/fig7.png, {args.out}/fig7_error.png, {args.out}/summary.json")
+    if summary["mismatches"]:
+        print(f"MISMATCH between golden and RTL: {summary['mismatches']} pixel(s); see summary.json",
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+def _parser():
+    parser = argparse.ArgumentParser(prog="phongfx", description=__doc__.split("\n\n")[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    sub.add_parser("blocks", help="list the datapath blocks").set_defaults(run=_cmd_blocks)
+
+    def with_block(p):
+        p.add_argument("name", choices=block_names(), help="block name")
+        p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a config field")
+
+    p = sub.add_parser("verilog", help="emit a block as Verilog")
+    with_block(p)
+    p.add_argument("-o", "--output", required=True, help="Verilog file to write")
+    p.set_defaults(run=_cmd_verilog)
+
+    p = sub.add_parser("sim", help="check a block against its golden model, cycle by cycle")
+    with_block(p)
+    p.add_argument("--backend", choices=BACKENDS, default="amaranth")
+    p.add_argument("--vectors", type=int, default=1000, help="random vectors beyond the directed ones")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--bubbles", type=float, default=0.25, help="probability of an idle cycle")
+    p.add_argument("--vcd", help="write a waveform (amaranth back end)")
+    p.set_defaults(run=_cmd_sim)
+
+    p = sub.add_parser("render", help="shade Lyon's scene through Figure 7 (what `make sim` runs)")
+    p.add_argument("--backend", choices=BACKENDS, default="verilator")
+    p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels")
+    p.add_argument("--span", type=int, default=8, help="span length for interpolated normals")
+    p.add_argument("--out", default="build/sim", help="output folder")
+    p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a Fig7Config field")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=_cmd_render)
+    return parser
+
+
+def main(argv=None):
+    args = _parser().parse_args(argv)
+    if getattr(args, "vectors", 1) < 0:
+        print("phongfx: error: --vectors must be a non-negative integer", file=sys.stderr)
+        return 2
+    try:
+        return args.run(args)
+    except ValueError as error:
+        print(f"phongfx: error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,227 @@
+"""``make sim``: shade Lyon's scene through the Figure 7 datapath, golden and RTL.
+
+Every covered pixel goes through the golden model and through the RTL on a back
+end, cycle by cycle; every output must be bit-identical.  Then the fixed-point
+result is compared with float references (:mod:`phongfx.golden.reference`) with
+exact normals, and pictures and a JSON summary are written.
+
+Errors are in 8-bit levels of the specular amount (``|fixed - float| × 255``, per
+light); the picture is Lyon's composite (``35·ΣN·L + s(n)·Σspec``, clipped, white
+background) as in the appendix code.
+"""
+
+import json
+import os
+import tempfile
+import time
+
+import numpy as np
+
+from .blocks import get_block
+from .config import Fig7Config
+from .golden.reference import specular
+from .scene import Scene, pixels
+from .sim.harness import BACKENDS, check
+from .sim.vectors import codes
+
+__all__ = ["scene_inputs", "shade", "run", "REFERENCES", "MODES"]
+
+REFERENCES = ("phong", "lyon-k2")
+MODES = ("exact", "spans")
+DIFFUSE_GAIN = 35.0  # appendix: diff = 35
+SPECULAR_PEAK = 400.0  # appendix: specfs = 400/max(ns^.25)·ns^.25
+
+
+def scene_inputs(config, scene, px):
+    """Raw Figure 7 input codes for the pixels ``px`` of ``scene``."""
+    vec = config.lirp.fmt("vec")
+    count = len(px)
+    raw = {"n0": codes(px.n0, vec), "n1": codes(px.n1, vec), "a": codes(px.a, config.lirp.a),
+           "n": px.n.astype(np.int64),
+           "v": codes(np.broadcast_to(scene.unit_viewer(), (count, 3)), vec)}
+    for index, light in enumerate(scene.unit_lights()[:config.lights]):
+        raw[f"l{index}"] = codes(np.broadcast_to(light, (count, 3)), vec)
+    return raw
+
+
+def _chunks(raw, size):
+    count = len(raw["n"])
+    for start in range(0, count, size):
+        yield start, {name: value[start:start + size] for name, value in raw.items()}
+
+
+def shade(block, raw, backend, chunk=8192, progress=None):
+    """Golden outputs of ``raw``, checked against the RTL on ``backend`` chunk by chunk.
+
+    Returns (golden outputs, stats dict).  ``progress`` is called with the number of
+    pixels just checked.
+    """
+    golden = block.golden(raw)
+    stats = {"pixels": 0, "mismatches": 0, "cycles": 0, "seconds": 0.0, "first_mismatch": None}
+    for start, part in _chunks(raw, chunk):
+        result = check(block, inputs=part, backend=backend, bubbles=0.0)
+        stats["pixels"] += result.vectors
+        stats["cycles"] += result.cycles
+        stats["seconds"] += result.seconds
+        stats["mismatches"] += result.mismatch_count
+        if result.mismatch_count and stats["first_mismatch"] is None:
+            stats["first_mismatch"] = result.describe(limit=3)
+        if progress:
+            progress(result.vectors)
+    return golden, stats
+
+
+def _errors(config, scene, px, golden):
+    """Per-pixel specular error (max over lights, 8-bit levels) against each reference."""
+    lsb_t = config.shape.fmt("t").lsb
+    lights, viewer = scene.unit_lights()[:config.lights], scene.unit_viewer()
+    out = {}
+    for method in REFERENCES:
+        worst = np.zeros(len(px))
+        for index, light in enumerate(lights):
+            ref = specular(method, px.normal, light, viewer, px.n.astype(np.float64))
+            got = golden[f"spec{index}"] * lsb_t
+            worst = np.maximum(worst, np.abs(got - ref) * 255)
+        out[method] = worst
+    diff_ref = np.maximum(px.normal @ lights.T, 0)
+    diff_got = np.stack([golden[f"diff{i}"] for i in range(len(lights))], axis=-1)
+    out["diffuse"] = np.max(np.abs(diff_got * config.diffuse.fmt("out").lsb - diff_ref), axis=-1) * 255
+    return out
+
+
+def _composite(config, scene, px, golden):
+    """Lyon's appendix picture: white background, dark spheres, clipped highlights."""
+    ns = np.array(scene.shininess, dtype=np.float64)
+    gain = SPECULAR_PEAK / np.max(ns ** 0.25) * px.n ** 0.25
+    total = np.zeros(len(px))
+    for index in range(config.lights):
+        total += DIFFUSE_GAIN * golden[f"diff{index}"] * config.diffuse.fmt("out").lsb
+        total += gain * golden[f"spec{index}"] * config.shape.fmt("t").lsb
+    image = np.full((scene.height, scene.width), 255.0)
+    image[px.row, px.col] = np.clip(total, 0, 255)
+    return image
+
+
+def _atomic(path, write):
+    directory = os.path.dirname(path) or "."
+    os.makedirs(directory, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=directory, suffix=os.path.splitext(path)[1])
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def _plots(out_dir, scene, results):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(len(MODES), 1, figsize=(10, 3.2 * len(MODES)))
+    for ax, mode in zip(axes, MODES):
+        ax.imshow(results[mode]["image"], cmap="gray", vmin=0, vmax=255, interpolation="nearest")
+        ax.set_title(f"Figure 7 datapath, {mode} normals — n = {', '.join(map(str, scene.shininess))}")
+        ax.axis("off")
+    fig.tight_layout()
+    _atomic(os.path.join(out_dir, "fig7.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
+    plt.close(fig)
+
+    fig, axes = plt.subplots(len(MODES), len(REFERENCES), figsize=(14, 3.4 * len(MODES)))
+    for r, mode in enumerate(MODES):
+        px, errors = results[mode]["pixels"], results[mode]["errors"]
+        for c, method in enumerate(REFERENCES):
+            ax = axes[r, c]
+            image = np.full((scene.height, scene.width), np.nan)
+            image[px.row, px.col] = errors[method]
+            shown = ax.imshow(image, cmap="inferno", vmin=0, vmax=max(1.0, np.nanmax(image)),
+                              interpolation="nearest")
+            ax.set_title(f"{mode} normals vs float {method}: max {np.nanmax(image):.1f}, "
+                         f"mean {np.nanmean(image):.2f} levels", fontsize=9)
+            ax.axis("off")
+            fig.colorbar(shown, ax=ax, fraction=0.025, label="8-bit levels")
+    fig.tight_layout()
+    _atomic(os.path.join(out_dir, "fig7_error.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
+    plt.close(fig)
+
+
+def run(config=None, *, radius=64, span=8, backend="verilator", out_dir="build/sim",
+        chunk=8192, sample=2000, quiet=False):
+    """Shade both modes, check every pixel on ``backend``, write pictures and summary.
+
+    ``sample`` pixels are also run on each other back end, only to measure its speed.
+    Returns the summary dict; ``summary["mismatches"]`` must be 0.
+    """
+    from tqdm import tqdm
+
+    if backend not in BACKENDS:
+        raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
+    config = config or Fig7Config()
+    block = get_block("fig7", config=config)
+    scenes = {"exact": Scene(radius=radius, span=0), "spans": Scene(radius=radius, span=span)}
+    prepared = {mode: (scene, pixels(scene)) for mode, scene in scenes.items()}
+    total = sum(len(px) for _, px in prepared.values())
+
+    results, speeds = {}, {}
+    start = time.perf_counter()
+    with tqdm(total=total, unit="px", desc=f"RTL ({backend})", disable=quiet) as bar:
+        for mode, (scene, px) in prepared.items():
+            raw = scene_inputs(config, scene, px)
+            golden, stats = shade(block, raw, backend, chunk=chunk, progress=bar.update)
+            results[mode] = {"pixels": px, "stats": stats, "errors": _errors(config, scene, px, golden),
+                             "image": _composite(config, scene, px, golden)}
+    for other in BACKENDS:
+        scene, px = prepared["spans"]
+        raw = scene_inputs(config, scene, px)
+        part = {name: value[:sample] for name, value in raw.items()}
+        if other == backend:
+            continue
+        _, stats = shade(block, part, other, chunk=sample)
+        speeds[other] = stats
+
+    summary = {
+        "datapath": "fig7", "config": _plain(config), "latency": block.component().latency,
+        "backend": backend, "radius": radius, "span": span, "shininess": list(Scene().shininess),
+        "pixels_checked": sum(r["stats"]["pixels"] for r in results.values()),
+        "mismatches": sum(r["stats"]["mismatches"] for r in results.values()),
+        "cycles": sum(r["stats"]["cycles"] for r in results.values()),
+        "cycles_per_second": {},
+        "wall_seconds": round(time.perf_counter() - start, 2),
+        "error_8bit": {},
+    }
+    rtl_seconds = sum(r["stats"]["seconds"] for r in results.values())
+    summary["cycles_per_second"][backend] = {
+        "cycles": summary["cycles"], "seconds": round(rtl_seconds, 3),
+        "cycles_per_second": round(summary["cycles"] / rtl_seconds, 1)}
+    for other, stats in speeds.items():
+        summary["cycles_per_second"][other] = {
+            "cycles": stats["cycles"], "seconds": round(stats["seconds"], 3),
+            "cycles_per_second": round(stats["cycles"] / stats["seconds"], 1),
+            "note": f"speed sample: first {stats['pixels']} span-mode pixels, also bit-identical"
+                    if not stats["mismatches"] else f"{stats['mismatches']} MISMATCHES"}
+        summary["mismatches"] += stats["mismatches"]
+    for mode, result in results.items():
+        px, errors = result["pixels"], result["errors"]
+        entry = {}
+        for method, err in errors.items():
+            per_n = {str(n): {"max": round(float(err[px.n == n].max()), 3),
+                              "mean": round(float(err[px.n == n].mean()), 4)}
+                     for n in scenes[mode].shininess}
+            entry["specular_vs_" + method if method != "diffuse" else "diffuse_vs_float"] = {
+                "max": round(float(err.max()), 3), "mean": round(float(err.mean()), 4), "by_n": per_n}
+        entry["pixels"] = len(px)
+        if result["stats"]["first_mismatch"]:
+            entry["first_mismatch"] = result["stats"]["first_mismatch"]
+        summary["error_8bit"][mode] = entry
+
+    _plots(out_dir, scenes["spans"], results)
+    _atomic(os.path.join(out_dir, "summary.json"),
+            lambda p: open(p, "w").write(json.dumps(summary, indent=2) + "\n"))
+    return summary
+
+
+def _plain(config):
+    from dataclasses import asdict
+    return asdict(config)

@@ -1,0 +1,42 @@
+"""Stimulus for difference/x: R = L, R = -L, exact axes, extreme n, near the peak, random."""
+
+import numpy as np
+
+from . import codes, concat, random_codes, rng, unit_vectors
+
+__all__ = ["vectors"]
+
+
+def vectors(config, count=1000, seed=0):
+    vec, nfmt = config.fmt("vec"), config.fmt("n")
+    g = rng(seed)
+    ns = sorted({1, min(8000, config.n_max), config.n_max})
+
+    # every pair of ± axes: R = L (x = 0), R = -L (|D| = 2, +2 saturating), 90° apart
+    axes = np.concatenate([np.eye(3), -np.eye(3)])
+    r = np.array([p for p in axes for q in axes] * len(ns))
+    l = np.array([q for p in axes for q in axes] * len(ns))
+    n = np.repeat(ns, len(axes) ** 2)
+    u = unit_vectors(8, g)  # off-axis R = L and R = -L as well
+    r = np.concatenate([r, np.tile(u, (2 * len(ns), 1))])
+    l = np.concatenate([l, np.tile(np.concatenate([u, -u]), (len(ns), 1))])
+    n = np.concatenate([n, np.repeat(ns, 2 * len(u))])
+    directed = {"r": codes(r, vec), "l": codes(l, vec), "n": np.asarray(n)}
+
+    # grazing approach to the peak: angles putting x on 0 .. 64 (past 2^k for every k)
+    # around each light, so the fraction bits of 2x that the shape function uses are hit
+    m = 4 * count // 10 + 1
+    n_near = random_codes(nfmt, m, g, 1, config.n_max)
+    alpha = np.sqrt(2 * g.uniform(0, 64, m) / n_near)
+    l_near = unit_vectors(m, g)
+    side = np.cross(l_near, unit_vectors(m, g))
+    side /= np.linalg.norm(side, axis=-1, keepdims=True)
+    r_near = np.cos(alpha)[:, None] * l_near + np.sin(alpha)[:, None] * side
+    near = {"r": codes(r_near, vec), "l": codes(l_near, vec), "n": n_near}
+
+    # seeded random unit pairs, and raw codes over the whole vec format (|D| up to 4)
+    unit = {"r": codes(unit_vectors(count, g), vec), "l": codes(unit_vectors(count, g), vec),
+            "n": random_codes(nfmt, count, g, 1, config.n_max)}
+    full = {"r": random_codes(vec, (count, 3), g), "l": random_codes(vec, (count, 3), g),
+            "n": random_codes(nfmt, count, g, 1, config.n_max)}
+    return concat(directed, near, unit, full)
