@@ -7,7 +7,8 @@ Bit growth (defaults): ``R - L`` of two ``S1.10`` is exact in ``S2.10``; ``D`` i
 saturated back to ``S1.10`` (10 fraction bits on direction vectors, as the Figure 7a
 text says; 12 bits, the paper's "three 12×12 multipliers").  ``|D| = 2`` only at
 α = 180°, where a component of exactly -2 is held but +2 saturates to 2 - 2^-10;
-``x`` is huge there for any useful ``n`` and the specular amount 0.  Each square
+``x`` is huge there for any useful ``n`` and the specular amount 0 (only at ``n = 1``
+does it show: ``f_2`` gives 2056 instead of 2048 LSB of ``1.15``).  Each square
 ``S1.10 × S1.10`` is exact in ``S3.20``, their sum in ``S5.20``; ``D·D`` keeps all 20
 fraction bits in ``dd`` = ``2.20`` (the paper's 22 bits) and saturates just below 4,
 which only α near 180° reaches.  ``n`` is an integer ``13.0`` (1..8000); the

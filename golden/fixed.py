@@ -8,6 +8,9 @@ overflow policy.  :mod:`phongfx.hdl.fixed` implements the same ``quantize`` for
 Amaranth, so a block's golden model and its component read alike.
 """
 
+import math
+from fractions import Fraction
+
 import numpy as np
 
 from ..format import Format, check_overflow, check_rounding
@@ -46,24 +49,26 @@ def quantize_raw(raw, frm, to, rounding, overflow, op="quantize"):
     raw = _as_raw(raw)
     drop = frm.frac_bits - to.frac_bits
     if drop > 0:
+        # split into kept part and dropped remainder: adding the rounding constant
+        # to the raw code first could overflow int64 for 63/64-bit formats
+        kept, rest = raw >> drop, raw & ((1 << drop) - 1)
+        half = 1 << (drop - 1)
         if rounding == "round_half_up":
-            raw = raw + (1 << (drop - 1))
+            kept = kept + (rest >= half)
         elif rounding == "round_half_even":
-            # adding half minus one plus the kept LSB makes exact ties go to even
-            raw = raw + ((1 << (drop - 1)) - 1) + ((raw >> drop) & 1)
-        raw = raw >> drop
+            kept = kept + ((rest > half) | ((rest == half) & (kept & 1).astype(bool)))
+        raw = kept.astype(np.int64)
     elif drop < 0:
-        if frm.width - drop > 64:
+        # a signed code of w bits moved left by k needs w+k bits, an unsigned one
+        # w+k bits plus the sign bit int64 always has
+        if frm.width - drop > (64 if frm.signed else 63):
             raise ValueError(f"{op}: {frm} moved to {-drop} more fraction bits does not fit in int64")
         raw = raw << -drop
     bad = (raw < to.min_raw) | (raw > to.max_raw)
     if np.any(bad):
         if overflow == "error":
             first = raw[bad].flat[0] if raw.ndim else raw
-            raise FixedOverflowError(
-                f"{op}: {int(np.count_nonzero(bad))} value(s) overflow format {to} "
-                f"(range {to.min_raw * to.lsb}..{to.max_raw * to.lsb}); "
-                f"first offending value {int(first) * to.lsb} (raw {int(first)})")
+            raise _overflow_error(op, to, int(np.count_nonzero(bad)), int(first))
         if overflow == "saturate":
             raw = np.clip(raw, to.min_raw, to.max_raw)
         else:
@@ -73,10 +78,37 @@ def quantize_raw(raw, frm, to, rounding, overflow, op="quantize"):
     return raw
 
 
+def _overflow_error(op, to, count, first):
+    # ``first`` is the first offending raw code: an int, or inf past any int64
+    return FixedOverflowError(
+        f"{op}: {count} value(s) overflow format {to} "
+        f"(range {to.min_raw * to.lsb}..{to.max_raw * to.lsb}); "
+        f"first offending value {first * to.lsb} (raw {first})")
+
+
+def _raw_bound(bound, fmt, lower):
+    """Exact raw bound for ``raw >= bound`` (``lower``) or ``raw <= bound``, as a Python int,
+    or None when the format's whole range satisfies it, or "all" when none of it does."""
+    if math.isinf(bound):
+        return None if (bound < 0) == lower else "all"
+    scaled = Fraction(bound) * fmt.one
+    raw = math.ceil(scaled) if lower else math.floor(scaled)
+    if lower:
+        return None if raw <= fmt.min_raw else "all" if raw > fmt.max_raw else raw
+    return None if raw >= fmt.max_raw else "all" if raw < fmt.min_raw else raw
+
+
 def check_range(name, value, lo, hi):
     """Refuse input values outside ``lo..hi`` (floats) with a message naming ``name``."""
-    lo_raw, hi_raw = lo * value.fmt.one, hi * value.fmt.one
-    bad = (value.raw < lo_raw) | (value.raw > hi_raw)
+    # exact bounds in raw codes: comparing int64 codes against float bounds rounds
+    # the codes of formats wider than 53 bits
+    bad = np.zeros(value.raw.shape, dtype=bool)
+    for bound, lower in ((lo, True), (hi, False)):
+        raw = _raw_bound(bound, value.fmt, lower)
+        if raw == "all":
+            bad[...] = True
+        elif raw is not None:
+            bad |= (value.raw < raw) if lower else (value.raw > raw)
     if np.any(bad):
         first = value.raw[bad].flat[0]
         raise ValueError(f"{name} must be in {lo:g}..{hi:g}; {int(np.count_nonzero(bad))} value(s) "
@@ -110,18 +142,45 @@ class Fixed:
         """Quantize float values to ``fmt`` with a named rounding and overflow policy."""
         fmt = Format.parse(fmt)
         check_rounding(rounding)
-        scaled = np.asarray(value, dtype=np.float64) * float(fmt.one)
-        if not np.all(np.isfinite(scaled)):
+        check_overflow(overflow)
+        value = np.asarray(value, dtype=np.float64)
+        if not np.all(np.isfinite(value)):
             raise ValueError(f"from_float: values must be finite to convert to {fmt}")
-        if rounding == "truncate":
-            raw = np.floor(scaled)
-        elif rounding == "round_half_up":
-            raw = np.floor(scaled + 0.5)
-        else:
-            raw = np.round(scaled)  # numpy rounds ties to even
-        limit = 2.0 ** 62
-        raw = np.clip(raw, -limit, limit).astype(np.int64)
-        return cls(quantize_raw(raw, fmt, fmt, rounding, overflow, op="from_float"), fmt)
+        with np.errstate(over="ignore", invalid="ignore"):
+            # exact (a power of two) unless it overflows to inf, which is out of range anyway
+            scaled = value * float(fmt.one)
+            if rounding == "truncate":
+                raw = np.floor(scaled)
+            elif rounding == "round_half_up":
+                # floor(x + 0.5) in floats rounds the sum (0.49999999999999994 -> 1);
+                # the fraction x - floor(x) is exact
+                floor = np.floor(scaled)
+                raw = floor + (scaled - floor >= 0.5)
+            else:
+                raw = np.rint(scaled)  # ties to even
+        # the range checks in floats are exact: min_raw and max_raw + 1 are 0 or powers of two
+        low, high = raw < float(fmt.min_raw), raw >= float(fmt.max_raw + 1)
+        bad = low | high
+        codes = np.where(bad, 0.0, raw).astype(np.int64)
+        if np.any(bad):
+            if overflow == "error":
+                first = raw[bad].flat[0] if raw.ndim else raw
+                first = int(first) if np.isfinite(first) else float(first)
+                raise _overflow_error("from_float", fmt, int(np.count_nonzero(bad)), first)
+            if overflow == "saturate":
+                codes = np.where(high, fmt.max_raw, np.where(low, fmt.min_raw, codes))
+            else:
+                # the code modulo 2**width, brought into int64 range: fmod is exact, and
+                # so (Sterbenz) is moving its result by one modulus into [-half, half);
+                # a scaled value too large for a float is a multiple of any 2**width
+                modulus, half = 2.0 ** fmt.width, 2.0 ** (fmt.width - 1)
+                with np.errstate(invalid="ignore"):
+                    wrapped = np.where(np.isinf(raw), 0.0, np.fmod(raw, modulus))
+                wrapped = np.where(wrapped >= half, wrapped - modulus, wrapped)
+                wrapped = np.where(wrapped < -half, wrapped + modulus, wrapped)
+                codes = np.where(bad, wrapped.astype(np.int64), codes)
+                codes = quantize_raw(codes, fmt, fmt, rounding, "wrap", op="from_float")
+        return cls(codes, fmt)
 
     @classmethod
     def const(cls, value, fmt):

@@ -44,6 +44,7 @@ class PipelinedBlock(wiring.Component):
 
     def __init__(self, config):
         if not isinstance(config, self.config_class):
+            self._MustUse__silence = True  # never built: no "unused elaboratable" warning later
             raise TypeError(f"config must be a {self.config_class.__name__}, not {config!r}")
         self.config = config
         super().__init__({

@@ -34,6 +34,9 @@ class Fig7(PipelinedBlock):
         self._difference = [Difference(c.difference) for _ in range(c.lights)]
         self._shape = [Shape(c.shape) for _ in range(c.lights)]
         self._diffuse = [Diffuse(c.diffuse) for _ in range(c.lights)]
+        for sub in (self._lirp, self._normalize, self._reflect, *self._difference, *self._shape,
+                    *self._diffuse):
+            sub._MustUse__silence = True  # owned by this block: only an unused Fig7 should warn
 
     @property
     def _to_normal(self):

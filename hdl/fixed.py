@@ -9,11 +9,29 @@ pipeline registers, so a component reads like its golden function with the
 register boundaries marked.
 """
 
-from amaranth.hdl import Const, Mux, Signal, Value
+from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
 from ..format import Format, check_overflow, check_rounding
 
 __all__ = ["FixedValue", "FixedVector", "quantize", "stage", "delay"]
+
+
+def _fit(value, fmt):
+    """``value`` extended by its own signedness (or truncated) to exactly ``fmt``'s shape.
+
+    Slicing alone cannot widen: ``value[:n]`` of a narrower value keeps its width, so an
+    unsigned value recast as signed (or the reverse) would change its meaning.
+    """
+    value = Value.cast(value)
+    if len(value) < fmt.width:
+        if len(value) == 0:
+            value = Const(0, fmt.width)
+        elif value.shape().signed:
+            value = Cat(value, value[-1].replicate(fmt.width - len(value)))
+        else:
+            value = Cat(value, Const(0, fmt.width - len(value)))
+    value = value[:fmt.width]
+    return value.as_signed() if fmt.signed else value.as_unsigned()
 
 
 def quantize(value, frm, to, rounding, overflow):
@@ -32,14 +50,18 @@ def quantize(value, frm, to, rounding, overflow):
         if rounding == "round_half_up":
             value = value + (1 << (drop - 1))
         elif rounding == "round_half_even":
-            value = value + ((1 << (drop - 1)) - 1) + value[drop]
+            # the LSB kept, bit ``drop``: past the top of the value it is the sign (or 0)
+            if drop < len(value):
+                kept_lsb = value[drop]
+            else:
+                kept_lsb = value[-1] if frm.signed else Const(0, 1)
+            value = value + ((1 << (drop - 1)) - 1) + kept_lsb
         value = value >> drop
     elif drop < 0:
         value = value << -drop
     if overflow == "saturate":
         value = Mux(value > to.max_raw, to.max_raw, Mux(value < to.min_raw, to.min_raw, value))
-    value = value[:to.width]
-    return value.as_signed() if to.signed else value.as_unsigned()
+    return _fit(value, to)
 
 
 class FixedValue:
@@ -64,9 +86,8 @@ class FixedValue:
         return self.value << (fmt.frac_bits - self.fmt.frac_bits)
 
     def _result(self, expr, fmt):
-        # Amaranth widens at least as much as Format does; cast to exactly the format's width
-        expr = Value.cast(expr)[:fmt.width]
-        return FixedValue(expr.as_signed() if fmt.signed else expr.as_unsigned(), fmt)
+        # cast to exactly the format's width (Format's result holds every exact value)
+        return FixedValue(_fit(expr, fmt), fmt)
 
     def __add__(self, other):
         fmt = self.fmt.add(other.fmt)
@@ -99,7 +120,8 @@ class FixedValue:
         # same rule as the golden model: a number compares by its exact raw code
         if isinstance(other, FixedValue):
             f = max(self.fmt.frac_bits, other.fmt.frac_bits)
-            return self._align(Format(0, f)), other._align(Format(0, f))
+            return (self.value << (f - self.fmt.frac_bits),
+                    other.value << (f - other.fmt.frac_bits))
         raw = other * self.fmt.one
         if raw != int(raw):
             raise ValueError(f"comparison constant {other} is not exactly representable in {self.fmt}")

@@ -1,7 +1,6 @@
 """Approximate normalizer component, Lyon (1993) Figure 7a: ``N = g(N'·N')·N'``."""
 
 from ..config import NormalizeConfig
-from ..golden.normalize import y2_overflow
 from .block import PipelinedBlock
 from .fixed import FixedValue, delay, stage
 
@@ -34,7 +33,7 @@ class Normalize(PipelinedBlock):
         if cfg.order == 1:
             half = stage(m, y, "y")
         else:
-            y2 = (y * y).quantize(cfg.y2, cfg.rounding, y2_overflow(cfg))
+            y2 = (y * y).quantize(cfg.y2, cfg.rounding, cfg.y2_overflow)
             half = stage(m, y, "y") + stage(m, y2, "y2")
         g = stage(m, (FixedValue.const(1, cfg.g) + half.shift(-1))
                   .quantize(cfg.g, cfg.rounding, "saturate"), "g")

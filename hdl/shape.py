@@ -12,7 +12,7 @@ class Shape(PipelinedBlock):
     """Shifter, comparator, "1-" block, ``k`` squarers and output multiplexer (Figure 7d).
 
     The shift by ``k+1`` is wiring; the comparator and the "1-" block see only the
-    shifted bits.  ``k`` squaring multipliers (17×17 for ``t`` = ``1.15``) follow.
+    shifted bits.  ``k`` squaring multipliers (16×16 for ``t`` = ``1.15``) follow.
     Formats, rounding and the error bound are as in :func:`phongfx.golden.shape.shape`.
 
     Latency: ``1 + k`` (``1 - u`` and ``ge1``; then each squarer's rounded output).

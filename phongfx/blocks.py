@@ -46,6 +46,13 @@ class Block:
     def component(self):
         return self.component_class(self.config)
 
+    @property
+    def latency(self):
+        """The component's latency in cycles (builds it without elaborating)."""
+        component = self.component()
+        component._MustUse__silence = True  # only asked for a number; not meant to be built
+        return component.latency
+
     def vectors(self, count=1000, seed=0):
         """Raw input codes: directed extremes, exhaustive sets where small, then seeded random."""
         return self.vectors_function(self.config, count=count, seed=seed)

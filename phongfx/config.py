@@ -120,6 +120,16 @@ class NormalizeConfig(BlockConfig):
         _fmt("out", self.out, signed=True)
 
     @property
+    def y2_overflow(self):
+        """Overflow policy of the ``y²`` quantize: ``"error"`` where it provably cannot overflow.
+
+        ``z`` saturates below 2 when it has one integer bit, so ``y > -1`` and
+        ``y² <= 1``, which ``y2`` holds by validation.  A wider ``z`` lets junk
+        reach ``y = 1 - 2**int_bits`` and ``y²`` well past 1: saturate there.
+        """
+        return "error" if self.fmt("z").int_bits == 1 else "saturate"
+
+    @property
     def inputs(self):
         return {"n": (self.fmt("vec"), 3)}
 

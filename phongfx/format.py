@@ -26,7 +26,7 @@ ROUNDINGS = ("truncate", "round_half_up", "round_half_even")
 #: happen: the golden model raises if it does, the hardware keeps the low bits.
 OVERFLOWS = ("saturate", "wrap", "error")
 
-_PATTERN = re.compile(r"^(S?)(\d+)\.(\d+)$")
+_PATTERN = re.compile(r"^(S?)([0-9]+)\.([0-9]+)$")
 
 
 def check_rounding(rounding):
@@ -72,7 +72,7 @@ class Format:
         if self.width > limit:
             raise ValueError(
                 f"format {self} is {self.width} bits wide; raw values are held in numpy int64, "
-                f"so a {'signed' if self.signed else 'unsigned'} format may have at most "
+                f"so {'a signed' if self.signed else 'an unsigned'} format may have at most "
                 f"{limit} bits")
         if self.width == 0:
             raise ValueError("format 0.0 has no bits")
@@ -137,7 +137,8 @@ class Format:
         if lo < 0:
             int_bits = max(max(-lo - 1, hi).bit_length() - frac_bits, 0)
             return cls(int_bits, frac_bits, True)
-        return cls(max(hi.bit_length() - frac_bits, 0), frac_bits, False)
+        # 0..0 without fraction bits still needs one bit: "0.0" is no format
+        return cls(max(hi.bit_length() - frac_bits, 0 if frac_bits else 1), frac_bits, False)
 
     def _aligned(self, frac_bits):
         scale = 1 << (frac_bits - self.frac_bits)

@@ -1,30 +1,38 @@
 """cocotb test run inside the simulator by :mod:`phongfx.sim.verilator_backend`.
 
 It is not a pytest module: ``cocotb_tools.runner`` names it as the test module and
-the simulator imports it.  The run directory comes in ``$PHONGFX_TB_DIR``; it holds
+the simulator imports it.  ``$PHONGFX_TB_DIR`` names the run directory, which holds
 ``stimulus.txt`` (first line: the cycle count; then one line per cycle,
 ``valid hex_payload``) and receives ``results.txt`` in the same format, written
 only once every cycle has run, so the caller never sees partial results.
 
-Cycle ``t`` spans 10 ns: at ``10t`` the clock falls and the inputs of cycle ``t``
-are written; at ``10t + 5`` the outputs, settled on those inputs, are read and the
-clock rises.  That is the Amaranth back end's order (set, read settled, tick).
+The simulated top is the back end's wrapper (see
+:func:`phongfx.sim.verilator_backend.wrapper`): ``stim`` holds the input words
+``{i.payload, i.valid}`` of ``$PHONGFX_TB_BLOCK`` consecutive cycles, word ``j``
+in the ``j``-th slice, and ``resp`` collects ``{o.payload, o.valid}`` the same way,
+each captured at its cycle's rising edge.  The clock (10 ns, low first, rising at
+``10t + 5``) runs in cocotb's C layer; Python wakes once a block, 2 ns into its
+first cycle, to read the previous block's ``resp`` and write this block's
+``stim``, so the Python cost is spread over the block.
 """
 
 import os
 from pathlib import Path
 
 import cocotb
+from cocotb.clock import Clock
 from cocotb.triggers import Timer
 
-__all__ = ["drive"]
+__all__ = ["drive", "read_vectors", "write_vectors", "STIMULUS", "RESULTS"]
 
 STIMULUS = "stimulus.txt"
 RESULTS = "results.txt"
+PERIOD_NS = 10
+PHASE_NS = 2  # inside the low half, away from both clock edges
 
 
-def read_stimulus(path):
-    """(valid list, payload list) from a stimulus file."""
+def read_vectors(path):
+    """(valid list, payload list) from a stimulus or results file."""
     with open(path) as file:
         cycles = int(file.readline())
         valid = []
@@ -48,36 +56,46 @@ def write_vectors(path, valid, payload):
     os.replace(temp, path)
 
 
+def _blocks(valid, payload, block, word):
+    """Binary strings of ``block`` input words each, cycle ``j`` of a block in slice ``j``."""
+    words = [p << 1 | v for v, p in zip(valid, payload)]
+    words += [0] * (-len(words) % block)  # idle padding after the last cycle
+    out = []
+    for start in range(0, len(words), block):
+        packed = 0
+        for j, w in enumerate(words[start:start + block]):
+            packed |= w << (j * word)
+        out.append(format(packed, f"0{block * word}b"))
+    return out
+
+
 @cocotb.test()
 async def drive(dut):
     """Drive every stimulus cycle and record the settled outputs of each."""
     run_dir = Path(os.environ["PHONGFX_TB_DIR"])
-    in_valid, in_payload = read_stimulus(run_dir / STIMULUS)
+    block = int(os.environ["PHONGFX_TB_BLOCK"])
+    in_valid, in_payload = read_vectors(run_dir / STIMULUS)
     cycles = len(in_valid)
-    clk, rst = dut.clk, dut.rst
-    i_valid, i_payload = dut.i__valid, dut.i__payload
-    o_valid, o_payload = dut.o__valid, dut.o__payload
-    # Convert before the loop: a binary string is what the VPI write takes for
-    # signals over 32 bits anyway, and it keeps the per-cycle work to the writes.
-    width = len(i_payload)
-    if width > 32:
-        in_payload = [format(p, f"0{width}b") for p in in_payload]
-    half = Timer(5, unit="ns")
+    stim, resp = dut.stim, dut.resp
+    in_word, out_word = len(stim) // block, len(resp) // block
+    # Strings made before the loop leave each wake a single write and read.
+    stimulus = _blocks(in_valid, in_payload, block, in_word)
 
-    rst.value = 0
-    got_valid = [None] * cycles
-    got_payload = [None] * cycles
-    for cycle in range(cycles):
-        clk.value = 0
-        i_valid.value = in_valid[cycle]
-        i_payload.value = in_payload[cycle]
-        await half
-        got_valid[cycle] = o_valid.value
-        got_payload[cycle] = o_payload.value
-        clk.value = 1
-        await half
+    Clock(dut.clk, PERIOD_NS, unit="ns").start(start_high=False)
+    await Timer(PHASE_NS, unit="ns")
+    period = Timer(block * PERIOD_NS, unit="ns")
+    got = []
+    for words in stimulus:
+        stim.value = words
+        await period
+        got.append(resp.value)
 
-    # int() of a value holding X or Z raises, failing the test rather than
-    # inventing bits.
-    write_vectors(run_dir / RESULTS, [int(v) for v in got_valid],
-                  [p.to_unsigned() for p in got_payload])
+    # to_unsigned() of a value holding X or Z raises, failing the test rather
+    # than inventing bits.
+    mask = (1 << out_word) - 1
+    words = []
+    for value in got:
+        packed = value.to_unsigned()
+        words.extend(packed >> (j * out_word) & mask for j in range(block))
+    del words[cycles:]
+    write_vectors(run_dir / RESULTS, [w & 1 for w in words], [w >> 1 for w in words])

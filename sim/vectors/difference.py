@@ -23,11 +23,17 @@ def vectors(config, count=1000, seed=0):
     n = np.concatenate([n, np.repeat(ns, 2 * len(u))])
     directed = {"r": codes(r, vec), "l": codes(l, vec), "n": np.asarray(n)}
 
-    # grazing approach to the peak: angles putting x on 0 .. 64 (past 2^k for every k)
-    # around each light, so the fraction bits of 2x that the shape function uses are hit
+    # a few LSB apart at the largest n: D·D of a few 2^-20 must survive into 2x
+    steps = np.arange(-3, 4)
+    lsb = {"r": np.repeat(codes(u, vec), len(steps), axis=0),
+           "n": np.full(len(u) * len(steps), config.n_max)}
+    lsb["l"] = np.clip(lsb["r"] + np.tile(steps, len(u))[:, None] * [1, -1, 0], vec.min_raw, vec.max_raw)
+
+    # grazing approach to the peak: angles putting x on 0 .. 32 (past 2^k for every k),
+    # denser near 0, so the fraction bits of 2x that the shape function uses are hit
     m = 4 * count // 10 + 1
     n_near = random_codes(nfmt, m, g, 1, config.n_max)
-    alpha = np.sqrt(2 * g.uniform(0, 64, m) / n_near)
+    alpha = np.sqrt(2 * 32 * g.uniform(0, 1, m) ** 2 / n_near)
     l_near = unit_vectors(m, g)
     side = np.cross(l_near, unit_vectors(m, g))
     side /= np.linalg.norm(side, axis=-1, keepdims=True)
@@ -39,4 +45,4 @@ def vectors(config, count=1000, seed=0):
             "n": random_codes(nfmt, count, g, 1, config.n_max)}
     full = {"r": random_codes(vec, (count, 3), g), "l": random_codes(vec, (count, 3), g),
             "n": random_codes(nfmt, count, g, 1, config.n_max)}
-    return concat(directed, near, unit, full)
+    return concat(directed, lsb, near, unit, full)

@@ -28,7 +28,8 @@ def vectors(config, count=1000, seed=0):
     n = np.stack([x[inside], y[inside], np.sqrt(1 - x[inside] ** 2 - y[inside] ** 2)], axis=-1)
     sphere = {"n": codes(n, vec), "v": codes(np.tile([0, 0, 1.0], (len(n), 1)), vec)}
 
-    # random unit pairs (N = V included, for |R| ~ 1), and raw codes over the whole format
+    # random unit pairs, an eighth with N = V (N·V = |N|², only near 1 off the axes),
+    # and raw codes over the whole format
     un, uv = unit_vectors(count, g), unit_vectors(count, g)
     uv[: count // 8] = un[: count // 8]
     unit = {"n": codes(un, vec), "v": codes(uv, vec)}

@@ -12,13 +12,16 @@ def threshold(config):
     return 1 << (config.k + 1 + config.fmt("x2").frac_bits)
 
 
-def nonzero_codes(config):
-    """Every ``x2`` code below :func:`threshold` (evenly strided if more than EXHAUSTIVE_LIMIT)."""
+def nonzero_codes(config, limit=EXHAUSTIVE_LIMIT):
+    """Every ``x2`` code below :func:`threshold`, evenly strided if there are more than
+    ``limit`` (k = 4 with ``13.12``: every other code)."""
     top = threshold(config)
-    return np.arange(0, top, -(-top // EXHAUSTIVE_LIMIT), dtype=np.int64)
+    return np.arange(0, top, -(-top // limit), dtype=np.int64)
 
 
-def vectors(config, count=1000, seed=0):
+def vectors(config, count=1000, seed=0, limit=EXHAUSTIVE_LIMIT):
+    """Raw ``x2`` codes: :func:`nonzero_codes`, the 33 codes around the threshold, powers
+    of two and all-ones below each, the largest code and zero, then ``count`` random."""
     x2 = config.fmt("x2")
     top = threshold(config)
     edges = np.arange(top - 16, top + 17)
@@ -26,4 +29,4 @@ def vectors(config, count=1000, seed=0):
     directed = np.concatenate([edges, powers, powers - 1, [x2.max_raw, 0]])
     directed = directed[(directed >= 0) & (directed <= x2.max_raw)]
     full = random_codes(x2, count, rng(seed))
-    return concat({"x2": nonzero_codes(config)}, {"x2": directed}, {"x2": full})
+    return concat({"x2": nonzero_codes(config, limit)}, {"x2": directed}, {"x2": full})

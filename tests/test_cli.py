@@ -1,0 +1,59 @@
+import os
+import subprocess
+import sys
+
+import pytest
+
+from phongfx.cli import apply_settings, main
+from phongfx.config import Fig7Config
+
+
+def test_blocks_lists_every_block(capsys):
+    assert main(["blocks"]) == 0
+    out = capsys.readouterr().out
+    for name in ("lirp", "normalize", "reflect", "difference", "shape", "diffuse", "fig7"):
+        assert f"\n{name} " in "\n" + out
+
+
+def test_verilog_writes_a_module(tmp_path):
+    path = tmp_path / "shape.v"
+    assert main(["verilog", "shape", "--set", "k=1", "-o", str(path)]) == 0
+    text = path.read_text()
+    assert "module shape(" in text and "o__payload" in text
+
+
+def test_sim_passes_and_reports(capsys):
+    assert main(["sim", "lirp", "--vectors", "50", "--bubbles", "0.1"]) == 0
+    assert "0 mismatching cycle(s)" in capsys.readouterr().out
+
+
+def test_vcd_is_written(tmp_path):
+    path = tmp_path / "lirp.vcd"
+    assert main(["sim", "lirp", "--vectors", "5", "--vcd", str(path)]) == 0
+    assert path.read_text().startswith("$")
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["sim", "shape", "--set", "k=9"], r"phongfx: error: k must be an integer in 0\.\.4, not 9\n"),
+    (["sim", "shape", "--set", "q=1"], r"phongfx: error: --set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding\n"),
+    (["sim", "shape", "--set", "k=two"], r"phongfx: error: --set k: k must be an integer, not 'two'\n"),
+    (["render", "--radius", "2", "--out", "OUT"], r"phongfx: error: radius must be an integer in 4\.\.4096, not 2\n"),
+])
+def test_bad_input_exits_2_with_the_field_named(argv, message, capsys, tmp_path):
+    argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert __import__("re").fullmatch(message, err), err
+    assert not (tmp_path / "out").exists()  # nothing half-written
+
+
+def test_nested_settings():
+    config = apply_settings(Fig7Config(), ["shape.k=1", "lights=1", "shape.t=1.12"])
+    assert (config.shape.k, config.lights, config.shape.t) == (1, 1, "1.12")
+
+
+def test_console_script_exit_code():
+    # the installed entry point, as a user runs it
+    proc = subprocess.run([os.path.join(os.path.dirname(sys.executable), "phongfx"), "sim", "fig7",
+                           "--set", "lights=0"], capture_output=True, text=True)
+    assert proc.returncode == 2 and proc.stderr.startswith("phongfx: error: lights must be")
