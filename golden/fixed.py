@@ -72,18 +72,22 @@ def quantize_raw(raw, frm, to, rounding, overflow, op="quantize"):
         if overflow == "saturate":
             raw = np.clip(raw, to.min_raw, to.max_raw)
         else:
-            raw = raw & ((1 << to.width) - 1) if to.width < 64 else raw
-            if to.signed and to.width < 64:
-                raw = np.where(raw >= (1 << (to.width - 1)), raw - (1 << to.width), raw)
+            if to.width < 64:  # 64 bits: int64 is already two's complement of that width
+                raw = raw & ((1 << to.width) - 1)
+                if to.signed:
+                    # subtract 2**width in two halves: 2**63 itself is no int64
+                    half = 1 << (to.width - 1)
+                    raw = np.where(raw >= half, (raw - half) - half, raw)
     return raw
 
 
 def _overflow_error(op, to, count, first):
-    # ``first`` is the first offending raw code: an int, or inf past any int64
+    # ``first`` is the first offending raw code, an exact int (it may be past int64:
+    # int / int is correctly rounded where float(int) would overflow)
     return FixedOverflowError(
         f"{op}: {count} value(s) overflow format {to} "
         f"(range {to.min_raw * to.lsb}..{to.max_raw * to.lsb}); "
-        f"first offending value {first * to.lsb} (raw {first})")
+        f"first offending value {first / to.one} (raw {first})")
 
 
 def _raw_bound(bound, fmt, lower):
@@ -164,8 +168,10 @@ class Fixed:
         codes = np.where(bad, 0.0, raw).astype(np.int64)
         if np.any(bad):
             if overflow == "error":
-                first = raw[bad].flat[0] if raw.ndim else raw
-                first = int(first) if np.isfinite(first) else float(first)
+                index = np.flatnonzero(bad)[0]
+                first = raw.flat[index]
+                # past the float range a finite value is an integer: its code is exact
+                first = int(first) if np.isfinite(first) else int(value.flat[index]) * fmt.one
                 raise _overflow_error("from_float", fmt, int(np.count_nonzero(bad)), first)
             if overflow == "saturate":
                 codes = np.where(high, fmt.max_raw, np.where(low, fmt.min_raw, codes))
@@ -258,10 +264,16 @@ class Fixed:
         return (self * _coerce(other)).sum(axis=-1)
 
     def _compare_raw(self, other):
-        # comparisons against a number use its exact raw code in this format
+        # comparisons against a number use its exact raw code in this format.
+        # Two Fixed: rather than align the coarser code up (which can pass int64), bring
+        # the finer one down, rounded so >= and < stay exact: for integers a, b and
+        # d > 0, a*2**d >= b  <=>  a >= ceil(b/2**d), and a >= b*2**d  <=>  floor(a/2**d) >= b
         if isinstance(other, Fixed):
-            f = max(self.fmt.frac_bits, other.fmt.frac_bits)
-            return self.raw << (f - self.fmt.frac_bits), other.raw << (f - other.fmt.frac_bits)
+            d = other.fmt.frac_bits - self.fmt.frac_bits
+            if d > 0:
+                mask = (1 << d) - 1
+                return self.raw, (other.raw >> d) + ((other.raw & mask) != 0)
+            return self.raw >> -d, other.raw
         raw = other * self.fmt.one
         if raw != int(raw):
             raise ValueError(f"comparison constant {other} is not exactly representable in {self.fmt}")

@@ -68,16 +68,7 @@ class PipelinedBlock(wiring.Component):
         """Drive this block's ``i`` from ``valid`` and ``{input: FixedValue | FixedVector}``
         (used by composite blocks; formats must match the config's)."""
         m.d.comb += self.i.valid.eq(valid)
-        for name, (fmt, lanes) in self.config.inputs.items():
-            value = values[name]
-            if value.fmt != fmt:
-                raise ValueError(f"{type(self).__name__} input {name} wants format {fmt}, "
-                                 f"not {value.fmt}")
-            if lanes == 1:
-                m.d.comb += self.i.payload[name].eq(value.value)
-            else:
-                for lane, item in enumerate(value):
-                    m.d.comb += self.i.payload[name][lane].eq(item.value)
+        _drive(m, self.i.payload, self.config.inputs, values, f"{type(self).__name__} input")
 
     def results(self):
         """This block's outputs as ``{output: FixedValue | FixedVector}``."""
@@ -89,18 +80,20 @@ class PipelinedBlock(wiring.Component):
         valid = outputs.pop("valid", None)
         if valid is None:
             valid = delay(m, self.i.valid, self.latency, name="valid")
-        for name, (fmt, lanes) in self.config.outputs.items():
-            value = outputs[name]
-            if value.fmt != fmt:
-                raise ValueError(f"{type(self).__name__} output {name} has format {value.fmt}, "
-                                 f"the config declares {fmt}")
-            if lanes == 1:
-                m.d.comb += self.o.payload[name].eq(value.value)
-            else:
-                for lane, item in enumerate(value):
-                    m.d.comb += self.o.payload[name][lane].eq(item.value)
+        _drive(m, self.o.payload, self.config.outputs, outputs, f"{type(self).__name__} output")
         m.d.comb += self.o.valid.eq(valid)
         return m
+
+
+def _drive(m, payload, ports, values, what):
+    for name, (fmt, lanes) in ports.items():
+        value = values[name]
+        if value.fmt != fmt:
+            raise ValueError(f"{what} {name} has format {value.fmt}, the config declares {fmt}")
+        items = [value] if lanes == 1 else list(value)
+        targets = [payload[name]] if lanes == 1 else [payload[name][lane] for lane in range(lanes)]
+        for target, item in zip(targets, items):
+            m.d.comb += target.eq(item.value)
 
 
 def _wrap(payload, ports):

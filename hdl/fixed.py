@@ -60,7 +60,15 @@ def quantize(value, frm, to, rounding, overflow):
     elif drop < 0:
         value = value << -drop
     if overflow == "saturate":
-        value = Mux(value > to.max_raw, to.max_raw, Mux(value < to.min_raw, to.min_raw, value))
+        # clamp only on a side the value can reach: a comparison that is constant
+        # (an unsigned value < 0) is dead logic, and Verilator lint flags it
+        shape = value.shape()
+        lowest = -(1 << (shape.width - 1)) if shape.signed else 0
+        highest = (1 << (shape.width - 1 if shape.signed else shape.width)) - 1
+        if lowest < to.min_raw:
+            value = Mux(value < to.min_raw, to.min_raw, value)
+        if highest > to.max_raw:
+            value = Mux(value > to.max_raw, to.max_raw, value)
     return _fit(value, to)
 
 

@@ -46,6 +46,16 @@ BLOCK = 32  # cycles per Python wake-up in the testbench
 TB_MODULE = "phongfx.sim.cocotb_tb"
 _MARKER = "phongfx-build-ok"  # written last: its presence means a complete build
 _LOG_TAIL = 40
+_BUILD_ARGS = [
+    # Warnings stay in the log but do not stop the build: Amaranth's Verilog
+    # leans on Verilog's width rules on purpose (WIDTHEXPAND ...), and lint
+    # policy belongs to tests/hdl/test_emit.py, not to every simulation.
+    "-Wno-fatal",
+    # One C++ file per design.  Split output turns on the precompiled-header
+    # rules, whose include flag is empty in the PyPI package's verilated.mk
+    # (CFG_CXXFLAGS_PCH_I), so large designs would not compile.
+    "--output-split", "0",
+]
 # What a failed tool step raises: the runner's RuntimeError, its sys.exit under
 # pytest, or a subprocess/OS error.
 _TOOL_ERRORS = (RuntimeError, SystemExit, subprocess.CalledProcessError, OSError)
@@ -106,10 +116,10 @@ def wrapper(module, in_width, out_width, block=BLOCK):
     wi, wo = in_width + 1, out_width + 1
     bits = max(1, (block - 1).bit_length())
     # tracing_off keeps the wide windows, which change every cycle, out of VCDs;
-    # the block's own signals, declared above, are still traced.
+    # tracing_on again before the instance keeps the block's own signals in.
     return f"""
-/* verilator tracing_off */
 module {module}_tb(clk, stim, resp);
+  /* verilator tracing_off */
   input clk;
   input [{block * wi - 1}:0] stim;
   output reg [{block * wo - 1}:0] resp = 0;
@@ -117,6 +127,7 @@ module {module}_tb(clk, stim, resp);
   wire [{wi - 1}:0] word = stim[slot * {wi} +: {wi}];
   wire o_valid;
   wire [{out_width - 1}:0] o_payload;
+  /* verilator tracing_on */
   {module} dut (
     .clk(clk), .rst(1'b0),
     .i__valid(word[0]), .i__payload(word[{wi - 1}:1]),
@@ -156,7 +167,7 @@ def _digest(parts):
 
 def _runtime_dir(root, waves):
     """Cache of the design-independent ``verilated*`` objects (flags depend on ``waves``)."""
-    return root / f"runtime-{_digest([f'waves={bool(waves)}', *_tool_versions()])}"
+    return root / f"runtime-{_digest([f'waves={bool(waves)}', *_BUILD_ARGS, *_tool_versions()])}"
 
 
 def _runtime_files(directory):
@@ -205,7 +216,7 @@ def _key(component, module, top_text, waves):
     from amaranth.back import rtlil
 
     design = rtlil.convert(component, name=module, emit_src=False)
-    return _digest([design, top_text, f"waves={bool(waves)}", *_tool_versions()])
+    return _digest([design, top_text, f"waves={bool(waves)}", *_BUILD_ARGS, *_tool_versions()])
 
 
 class _SeededVerilator(Verilator):
@@ -272,11 +283,8 @@ def build(component, *, build_dir=None, waves=False):
     seeded = _seed_runtime(root, work, waves)
     log = work / "build.log"
     try:
-        # Warnings stay in the log but do not stop the build: Amaranth's Verilog
-        # leans on Verilog's width rules on purpose (WIDTHEXPAND ...), and lint
-        # policy belongs to tests/hdl/test_emit.py, not to every simulation.
         _runner(seeded).build(sources=[source], hdl_toplevel=top, build_dir=work,
-                              waves=bool(waves), build_args=["-Wno-fatal"],
+                              waves=bool(waves), build_args=_BUILD_ARGS,
                               timescale=("1ns", "1ps"), log_file=log)
     except _TOOL_ERRORS as error:
         raise RuntimeError(f"Verilator build of {module} failed ({error}); log {log}:\n"

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from phongfx.format import OVERFLOWS, ROUNDINGS, Format, check_overflow, check_rounding
 
-SETTINGS = settings(deadline=None, derandomize=True, max_examples=200)
+SETTINGS = settings(deadline=None, derandomize=True, max_examples=150)
 
 
 @st.composite

@@ -10,10 +10,21 @@ import numpy as np
 
 from ...golden.fixed import Fixed
 
-__all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "EXHAUSTIVE_LIMIT"]
+__all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "AXES", "axis_pairs",
+           "EXHAUSTIVE_LIMIT"]
 
 #: Largest input space that is checked exhaustively.
 EXHAUSTIVE_LIMIT = 1 << 16
+
+
+#: The six unit axis vectors ±X, ±Y, ±Z: components exactly ±1.0 and 0.
+AXES = np.concatenate([np.eye(3), -np.eye(3)])
+
+
+def axis_pairs():
+    """Every ordered pair of :data:`AXES` as two (36, 3) arrays: equal, opposite, at 90°."""
+    first, second = np.repeat(AXES, len(AXES), axis=0), np.tile(AXES, (len(AXES), 1))
+    return first, second
 
 
 def rng(seed):

@@ -1,8 +1,8 @@
-"""Stimulus for difference/x: R = L, R = -L, exact axes, extreme n, near the peak, random."""
+"""Stimulus for difference/x: R = L, R = -L, exact AXES, extreme n, near the peak, random."""
 
 import numpy as np
 
-from . import codes, concat, random_codes, rng, unit_vectors
+from . import AXES, axis_pairs, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors"]
 
@@ -12,11 +12,10 @@ def vectors(config, count=1000, seed=0):
     g = rng(seed)
     ns = sorted({1, min(8000, config.n_max), config.n_max})
 
-    # every pair of ± axes: R = L (x = 0), R = -L (|D| = 2, +2 saturating), 90° apart
-    axes = np.concatenate([np.eye(3), -np.eye(3)])
-    r = np.array([p for p in axes for q in axes] * len(ns))
-    l = np.array([q for p in axes for q in axes] * len(ns))
-    n = np.repeat(ns, len(axes) ** 2)
+    # every pair of ± AXES: R = L (x = 0), R = -L (|D| = 2, +2 saturating), 90° apart
+    first, second = axis_pairs()
+    r, l = np.tile(first, (len(ns), 1)), np.tile(second, (len(ns), 1))
+    n = np.repeat(ns, len(AXES) ** 2)
     u = unit_vectors(8, g)  # off-axis R = L and R = -L as well
     r = np.concatenate([r, np.tile(u, (2 * len(ns), 1))])
     l = np.concatenate([l, np.tile(np.concatenate([u, -u]), (len(ns), 1))])

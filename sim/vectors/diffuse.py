@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from . import codes, concat, random_codes, rng, unit_vectors
+from . import axis_pairs, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors"]
 
@@ -11,11 +11,10 @@ def vectors(config, count=1000, seed=0):
     vec = config.fmt("vec")
     g = rng(seed)
     # every pair of ±axis vectors: N = L (exactly 1.0), N = -L and N ⟂ L (both 0)
-    axes = np.concatenate([np.eye(3), -np.eye(3)])
-    pairs = [(p, q) for p in axes for q in axes]
-    axis = {"n": codes([p for p, q in pairs], vec), "l": codes([q for p, q in pairs], vec)}
+    first, second = axis_pairs()
+    axis = {"n": codes(first, vec), "l": codes(second, vec)}
 
-    # N = L and N = -L off the axes: 1.0 give or take the quantization of |N|, and 0
+    # N = L and N = -L off the AXES: 1.0 give or take the quantization of |N|, and 0
     u = codes(unit_vectors(count // 8, g), vec)
     same = {"n": np.concatenate([u, u]), "l": np.concatenate([u, -u])}
 

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from . import codes, concat, random_codes, rng, unit_vectors
+from . import AXES, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors"]
 
@@ -25,9 +25,8 @@ def vectors(config, count=1000, seed=0):
     # N0 = -N1 (zero-length N' at a = 1/2), grazing light, n = 1 and n = n_max
     lights = [np.array([1.0, 1, -1]) / np.sqrt(3), np.array([1.0, -1, 1]) / np.sqrt(3)]
     halfway = [(l + z) / np.linalg.norm(l + z) for l in lights]
-    axes = np.concatenate([np.eye(3), -np.eye(3)])
-    n0 = np.concatenate([halfway, axes, axes, axes[:3]])
-    n1 = np.concatenate([halfway, axes, axes, -axes[:3]])
+    n0 = np.concatenate([halfway, AXES, AXES, AXES[:3]])
+    n1 = np.concatenate([halfway, AXES, AXES, -AXES[:3]])
     a = np.concatenate([[0, 1.0], np.zeros(6), np.ones(6), [0.5] * 3])
     directed = [_case(config, n0, n1, a, np.full(len(n0), shininess), z, lights)
                 for shininess in (1, 4, 256, n_max)]

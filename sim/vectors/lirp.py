@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from . import codes, concat, random_codes, rng, unit_vectors
+from . import axis_pairs, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors"]
 
@@ -10,11 +10,10 @@ __all__ = ["vectors"]
 def vectors(config, count=1000, seed=0):
     vec, afmt = config.fmt("vec"), config.fmt("a")
     g = rng(seed)
-    axes = np.concatenate([np.eye(3), -np.eye(3)])
-    pairs = [(p, q) for p in axes for q in axes]  # includes N0 = -N1 (zero length at a = 1/2)
-    n0 = np.array([p for p, q in pairs] * 3)
-    n1 = np.array([q for p, q in pairs] * 3)
-    a = np.repeat([0.0, 1.0, 0.5], len(pairs))
+    first, second = axis_pairs()  # includes N0 = -N1 (zero length at a = 1/2)
+    n0 = np.tile(first, (3, 1))
+    n1 = np.tile(second, (3, 1))
+    a = np.repeat([0.0, 1.0, 0.5], len(first))
     directed = {"n0": codes(n0, vec), "n1": codes(n1, vec), "a": codes(a, afmt)}
 
     # spans of exactly 90°, swept in a over every code

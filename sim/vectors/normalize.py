@@ -1,8 +1,8 @@
-"""Stimulus for the normalizer: unit axes, zero, 0°..90° spans, every code on an axis, random."""
+"""Stimulus for the normalizer: unit AXES, zero, 0°..90° spans, every code on an axis, random."""
 
 import numpy as np
 
-from . import codes, concat, random_codes, rng, unit_vectors
+from . import AXES, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors"]
 
@@ -16,18 +16,17 @@ def _span(u0, u1, steps):
 def vectors(config, count=1000, seed=0):
     vec = config.fmt("vec")
     g = rng(seed)
-    axes = np.concatenate([np.eye(3), -np.eye(3)])
-    directed = np.concatenate([axes, np.zeros((1, 3))])
+    directed = np.concatenate([AXES, np.zeros((1, 3))])
 
     # chord midpoints of spans 0°..90° (length cos(θ/2), z from 1/2 to 1), then whole
     # 90° spans in each plane and octant, whose midpoint is the worst case y = 1/2
     theta = np.radians(np.arange(91))
     ends = np.stack([np.cos(theta), np.sin(theta), np.zeros_like(theta)], axis=-1)
     mids = (np.array([1.0, 0, 0]) + ends) / 2
-    spans = [_span(p, q, 65) for p in axes for q in axes if abs(p @ q) < 0.5]
+    spans = [_span(p, q, 65) for p in AXES for q in AXES if abs(p @ q) < 0.5]
 
     # a hair longer than unit: z just above 1 checks rounding where g dips below 1
-    hair = np.concatenate([axes * (1 + k * vec.lsb) for k in (1, 2, 3)]
+    hair = np.concatenate([AXES * (1 + k * vec.lsb) for k in (1, 2, 3)]
                           + [unit_vectors(64, g) * (1 + 4 * vec.lsb)])
     directed = codes(np.concatenate([directed, mids, *spans, hair]), vec)
 

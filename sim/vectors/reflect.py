@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from . import codes, concat, random_codes, rng, unit_vectors
+from . import AXES, axis_pairs, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors"]
 
@@ -11,16 +11,15 @@ def vectors(config, count=1000, seed=0):
     vec = config.fmt("vec")
     g = rng(seed)
     # every pair of ±axis vectors: N = V (R = V), N = -V (N·V = -1), N ⟂ V (grazing, R = -V)
-    axes = np.concatenate([np.eye(3), -np.eye(3)])
-    pairs = [(p, q) for p in axes for q in axes]
-    axis = {"n": codes([p for p, q in pairs], vec), "v": codes([q for p, q in pairs], vec)}
+    first, second = axis_pairs()
+    axis = {"n": codes(first, vec), "v": codes(second, vec)}
 
-    # normals at 45° between two axes against every axis view: N·V = ±1/√2 or 0
-    diag = [s * axes[i] + t * axes[j] for i in range(3) for j in range(i + 1, 3)
+    # normals at 45° between two AXES against every axis view: N·V = ±1/√2 or 0
+    diag = [s * AXES[i] + t * AXES[j] for i in range(3) for j in range(i + 1, 3)
             for s in (1, -1) for t in (1, -1)]
     diag = np.array(diag) / np.sqrt(2)
-    tilt = {"n": codes(np.repeat(diag, len(axes), axis=0), vec),
-            "v": codes(np.tile(axes, (len(diag), 1)), vec)}
+    tilt = {"n": codes(np.repeat(diag, len(AXES), axis=0), vec),
+            "v": codes(np.tile(AXES, (len(diag), 1)), vec)}
 
     # Lyon's test scene (appendix, specular.m): V = (0,0,1), N over the visible hemisphere
     x, y = np.meshgrid(np.linspace(-1, 1, 17), np.linspace(-1, 1, 17))
@@ -28,7 +27,7 @@ def vectors(config, count=1000, seed=0):
     n = np.stack([x[inside], y[inside], np.sqrt(1 - x[inside] ** 2 - y[inside] ** 2)], axis=-1)
     sphere = {"n": codes(n, vec), "v": codes(np.tile([0, 0, 1.0], (len(n), 1)), vec)}
 
-    # random unit pairs, an eighth with N = V (N·V = |N|², only near 1 off the axes),
+    # random unit pairs, an eighth with N = V (N·V = |N|², only near 1 off the AXES),
     # and raw codes over the whole format
     un, uv = unit_vectors(count, g), unit_vectors(count, g)
     uv[: count // 8] = un[: count // 8]

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from phongfx.format import OVERFLOWS, ROUNDINGS, Format
 from phongfx.golden.fixed import Fixed, FixedOverflowError, check_range, quantize_raw
 
-SETTINGS = settings(deadline=None, derandomize=True, max_examples=250)
+SETTINGS = settings(deadline=None, derandomize=True, max_examples=150)
 
 WIDE = r"format S?\d+\.\d+ is \d+ bits wide; raw values are held in numpy int64, " \
        r"so an? (un)?signed format may have at most 6[34] bits"
@@ -21,9 +21,9 @@ WIDE = r"format S?\d+\.\d+ is \d+ bits wide; raw values are held in numpy int64,
 # -- strategies -------------------------------------------------------------------------------
 
 @st.composite
-def formats(draw, max_width=64):
+def formats(draw, max_width=64, min_width=1):
     signed = draw(st.booleans())
-    width = draw(st.integers(1, max_width if signed else min(max_width, 63)))
+    width = draw(st.integers(min_width, max_width if signed else min(max_width, 63)))
     frac = draw(st.integers(0, width - signed))
     return Format(width - signed - frac, frac, signed)
 
@@ -78,7 +78,7 @@ def ref_overflow(r, to, overflow):
 
 def overflow_message(op, to, count, first):
     return (f"{op}: {count} value(s) overflow format {to} (range {to.min_raw * to.lsb}.."
-            f"{to.max_raw * to.lsb}); first offending value {first * to.lsb} (raw {first})")
+            f"{to.max_raw * to.lsb}); first offending value {first / to.one} (raw {first})")
 
 
 def exact_or_refused(thunk):
@@ -115,20 +115,18 @@ def test_add_sub_mul_neg_are_exact(pair):
 
 @pytest.mark.parametrize("expr, message", [
     (lambda: Fixed(0, "S63.0") + Fixed(0, "S63.0"), r"^format S64\.0 is 65 bits wide; "),
-    (lambda: Fixed(0, "63.0") + Fixed(0, "1.0"), r"^format 64\.0 is 64 bits wide; .*an unsigned "),
+    (lambda: Fixed(0, "63.0") + Fixed(0, "1.0"), r"^format 64\.0 is 64 bits wide; (?=.*an unsigned)"),
     (lambda: Fixed(0, "S31.1") * Fixed(0, "S31.0"), r"^format S63\.1 is 65 bits wide; "),
     (lambda: -Fixed(0, "S0.63"), r"^format S1\.63 is 65 bits wide; "),
     (lambda: Fixed(0, "S10.53") - Fixed(0, "S10.53"), r"^format S11\.53 is 65 bits wide; "),
-    (lambda: Fixed(0, "S10.50").shift(4), r"^format S14\.50 is 65 bits wide; "),
+    (lambda: Fixed(0, "S10.50").shift(54), r"^format S64\.0 is 65 bits wide; "),
     (lambda: Fixed(0, "S10.3").shift(60), r"^format S70\.0 is 71 bits wide; "),
-    (lambda: Fixed(0, "S10.3").shift(-60), r"^format S0\.63 is 64 bits wide; |^$"),
-    (lambda: Fixed(np.zeros((2, 3)), "S32.30").sum(), r"^format S34\.30 is 65 bits wide; "),
-    (lambda: Fixed(np.zeros(3), "S16.15").dot(Fixed(np.zeros(3), "S16.15")), r"^format S3[34]\.30 is "),
+    (lambda: Fixed(0, "S10.3").shift(-61), r"^format S0\.64 is 65 bits wide; "),
+    (lambda: Fixed(np.zeros((2, 3), dtype=int), "S32.30").sum(), r"^format S34\.30 is 65 bits wide; "),
+    (lambda: Fixed(np.zeros(3, dtype=int), "S16.15").dot(Fixed(np.zeros(3, dtype=int), "S16.15")),
+     r"^format S34\.30 is 65 bits wide; "),
 ])
 def test_results_wider_than_int64_are_refused(expr, message):
-    if message.endswith("|^$"):  # a right shift only moves the point: allowed while it fits
-        assert expr().fmt == Format.parse("S0.63")
-        return
     with pytest.raises(ValueError, match=message + ".*numpy int64.* at most 6[34] bits$"):
         expr()
 
@@ -258,8 +256,9 @@ def test_constructor_and_const_messages():
 
 @st.composite
 def quantize_cases(draw, max_width=64):
-    frm = draw(formats(max_width))
-    to = draw(formats(max_width))
+    # the widest formats often: that is where int64 intermediates could wrap
+    frm = draw(st.one_of(formats(max_width), formats(max_width, min_width=max_width - 4)))
+    to = draw(st.one_of(formats(max_width), formats(max_width, min_width=max_width - 4)))
     raws = draw(st.lists(raw_codes(frm), min_size=1, max_size=12))
     return frm, to, raws
 
@@ -299,7 +298,7 @@ def test_quantize_matches_exact_reference(case, rounding, overflow):
 @pytest.mark.parametrize("overflow", OVERFLOWS)
 @pytest.mark.parametrize("frm, to", [
     ("S32.31", "S32.0"), ("32.31", "32.0"), ("S0.63", "S0.0"), ("0.63", "0.1"), ("S0.63", "1.0"),
-    ("S32.31", "S31.1"), ("62.1", "61.2"), ("S62.1", "S61.2"), ("S0.63", "S0.63"),
+    ("S32.31", "S31.1"), ("61.1", "61.2"), ("S61.1", "S60.2"), ("S0.63", "S0.63"),
     ("63.0", "S62.0"), ("S63.0", "62.0"), ("S63.0", "S1.0"),
 ])
 def test_quantize_at_the_int64_edges(frm, to, rounding, overflow):
@@ -313,6 +312,14 @@ def test_quantize_at_the_int64_edges(frm, to, rounding, overflow):
             quantize_raw(raws, frm, to, rounding, overflow)
     else:
         assert quantize_raw(raws, frm, to, rounding, overflow).tolist() == expected
+
+
+@pytest.mark.parametrize("frm, to, more", [("62.1", "61.2", 1), ("S62.1", "S61.2", 1),
+                                           ("S1.0", "S0.63", 63), ("40.0", "S0.30", 30)])
+def test_quantize_refuses_codes_moved_past_int64(frm, to, more):
+    with pytest.raises(ValueError, match=rf"^scale: {re.escape(frm)} moved to {more} more "
+                                         r"fraction bits does not fit in int64$"):
+        quantize_raw([1], frm, to, "truncate", "saturate", op="scale")
 
 
 def test_quantize_rounding_examples():
@@ -376,10 +383,10 @@ def test_overflow_error_message():
                                                  r"value 300\.0 \(raw 300\)$"):
         Fixed([0, 300, 5, -400], "S9.0").quantize("S7.0", "truncate", "error", op="lirp out")
     # the first offending value is the rounded one, in row-major order
-    with pytest.raises(FixedOverflowError, match=r"^quantize: 3 value\(s\) overflow format 1\.2 "
-                                                 r"\(range 0\.0\.\.1\.75\); first offending value "
+    with pytest.raises(FixedOverflowError, match=r"^quantize: 3 value\(s\) overflow format 0\.2 "
+                                                 r"\(range 0\.0\.\.0\.75\); first offending value "
                                                  r"-0\.25 \(raw -1\)$"):
-        quantize_raw([[7, 15], [-1, 8]], "S2.3", "1.2", "round_half_up", "error")
+        quantize_raw([[7, -1], [-9, 15]], "S2.3", "0.2", "truncate", "error")
     assert issubclass(FixedOverflowError, OverflowError)
     with pytest.raises(ValueError, match=r"^rounding must be one of truncate, round_half_up, "
                                          r"round_half_even, not 'nearest'$"):
@@ -394,7 +401,7 @@ def test_overflow_error_message():
 @st.composite
 def float_cases(draw, inside):
     """A format and a float; near codes and exact ties often; inside the format if asked."""
-    fmt = draw(formats())
+    fmt = draw(st.one_of(formats(), formats(min_width=54)))  # wider than a float's mantissa too
     lo, hi = Fraction(fmt.min_raw, fmt.one), Fraction(fmt.max_raw, fmt.one)
     kind = draw(st.sampled_from(["tie", "near", "any"]))
     if kind == "any":
@@ -402,7 +409,10 @@ def float_cases(draw, inside):
                  st.floats(float(lo), float(hi), allow_nan=False))
     else:
         span = 2 if inside else 2 ** 70
-        code = draw(st.integers(max(fmt.min_raw - span, -(2 ** 1000)), fmt.max_raw + span))
+        anchors = [fmt.min_raw, fmt.max_raw, fmt.max_raw * 3 // 4, fmt.min_raw * 3 // 4]
+        code = draw(st.one_of(  # near the ends of the range often: integers() favours small
+            st.builds(int.__add__, st.sampled_from(anchors), st.integers(-span, span)),
+            st.integers(fmt.min_raw - span, fmt.max_raw + span)))
         offset = Fraction(1, 2) if kind == "tie" else Fraction(draw(st.integers(-4, 4)), 8)
         x = float(Fraction(code, fmt.one) + offset / fmt.one)
     if inside:

@@ -46,8 +46,9 @@ def _raw_extremes():
     raw = {}
     for name, (fmt, lanes) in PORTS.items():
         column = np.array(_extremes(fmt), dtype=np.int64)
-        raw[name] = np.stack([np.roll(column, lane) for lane in range(lanes)], axis=1) \
-            if lanes > 1 else column
+        # lanes get the extremes in different orders, so each row mixes them
+        lanes_ = [np.roll(column, lane) for lane in range(lanes)]
+        raw[name] = np.stack(lanes_, axis=1) if lanes > 1 else column
     return raw
 
 
@@ -108,7 +109,8 @@ def test_schedule_without_bubbles_is_back_to_back():
 
 @pytest.mark.parametrize("bubbles", [1, 1.5, -0.1])
 def test_schedule_refuses_bad_bubbles(bubbles):
-    message = rf"^bubbles must be a probability in 0\.\.1 \(excluding 1\), not {re.escape(str(bubbles))}$"
+    value = re.escape(str(bubbles))
+    message = rf"^bubbles must be a probability in 0\.\.1 \(excluding 1\), not {value}$"
     with pytest.raises(ValueError, match=message):
         schedule(10, bubbles, seed=0)
 
