@@ -50,7 +50,7 @@ def _chunks(raw, size):
         yield start, {name: value[start:start + size] for name, value in raw.items()}
 
 
-def shade(block, raw, backend, chunk=8192, progress=None):
+def shade(block, raw, backend, chunk=16384, progress=None):
     """Golden outputs of ``raw``, checked against the RTL on ``backend`` chunk by chunk.
 
     Returns (golden outputs, stats dict).  ``progress`` is called with the number of
@@ -135,16 +135,18 @@ def _plots(out_dir, scene, results):
     _atomic(os.path.join(out_dir, "fig7.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)
 
-    fig, axes = plt.subplots(len(MODES), len(REFERENCES), figsize=(14, 3.4 * len(MODES)))
+    shown_refs = {"phong": "float phong", "lyon-k2": "float lyon-k2",
+                  "lyon-k2-interpolated": "float lyon-k2 on the same interpolated N"}
+    fig, axes = plt.subplots(len(MODES), len(shown_refs), figsize=(20, 3.4 * len(MODES)))
     for r, mode in enumerate(MODES):
         px, errors = results[mode]["pixels"], results[mode]["errors"]
-        for c, method in enumerate(REFERENCES):
+        for c, (method, label) in enumerate(shown_refs.items()):
             ax = axes[r, c]
             image = np.full((scene.height, scene.width), np.nan)
             image[px.row, px.col] = errors[method]
             shown = ax.imshow(image, cmap="inferno", vmin=0, vmax=max(1.0, np.nanmax(image)),
                               interpolation="nearest")
-            ax.set_title(f"{mode} normals vs float {method}: max {np.nanmax(image):.1f}, "
+            ax.set_title(f"{mode} normals vs {label}:\nmax {np.nanmax(image):.1f}, "
                          f"mean {np.nanmean(image):.2f} levels", fontsize=9)
             ax.axis("off")
             fig.colorbar(shown, ax=ax, fraction=0.025, label="8-bit levels")
@@ -154,7 +156,7 @@ def _plots(out_dir, scene, results):
 
 
 def run(config=None, *, radius=64, span=8, backend="verilator", out_dir="build/sim",
-        chunk=8192, sample=2000, quiet=False):
+        chunk=16384, sample=2000, quiet=False):
     """Shade both modes, check every pixel on ``backend``, write pictures and summary.
 
     ``sample`` pixels are also run on each other back end, only to measure its speed

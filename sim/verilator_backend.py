@@ -213,10 +213,23 @@ def _key(component, module, top_text, waves):
     function of it and the Amaranth and Yosys versions (both in the key), and
     producing it takes Yosys about a second, which a cache hit should not pay.
     """
+    config = getattr(component, "config", None)
+    if config is not None:
+        # a block's design is a function of its class and its (frozen) config: convert once
+        return _config_key(type(component), config, module, top_text, waves)
+    return _design_key(component, module, top_text, waves)
+
+
+def _design_key(component, module, top_text, waves):
     from amaranth.back import rtlil
 
     design = rtlil.convert(component, name=module, emit_src=False)
     return _digest([design, top_text, f"waves={bool(waves)}", *_BUILD_ARGS, *_tool_versions()])
+
+
+@functools.lru_cache(maxsize=64)
+def _config_key(cls, config, module, top_text, waves):
+    return _design_key(cls(config), module, top_text, waves)
 
 
 class _SeededVerilator(Verilator):
