@@ -215,6 +215,8 @@ def _key(component, module, top_text, waves):
     """
     config = getattr(component, "config", None)
     if config is not None:
+        # the simulated design is this component's, built from an equal one
+        component._MustUse__silence = True
         # a block's design is a function of its class and its (frozen) config: convert once
         return _config_key(type(component), config, module, top_text, waves)
     return _design_key(component, module, top_text, waves)
