@@ -192,10 +192,7 @@ class Fixed:
     def const(cls, value, fmt):
         """A scalar constant that ``fmt`` holds exactly (e.g. 1.0)."""
         fmt = Format.parse(fmt)
-        raw = value * fmt.one
-        if raw != int(raw):
-            raise ValueError(f"constant {value} is not exactly representable in {fmt}")
-        return cls(int(raw), fmt)
+        return cls(fmt.exact_raw(value), fmt)
 
     def to_float(self):
         return self.raw.astype(np.float64) * self.fmt.lsb
@@ -274,10 +271,7 @@ class Fixed:
                 mask = (1 << d) - 1
                 return self.raw, (other.raw >> d) + ((other.raw & mask) != 0)
             return self.raw >> -d, other.raw
-        raw = other * self.fmt.one
-        if raw != int(raw):
-            raise ValueError(f"comparison constant {other} is not exactly representable in {self.fmt}")
-        return self.raw, int(raw)
+        return self.raw, self.fmt.exact_raw(other, "comparison constant")
 
     def __ge__(self, other):
         a, b = self._compare_raw(other)

@@ -85,10 +85,7 @@ class FixedValue:
     def const(cls, value, fmt):
         """A constant that ``fmt`` holds exactly (e.g. 1.0)."""
         fmt = Format.parse(fmt)
-        raw = value * fmt.one
-        if raw != int(raw):
-            raise ValueError(f"constant {value} is not exactly representable in {fmt}")
-        return cls(Const(int(raw), fmt.shape()), fmt)
+        return cls(Const(fmt.exact_raw(value), fmt.shape()), fmt)
 
     def _align(self, fmt):
         return self.value << (fmt.frac_bits - self.fmt.frac_bits)
@@ -130,10 +127,7 @@ class FixedValue:
             f = max(self.fmt.frac_bits, other.fmt.frac_bits)
             return (self.value << (f - self.fmt.frac_bits),
                     other.value << (f - other.fmt.frac_bits))
-        raw = other * self.fmt.one
-        if raw != int(raw):
-            raise ValueError(f"comparison constant {other} is not exactly representable in {self.fmt}")
-        return self.value, int(raw)
+        return self.value, self.fmt.exact_raw(other, "comparison constant")
 
     def __ge__(self, other):
         a, b = self._compare_values(other)

@@ -119,6 +119,13 @@ class Format:
         """Raw code of 1.0 (whether or not the format can hold it)."""
         return 1 << self.frac_bits
 
+    def exact_raw(self, value, what="constant"):
+        """Raw code of the number ``value``, which this format's fraction bits must hold exactly."""
+        raw = value * self.one
+        if raw != int(raw):
+            raise ValueError(f"{what} {value} is not exactly representable in {self}")
+        return int(raw)
+
     def holds_one(self):
         return self.int_bits >= 1
 
