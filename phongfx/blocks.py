@@ -63,7 +63,10 @@ def _load(path):
     return getattr(import_module(module), name)
 
 
-# name: (config class, golden function, component class, vectors function)
+_DATAPATH = ("phongfx.golden.datapath:datapath", "phongfx.hdl.datapath:Datapath",
+             "phongfx.sim.vectors.datapath:vectors")
+
+# name: (config factory, golden function, component class, vectors function)
 REGISTRY = {
     "lirp": (_config.LirpConfig, "phongfx.golden.lirp:lirp", "phongfx.hdl.lirp:Lirp",
              "phongfx.sim.vectors.lirp:vectors"),
@@ -77,8 +80,13 @@ REGISTRY = {
               "phongfx.sim.vectors.shape:vectors"),
     "diffuse": (_config.DiffuseConfig, "phongfx.golden.diffuse:diffuse",
                 "phongfx.hdl.diffuse:Diffuse", "phongfx.sim.vectors.diffuse:vectors"),
-    "fig7": (_config.Fig7Config, "phongfx.golden.fig7:fig7", "phongfx.hdl.fig7:Fig7",
-             "phongfx.sim.vectors.fig7:vectors"),
+    "root": (_config.RootConfig, "phongfx.golden.root:root", "phongfx.hdl.root:Root",
+             "phongfx.sim.vectors.root:vectors"),
+    "halfway": (_config.HalfwayConfig, "phongfx.golden.halfway:halfway",
+                "phongfx.hdl.halfway:Halfway", "phongfx.sim.vectors.halfway:vectors"),
+    "fig7": (_config.fig7_config, *_DATAPATH),
+    "fig8": (_config.fig8_config, *_DATAPATH),
+    "halfway_datapath": (_config.halfway_config, *_DATAPATH),
 }
 
 

@@ -84,9 +84,9 @@ def _cmd_sim(args):
 
 
 def _cmd_render(args):
-    from .config import Fig7Config
+    from .config import fig7_config
     from .render import run
-    config = apply_settings(Fig7Config(), args.set or [])
+    config = apply_settings(fig7_config(), args.set or [])
     summary = run(config, radius=args.radius, span=args.span, backend=args.backend,
                   out_dir=args.out, quiet=args.quiet)
     print(f"pixels checked {summary['pixels_checked']}, mismatches {summary['mismatches']}, "
@@ -102,6 +102,29 @@ def _cmd_render(args):
         print(f"MISMATCH between golden and RTL: {summary['mismatches']} pixel(s); see summary.json",
               file=sys.stderr)
         return 1
+    return 0
+
+
+def _cmd_figure9(args):
+    from tqdm import tqdm
+
+    from .figure9 import FIXED_ROWS, markdown, run
+    from .scene import Scene, pixels
+    total = len(pixels(Scene(radius=args.radius))) * sum(len(rows) for rows in FIXED_ROWS.values())
+    with tqdm(total=total, unit="px", desc=f"RTL ({args.backend})", disable=args.quiet) as bar:
+        table = run(out_dir=args.out, backend=args.backend, radius=args.radius, progress=bar.update)
+    print(markdown(table))
+    print(f"wrote {args.out}/figure9.png, figure9_diff.png, figure9.md, figure9.json")
+    if table["rtl_mismatches"]:
+        print(f"MISMATCH between golden and RTL: {table['rtl_mismatches']} pixel(s)", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _cmd_tables(args):
+    from .lyon_tables import markdown, run_table, to_json
+    result = run_table(args.table, out_dir=args.out)
+    print(to_json(result) if args.json else markdown(result))
     return 0
 
 
@@ -134,9 +157,21 @@ def _parser():
     p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels")
     p.add_argument("--span", type=int, default=8, help="span length for interpolated normals")
     p.add_argument("--out", default="build/sim", help="output folder")
-    p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a Fig7Config field")
+    p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a DatapathConfig field")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_render)
+
+    p = sub.add_parser("figure9", help="Lyon's Figure 9: float rows and fixed-point rows, RTL-checked")
+    p.add_argument("--out", default="build/figure9", help="output folder")
+    p.add_argument("--backend", choices=BACKENDS, default="verilator")
+    p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels (Lyon: 64)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=_cmd_figure9)
+    p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43)")
+    p.add_argument("table", help="which table (lyon)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
+    p.add_argument("--out", default="build/lyon", help="folder for the plots")
+    p.set_defaults(run=_cmd_tables)
     return parser
 
 

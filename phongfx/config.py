@@ -17,7 +17,8 @@ from .format import Format, check_rounding
 
 __all__ = [
     "BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
-    "ShapeConfig", "DiffuseConfig", "Fig7Config",
+    "ShapeConfig", "DiffuseConfig", "RootConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
+    "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
 ]
 
 
@@ -240,53 +241,244 @@ class DiffuseConfig(BlockConfig):
 
 
 @dataclass(frozen=True)
-class Fig7Config(BlockConfig):
-    """Lyon's Figure 7 datapath: LIRP -> normalizer -> reflect -> difference/x -> shape,
-    plus diffuse, for ``lights`` lights at infinity and a viewer at infinity.
+class RootConfig(BlockConfig):
+    """Figure 8 root-shininess specular unit: ``|D|·m``, fraction-only dot product,
+    augmented comparator, shape ``f_k`` (``k = 1`` by default); ``m = √n`` in ``1..m_max``.
 
-    Blocks that depend on L (difference, shape, diffuse) are repeated per light;
-    the sub-configs must agree on the formats where they connect.
+    ``frac`` is the fraction of each ``u_i = m|D_i|/2^s`` that the dot product sees;
+    :attr:`shift` is ``s`` and :attr:`shape` the Figure 7d config fed with ``2x``
+    (see :mod:`phongfx.golden.root`).
     """
 
+    vec: str = "S1.10"
+    d: str = "S1.10"
+    m: str = "6.0"
+    m_max: int = 63
+    frac: str = "0.9"
+    k: int = 1
+    t: str = "1.15"
+    rounding: str = "round_half_up"
+
+    def validate(self):
+        _fmt("vec", self.vec, signed=True)
+        _fmt("d", self.d, signed=True)
+        m = _fmt("m", self.m, signed=False)
+        if m.frac_bits:
+            raise ValueError(f"m must be an integer format (m = 0), not {m}")
+        _int("m_max", self.m_max, 1, m.max_raw)
+        frac = _fmt("frac", self.frac, signed=False)
+        if frac.int_bits:
+            raise ValueError(f"frac must be a fraction-only format (0.m), not {frac}")
+        _int("k", self.k, 0, 4)
+        _fmt("t", self.t, signed=False, holds_one=True)
+
+    @property
+    def shift(self):
+        """``s = ceil((k+1)/2)``: ``u_i = m|D_i|/2^s`` and ``x/2^k = 2^(2s-1-k)·Σu_i²``.
+
+        The smallest ``s`` with ``2s >= k+1``, so that ``c = 2^(2s-1-k)`` is 1 or 2, never
+        below 1 (an integer part of any ``u_i`` then proves ``x/2^k >= 1``), while ``u_i``
+        keeps the most significant bits of ``m|D_i|`` in its fraction.
+        """
+        return (self.k + 2) // 2
+
+    @property
+    def shape(self):
+        """The Figure 7d :class:`ShapeConfig` behind the dot product: its ``x2`` is the
+        exact format of ``Σ frac_i²`` with the point moved ``2s`` places (``2x = 2^(2s)·Σu_i²``)."""
+        frac = self.fmt("frac")
+        square = frac.mul(frac)
+        x2 = square.add(square).add(square).shift(2 * self.shift)
+        return ShapeConfig(x2=str(x2), k=self.k, t=self.t, rounding=self.rounding)
+
+    @property
+    def inputs(self):
+        return {"r": (self.fmt("vec"), 3), "l": (self.fmt("vec"), 3), "m": (self.fmt("m"), 1)}
+
+    @property
+    def outputs(self):
+        return {"spec": (self.fmt("t"), 1)}
+
+
+HALFWAY_VARIANTS = ("d1", "d2", "d3", "g2proj", "g2")
+
+
+@dataclass(frozen=True)
+class HalfwayConfig(BlockConfig):
+    """Halfway-vector difference (Lyon Figure 5, Figure 9 rows 7–10): ``D = p - q`` with
+
+    * ``d1``: ``p = (2V·N)N``, ``q = H``;  ``d2``: ``p = (2L·N)N``, ``q = H`` (``|D2| = |D1|``);
+    * ``d3``: ``p = (H·N)N``, ``q = H`` (no normalization of H);
+    * ``g2proj``: ``p = (H*·N)N``, ``q = H*``;  ``g2``: ``p = N``, ``q = H*``;
+      with ``H* = g2(H·H)·H`` from the :class:`NormalizeConfig` ``normalize``.
+
+    ``h`` is ``"sum"`` (``H = V + L``, the text) or ``"mean"`` (``H = (L + V)/2``, the
+    code; default).  ``"mean"`` halves every term, so d1/d2 project ``V`` and ``L``
+    rather than ``2V`` and ``2L``: ``D1 = (R - L)/2``, and ``x = (4n/2)·D·D`` is the
+    appendix's, as its ``n4`` scales it.
+
+    Formats (our reconstruction; see :mod:`phongfx.golden.halfway`): ``hvec`` holds
+    ``V + L`` (``S2.10``) and ``(V + L)/2`` (``S1.11``) exactly, so ``h`` changes without
+    touching a format; ``dot`` has two integer bits for ``H·N = 2`` (``"sum"``, ``V = L = N``)
+    and two guard bits; ``out`` holds ``|D|`` up to 2; ``normalize.vec`` must be ``hvec``.
+    """
+
+    vec: str = "S1.10"
+    variant: str = "g2proj"
+    h: str = "mean"
+    hvec: str = "S2.11"
+    dot: str = "S2.12"
+    out: str = "S2.10"
+    normalize: NormalizeConfig = NormalizeConfig(vec="S2.11", out="S2.11")
+    rounding: str = "round_half_up"
+
+    def validate(self):
+        if self.variant not in HALFWAY_VARIANTS:
+            raise ValueError(f"variant must be one of {', '.join(HALFWAY_VARIANTS)}, not {self.variant!r}")
+        if self.h not in ("sum", "mean"):
+            raise ValueError(f"h must be one of sum, mean, not {self.h!r}")
+        _fmt("vec", self.vec, signed=True)
+        hvec = _fmt("hvec", self.hvec, signed=True)
+        _fmt("dot", self.dot, signed=True, holds_one=True)
+        _fmt("out", self.out, signed=True)
+        if not isinstance(self.normalize, NormalizeConfig):
+            raise TypeError(f"normalize must be a NormalizeConfig, not {self.normalize!r}")
+        if self.normalize.fmt("vec") != hvec:
+            raise ValueError(f"normalize.vec ({self.normalize.vec}) must equal hvec ({self.hvec}): "
+                             f"the normalizer takes H")
+
+    @property
+    def inputs(self):
+        return {"n": (self.fmt("vec"), 3), "l": (self.fmt("vec"), 3), "v": (self.fmt("vec"), 3)}
+
+    @property
+    def outputs(self):
+        return {"p": (self.fmt("out"), 3), "q": (self.fmt("out"), 3)}
+
+
+SPECULAR_UNITS = ("fig7", "fig8", "halfway")
+
+
+@dataclass(frozen=True)
+class DatapathConfig(BlockConfig):
+    """A whole shading datapath (Lyon 1993, Figures 6–8 and 5): interpolated, approximately
+    normalized N, then one specular unit and the diffuse term, for ``lights`` lights.
+
+    ``specular`` picks the unit after the normalizer:
+
+    * ``"fig7"``: reflect → difference/x (``n``) → shape (Figure 7b–d);
+    * ``"fig8"``: reflect → root-shininess unit (``m = √n``, Figure 8);
+    * ``"halfway"``: halfway difference vector → difference/x with ``4n`` → shape
+      (Figure 5; Figure 9 rows 7–10, as the appendix code scales ``n``).
+
+    ``local_lights`` / ``local_viewer``: L / V are interpolated across the span with the
+    same ``a`` and approximately normalized (``direction_normalize``, g1 or g2) like N;
+    otherwise they are constant inputs and no LIRP or normalizer is built for them.
+    Blocks that depend on L are repeated per light.  All direction vectors after the
+    normalizers share the format ``normalize.out``; connected formats must agree.
+    """
+
+    specular: str = "fig7"
     lirp: LirpConfig = LirpConfig()
     normalize: NormalizeConfig = NormalizeConfig()
     reflect: ReflectConfig = ReflectConfig()
     difference: DifferenceConfig = DifferenceConfig()
     shape: ShapeConfig = ShapeConfig()
+    root: RootConfig = RootConfig()
+    halfway: HalfwayConfig = HalfwayConfig()
     diffuse: DiffuseConfig = DiffuseConfig()
     lights: int = 2
+    local_lights: bool = False
+    local_viewer: bool = False
+    direction_normalize: NormalizeConfig = NormalizeConfig()
 
     def validate(self):
         for name, cls in (("lirp", LirpConfig), ("normalize", NormalizeConfig),
                           ("reflect", ReflectConfig), ("difference", DifferenceConfig),
-                          ("shape", ShapeConfig), ("diffuse", DiffuseConfig)):
+                          ("shape", ShapeConfig), ("root", RootConfig), ("halfway", HalfwayConfig),
+                          ("diffuse", DiffuseConfig), ("direction_normalize", NormalizeConfig)):
             if not isinstance(getattr(self, name), cls):
                 raise TypeError(f"{name} must be a {cls.__name__}, not {getattr(self, name)!r}")
+        if self.specular not in SPECULAR_UNITS:
+            raise ValueError(f"specular must be one of {', '.join(SPECULAR_UNITS)}, not {self.specular!r}")
         _int("lights", self.lights, 1, 8)
-        links = (
+        for name in ("local_lights", "local_viewer"):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(f"{name} must be True or False, not {getattr(self, name)!r}")
+        vec = ("normalize.out", self.normalize.out)
+        links = [
             ("lirp.out", self.lirp.out, "normalize.vec", self.normalize.vec),
-            ("normalize.out", self.normalize.out, "reflect.vec", self.reflect.vec),
-            ("reflect.out", self.reflect.out, "difference.vec", self.difference.vec),
-            ("normalize.out", self.normalize.out, "diffuse.vec", self.diffuse.vec),
-            ("difference.vec", self.difference.vec, "diffuse.vec", self.diffuse.vec),
-            ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2),
-        )
+            (*vec, "diffuse.vec", self.diffuse.vec),
+        ]
+        if self.local_lights or self.local_viewer:
+            links += [("lirp.out", self.lirp.out, "direction_normalize.vec", self.direction_normalize.vec),
+                      (*vec, "direction_normalize.out", self.direction_normalize.out)]
+        if self.specular == "fig7":
+            links += [(*vec, "reflect.vec", self.reflect.vec),
+                      ("reflect.out", self.reflect.out, "difference.vec", self.difference.vec),
+                      (*vec, "difference.vec", self.difference.vec),
+                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
+        elif self.specular == "fig8":
+            links += [(*vec, "reflect.vec", self.reflect.vec),
+                      ("reflect.out", self.reflect.out, "root.vec", self.root.vec),
+                      (*vec, "root.vec", self.root.vec)]
+        else:
+            links += [(*vec, "halfway.vec", self.halfway.vec),
+                      ("halfway.out", self.halfway.out, "difference.vec", self.difference.vec),
+                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
+            if self.difference.fmt("n").int_bits < 3:
+                raise ValueError(f"difference.n must have at least 3 integer bits to take 4n, "
+                                 f"not {self.difference.n}")
         for a_name, a, b_name, b in links:
             if Format.parse(a) != Format.parse(b):
                 raise ValueError(f"{a_name} ({a}) must equal {b_name} ({b}): they are connected")
 
     @property
+    def shininess(self):
+        """(port name, format, largest value) of the per-pixel shininess input."""
+        if self.specular == "fig8":
+            return "m", self.root.fmt("m"), self.root.m_max
+        n = self.difference.fmt("n")
+        if self.specular == "halfway":
+            # the appendix uses 4n for halfway methods: a free shift into difference.n
+            return "n", Format(n.int_bits - 2, 0), self.difference.n_max // 4
+        return "n", n, self.difference.n_max
+
+    @property
     def inputs(self):
-        ports = {
-            "n0": (self.lirp.fmt("vec"), 3), "n1": (self.lirp.fmt("vec"), 3),
-            "a": (self.lirp.fmt("a"), 1), "n": (self.difference.fmt("n"), 1),
-            "v": (self.reflect.fmt("vec"), 3),
-        }
-        ports.update({f"l{i}": (self.difference.fmt("vec"), 3) for i in range(self.lights)})
+        vec, end = self.normalize.fmt("out"), self.lirp.fmt("vec")
+        name, fmt, _ = self.shininess
+        ports = {"n0": (end, 3), "n1": (end, 3), "a": (self.lirp.fmt("a"), 1), name: (fmt, 1)}
+        if self.local_viewer:
+            ports.update({"v0": (end, 3), "v1": (end, 3)})
+        else:
+            ports["v"] = (vec, 3)
+        for i in range(self.lights):
+            if self.local_lights:
+                ports.update({f"l{i}_0": (end, 3), f"l{i}_1": (end, 3)})
+            else:
+                ports[f"l{i}"] = (vec, 3)
         return ports
 
     @property
     def outputs(self):
-        ports = {f"spec{i}": (self.shape.fmt("t"), 1) for i in range(self.lights)}
+        t = self.root.fmt("t") if self.specular == "fig8" else self.shape.fmt("t")
+        ports = {f"spec{i}": (t, 1) for i in range(self.lights)}
         ports.update({f"diff{i}": (self.diffuse.fmt("out"), 1) for i in range(self.lights)})
         return ports
+
+
+def fig7_config(**changes):
+    """Lyon's Figure 7 datapath (the default :class:`DatapathConfig`)."""
+    return DatapathConfig(specular="fig7", **changes)
+
+
+def fig8_config(**changes):
+    """Figure 8: the root-shininess unit after reflect (``k = 1``, ``m = √n``)."""
+    return DatapathConfig(specular="fig8", **changes)
+
+
+def halfway_config(**changes):
+    """A halfway-vector datapath (default: Lyon's row 8, ``g2proj``, ``k = 2``, ``4n``)."""
+    changes.setdefault("difference", DifferenceConfig(vec="S2.10", n="15.0", n_max=32000))
+    return DatapathConfig(specular="halfway", **changes)

@@ -18,13 +18,13 @@ import time
 import numpy as np
 
 from .blocks import get_block
-from .config import Fig7Config
+from .config import fig7_config
 from .golden.reference import specular
 from .scene import Scene, pixels
 from .sim.harness import BACKENDS, check
-from .sim.vectors import codes
+from .sim.vectors.datapath import encode
 
-__all__ = ["scene_inputs", "shade", "run", "REFERENCES", "MODES"]
+__all__ = ["scene_inputs", "shade", "amounts", "composite", "atomic_write", "run", "REFERENCES", "MODES"]
 
 REFERENCES = ("phong", "lyon-k2")
 MODES = ("exact", "spans")
@@ -33,19 +33,13 @@ SPECULAR_PEAK = 400.0  # appendix: specfs = 400/max(ns^.25)·ns^.25
 
 
 def scene_inputs(config, scene, px):
-    """Raw Figure 7 input codes for the pixels ``px`` of ``scene``."""
-    vec = config.lirp.fmt("vec")
-    count = len(px)
-    raw = {"n0": codes(px.n0, vec), "n1": codes(px.n1, vec), "a": codes(px.a, config.lirp.a),
-           "n": px.n.astype(np.int64),
-           "v": codes(np.broadcast_to(scene.unit_viewer(), (count, 3)), vec)}
-    for index, light in enumerate(scene.unit_lights()[:config.lights]):
-        raw[f"l{index}"] = codes(np.broadcast_to(light, (count, 3)), vec)
-    return raw
+    """Raw input codes of ``config``'s datapath for the pixels ``px`` of ``scene``."""
+    lights, viewer = list(scene.unit_lights()), scene.unit_viewer()
+    return encode(config, px.n0, px.n1, px.a, px.n, viewer, viewer, lights, lights)
 
 
 def _chunks(raw, size):
-    count = len(raw["n"])
+    count = len(raw["a"])
     for start in range(0, count, size):
         yield start, {name: value[start:start + size] for name, value in raw.items()}
 
@@ -73,14 +67,14 @@ def shade(block, raw, backend, chunk=16384, progress=None):
 
 def _errors(config, scene, px, golden):
     """Per-pixel error (max over lights, 8-bit levels) against each float reference."""
-    lsb_t = config.shape.fmt("t").lsb
     lights, viewer = scene.unit_lights()[:config.lights], scene.unit_viewer()
+    spec, diff = amounts(config, golden)
 
     def specular_error(method, normals):
         worst = np.zeros(len(px))
         for index, light in enumerate(lights):
             ref = specular(method, normals, light, viewer, px.n.astype(np.float64))
-            worst = np.maximum(worst, np.abs(golden[f"spec{index}"] * lsb_t - ref) * 255)
+            worst = np.maximum(worst, np.abs(spec[index] - ref) * 255)
         return worst
 
     out = {method: specular_error(method, px.normal) for method in REFERENCES}
@@ -90,30 +84,41 @@ def _errors(config, scene, px, golden):
     out["lyon-k2-interpolated"] = specular_error(
         "lyon-k2", lerp / np.maximum(np.linalg.norm(lerp, axis=-1, keepdims=True), 1e-300))
     diff_ref = np.maximum(px.normal @ lights.T, 0)
-    diff_got = np.stack([golden[f"diff{i}"] for i in range(len(lights))], axis=-1)
-    out["diffuse"] = np.max(np.abs(diff_got * config.diffuse.fmt("out").lsb - diff_ref), axis=-1) * 255
+    out["diffuse"] = np.max(np.abs(np.stack(diff, axis=-1) - diff_ref), axis=-1) * 255
     return out
 
 
-def _composite(config, scene, px, golden):
-    """Lyon's appendix picture: white background, dark spheres, clipped highlights."""
+def amounts(config, golden):
+    """Golden outputs as floats: (specular per light, diffuse per light)."""
+    spec = [golden[f"spec{i}"] * config.outputs[f"spec{i}"][0].lsb for i in range(config.lights)]
+    diff = [golden[f"diff{i}"] * config.outputs[f"diff{i}"][0].lsb for i in range(config.lights)]
+    return spec, diff
+
+
+def composite(scene, px, spec, diff):
+    """Lyon's appendix picture: white background, dark spheres, clipped highlights.
+
+    ``spec`` and ``diff`` are float amounts per light (``diff`` already clamped at 0).
+    """
     ns = np.array(scene.shininess, dtype=np.float64)
     gain = SPECULAR_PEAK / np.max(ns ** 0.25) * px.n ** 0.25
-    total = np.zeros(len(px))
-    for index in range(config.lights):
-        total += DIFFUSE_GAIN * golden[f"diff{index}"] * config.diffuse.fmt("out").lsb
-        total += gain * golden[f"spec{index}"] * config.shape.fmt("t").lsb
+    total = DIFFUSE_GAIN * np.sum(diff, axis=0) + gain * np.sum(spec, axis=0)
     image = np.full((scene.height, scene.width), 255.0)
     image[px.row, px.col] = np.clip(total, 0, 255)
     return image
 
 
-def _atomic(path, write):
+def atomic_write(path, write):
+    """Call ``write(tmp)`` on a temporary file beside ``path``, then move it into place:
+    a failed write leaves no half-written ``path``."""
     directory = os.path.dirname(path) or "."
     os.makedirs(directory, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=directory, suffix=os.path.splitext(path)[1])
     os.close(fd)
+    umask = os.umask(0)
+    os.umask(umask)
     try:
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes it private; outputs are for reading
         write(tmp)
         os.replace(tmp, path)
     except BaseException:
@@ -132,7 +137,7 @@ def _plots(out_dir, scene, results):
         ax.set_title(f"Figure 7 datapath, {mode} normals — n = {', '.join(map(str, scene.shininess))}")
         ax.axis("off")
     fig.tight_layout()
-    _atomic(os.path.join(out_dir, "fig7.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
+    atomic_write(os.path.join(out_dir, "fig7.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)
 
     shown_refs = {"phong": "float phong", "lyon-k2": "float lyon-k2",
@@ -151,7 +156,7 @@ def _plots(out_dir, scene, results):
             ax.axis("off")
             fig.colorbar(shown, ax=ax, fraction=0.025, label="8-bit levels")
     fig.tight_layout()
-    _atomic(os.path.join(out_dir, "fig7_error.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
+    atomic_write(os.path.join(out_dir, "fig7_error.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)
 
 
@@ -167,7 +172,7 @@ def run(config=None, *, radius=64, span=8, backend="verilator", out_dir="build/s
 
     if backend not in BACKENDS:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
-    config = config or Fig7Config()
+    config = config or fig7_config()
     block = get_block("fig7", config=config)
     scenes = {"exact": Scene(radius=radius, span=0), "spans": Scene(radius=radius, span=span)}
     prepared = {mode: (scene, pixels(scene)) for mode, scene in scenes.items()}
@@ -180,7 +185,7 @@ def run(config=None, *, radius=64, span=8, backend="verilator", out_dir="build/s
             raw = scene_inputs(config, scene, px)
             golden, stats = shade(block, raw, backend, chunk=chunk, progress=bar.update)
             results[mode] = {"pixels": px, "stats": stats, "errors": _errors(config, scene, px, golden),
-                             "image": _composite(config, scene, px, golden)}
+                             "image": composite(scene, px, *amounts(config, golden))}
     for other in BACKENDS if sample else ():
         if other == backend:
             continue
@@ -224,7 +229,7 @@ def run(config=None, *, radius=64, span=8, backend="verilator", out_dir="build/s
         summary["error_8bit"][mode] = entry
 
     _plots(out_dir, scenes["spans"], results)
-    _atomic(os.path.join(out_dir, "summary.json"),
+    atomic_write(os.path.join(out_dir, "summary.json"),
             lambda p: open(p, "w").write(json.dumps(summary, indent=2) + "\n"))
     return summary
 

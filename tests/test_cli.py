@@ -5,7 +5,7 @@ import sys
 import pytest
 
 from phongfx.cli import apply_settings, main
-from phongfx.config import Fig7Config
+from phongfx.config import fig7_config
 
 
 def test_blocks_lists_every_block(capsys):
@@ -48,7 +48,7 @@ def test_bad_input_exits_2_with_the_field_named(argv, message, capsys, tmp_path)
 
 
 def test_nested_settings():
-    config = apply_settings(Fig7Config(), ["shape.k=1", "lights=1", "shape.t=1.12"])
+    config = apply_settings(fig7_config(), ["shape.k=1", "lights=1", "shape.t=1.12"])
     assert (config.shape.k, config.lights, config.shape.t) == (1, 1, "1.12")
 
 

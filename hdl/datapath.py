@@ -1,0 +1,122 @@
+"""A whole shading datapath as one pipelined component (Lyon 1993, Figures 6–8 and 5)."""
+
+from ..config import DatapathConfig
+from .block import PipelinedBlock
+from .difference import Difference
+from .diffuse import Diffuse
+from .fixed import delay
+from .halfway import Halfway
+from .lirp import Lirp
+from .normalize import Normalize
+from .reflect import Reflect
+from .root import Root
+from .shape import Shape
+
+__all__ = ["Datapath"]
+
+
+class Datapath(PipelinedBlock):
+    """Interpolated N (and L, V when local) → specular unit → spec, plus diffuse, per light.
+
+    Only the blocks the configuration needs are built: with lights and viewer at
+    infinity there is one LIRP and one normalizer (for N); each local light and a
+    local viewer add their own pair.  ``specular`` picks reflect → difference → shape
+    (Figure 7), reflect → root (Figure 8), or halfway → difference (4n) → shape
+    (Figure 5).  Blocks depending on L are repeated per light.  Side inputs are
+    delayed to meet the data where it is used; diffuse is padded to leave with spec.
+
+    Latency: ``front + specular``, where ``front = lirp + normalize`` (the slower of
+    the N and L/V fronts) and ``specular`` is ``reflect + difference + shape``,
+    ``reflect + root`` or ``halfway + difference + shape``.
+    """
+
+    config_class = DatapathConfig
+
+    def __init__(self, config):
+        super().__init__(config)
+        c = config
+        # vector -> (LIRP, normalizer, span-start port, span-end port)
+        self._fronts = {"n": (Lirp(c.lirp), Normalize(c.normalize), "n0", "n1")}
+        if c.local_viewer:
+            self._fronts["v"] = (Lirp(c.lirp), Normalize(c.direction_normalize), "v0", "v1")
+        for index in range(c.lights if c.local_lights else 0):
+            self._fronts[f"l{index}"] = (Lirp(c.lirp), Normalize(c.direction_normalize),
+                                         f"l{index}_0", f"l{index}_1")
+        self._reflect = Reflect(c.reflect) if c.specular in ("fig7", "fig8") else None
+        self._units = [self._specular_unit() for _ in range(c.lights)]
+        self._diffuse = [Diffuse(c.diffuse) for _ in range(c.lights)]
+        for sub in self._subs():
+            sub._MustUse__silence = True  # owned by this block: only an unused Datapath should warn
+
+    def _specular_unit(self):
+        c = self.config
+        if c.specular == "fig8":
+            return [Root(c.root)]
+        head = [Halfway(c.halfway)] if c.specular == "halfway" else []
+        return head + [Difference(c.difference), Shape(c.shape)]
+
+    def _subs(self):
+        yield from (block for front in self._fronts.values() for block in front[:2])
+        if self._reflect is not None:
+            yield self._reflect
+        yield from (block for unit in self._units for block in unit)
+        yield from self._diffuse
+
+    @property
+    def _front(self):
+        return max(lirp.latency + norm.latency for lirp, norm, _, _ in self._fronts.values())
+
+    @property
+    def _to_unit(self):
+        """Cycles from the input to the per-light unit's input."""
+        return self._front + (self._reflect.latency if self._reflect is not None else 0)
+
+    @property
+    def latency(self):
+        return self._to_unit + sum(block.latency for block in self._units[0])
+
+    def datapath(self, m, i):
+        c = self.config
+        for index, sub in enumerate(self._subs()):
+            m.submodules[f"{type(sub).__name__.lower()}{index}"] = sub
+        vectors = {}
+        for name, (lirp, norm, start, end) in self._fronts.items():
+            lirp.feed(m, self.i.valid, {"n0": i[start], "n1": i[end], "a": i["a"]})
+            norm.feed(m, lirp.o.valid, lirp.results())
+            vectors[name] = delay(m, norm.results()["n"], self._front - lirp.latency - norm.latency, name)
+        for name in ["v"] + [f"l{index}" for index in range(c.lights)]:
+            if name not in vectors:
+                vectors[name] = delay(m, i[name], self._front, name)
+        lirp, norm = self._fronts["n"][:2]
+        valid = delay(m, norm.o.valid, self._front - lirp.latency - norm.latency, "front_valid")
+        normal, view = vectors["n"], vectors["v"]
+        if self._reflect is not None:
+            self._reflect.feed(m, valid, {"n": normal, "v": view})
+            r, unit_valid = self._reflect.results()["r"], self._reflect.o.valid
+        shininess_name = c.shininess[0]
+        shininess = delay(m, i[shininess_name], self._to_unit, shininess_name)
+        out = {}
+        for index, (unit, diffuse) in enumerate(zip(self._units, self._diffuse)):
+            light = vectors[f"l{index}"]
+            if c.specular == "fig8":
+                unit[0].feed(m, unit_valid, {"r": r, "l": delay(m, light, self._reflect.latency),
+                                             "m": shininess})
+            elif c.specular == "fig7":
+                unit[0].feed(m, unit_valid, {"r": r, "l": delay(m, light, self._reflect.latency),
+                                             "n": shininess})
+            else:
+                unit[0].feed(m, valid, {"n": normal, "l": light, "v": view})
+                n4 = delay(m, shininess, unit[0].latency).shift(2)
+                d = unit[0].results()
+                unit[1].feed(m, unit[0].o.valid, {"r": d["p"], "l": d["q"], "n": n4})
+            if c.specular != "fig8":
+                unit[-1].feed(m, unit[-2].o.valid, unit[-2].results())
+            out[f"spec{index}"] = unit[-1].results()["spec"]
+            diffuse.feed(m, valid, {"n": normal, "l": light})
+            pad = self.latency - self._front - diffuse.latency
+            if pad < 0:
+                raise ValueError(f"the diffuse branch ({diffuse.latency} cycles) must not be "
+                                 f"slower than the specular unit")
+            out[f"diff{index}"] = delay(m, diffuse.results()["diff"], pad, f"diff{index}")
+        out["valid"] = self._units[0][-1].o.valid
+        return out
