@@ -57,7 +57,7 @@ def datapath(config, **ports):
             out[f"spec{index}"] = root(config.root, r, light, shininess)["spec"]
         else:
             d = halfway(config.halfway, normal, light, view)
-            x2 = difference(config.difference, d["p"], d["q"], shininess.shift(2))["x2"]
+            x2 = difference(config.difference, d["p"], d["q"], shininess.shift(config.halfway_shift))["x2"]
             out[f"spec{index}"] = shape(config.shape, x2)["spec"]
         out[f"diff{index}"] = diffuse(config.diffuse, normal, light)["diff"]
     return out

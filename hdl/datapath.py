@@ -21,7 +21,7 @@ class Datapath(PipelinedBlock):
     Only the blocks the configuration needs are built: with lights and viewer at
     infinity there is one LIRP and one normalizer (for N); each local light and a
     local viewer add their own pair.  ``specular`` picks reflect → difference → shape
-    (Figure 7), reflect → root (Figure 8), or halfway → difference (4n) → shape
+    (Figure 7), reflect → root (Figure 8), or halfway → difference (4n with H = (L+V)/2) → shape
     (Figure 5).  Blocks depending on L are repeated per light.  Side inputs are
     delayed to meet the data where it is used; diffuse is padded to leave with spec.
 
@@ -106,9 +106,9 @@ class Datapath(PipelinedBlock):
                                              "n": shininess})
             else:
                 unit[0].feed(m, valid, {"n": normal, "l": light, "v": view})
-                n4 = delay(m, shininess, unit[0].latency).shift(2)
+                scaled = delay(m, shininess, unit[0].latency).shift(c.halfway_shift)
                 d = unit[0].results()
-                unit[1].feed(m, unit[0].o.valid, {"r": d["p"], "l": d["q"], "n": n4})
+                unit[1].feed(m, unit[0].o.valid, {"r": d["p"], "l": d["q"], "n": scaled})
             if c.specular != "fig8":
                 unit[-1].feed(m, unit[-2].o.valid, unit[-2].results())
             out[f"spec{index}"] = unit[-1].results()["spec"]

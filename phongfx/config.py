@@ -426,9 +426,9 @@ class DatapathConfig(BlockConfig):
             links += [(*vec, "halfway.vec", self.halfway.vec),
                       ("halfway.out", self.halfway.out, "difference.vec", self.difference.vec),
                       ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
-            if self.difference.fmt("n").int_bits < 3:
-                raise ValueError(f"difference.n must have at least 3 integer bits to take 4n, "
-                                 f"not {self.difference.n}")
+            if self.difference.fmt("n").int_bits < self.halfway_shift + 1:
+                raise ValueError(f"difference.n must have at least {self.halfway_shift + 1} integer "
+                                 f"bits to take n·2^{self.halfway_shift}, not {self.difference.n}")
         for a_name, a, b_name, b in links:
             if Format.parse(a) != Format.parse(b):
                 raise ValueError(f"{a_name} ({a}) must equal {b_name} ({b}): they are connected")
@@ -440,9 +440,19 @@ class DatapathConfig(BlockConfig):
             return "m", self.root.fmt("m"), self.root.m_max
         n = self.difference.fmt("n")
         if self.specular == "halfway":
-            # the appendix uses 4n for halfway methods: a free shift into difference.n
-            return "n", Format(n.int_bits - 2, 0), self.difference.n_max // 4
+            shift = self.halfway_shift
+            return "n", Format(n.int_bits - shift, 0), self.difference.n_max >> shift
         return "n", n, self.difference.n_max
+
+    @property
+    def halfway_shift(self):
+        """log2 of the shininess scale into the halfway unit's difference block.
+
+        The appendix uses ``4n`` with ``H = (L+V)/2`` (``h="mean"``), whose difference
+        vectors are half as long as with ``H = V + L``: ``x = (4n/2)|D/2|²`` equals
+        ``(n/2)|D|²``.  So ``h="mean"`` shifts ``n`` by 2 (free wiring), ``h="sum"`` by 0.
+        """
+        return 2 if self.halfway.h == "mean" else 0
 
     @property
     def inputs(self):

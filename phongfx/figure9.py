@@ -53,7 +53,7 @@ def run(out_dir="build/figure9", backend="verilator", radius=64, progress=None):
     scene = Scene(radius=radius)
     px = pixels(scene)
     floats, float_diff = _float_row(scene, px)
-    rows, checked, mismatches = [], 0, 0
+    rows, checked, mismatches, specs = [], 0, 0, {}
     for method in METHODS:
         float_image = composite(scene, px, floats[method], float_diff)
         row = {"method": method, "float": float_image, "fixed": []}
@@ -64,6 +64,7 @@ def run(out_dir="build/figure9", backend="verilator", radius=64, progress=None):
             checked += stats["pixels"]
             mismatches += stats["mismatches"]
             spec, diff = amounts(config, golden)
+            specs[label] = spec
             own, phong = _error(spec, floats[method]), _error(spec, floats["phong"])
             row["fixed"].append({
                 "label": label, "datapath": name, "image": composite(scene, px, spec, diff),
@@ -71,8 +72,12 @@ def run(out_dir="build/figure9", backend="verilator", radius=64, progress=None):
                 "vs_phong": {"max": round(float(phong.max()), 3), "mean": round(float(phong.mean()), 4)},
                 "rtl_mismatches": stats["mismatches"], "rtl_pixels": stats["pixels"]})
         rows.append(row)
+    # Figure 8 against Figure 7 at equal shininess (n = m², exact for Lyon's n) and k = 1
+    fig8_vs_fig7 = _error(specs["Figure 8, m = √n, k = 1"], specs["Figure 7, k = 1"])
     table = {"pixels_per_row": len(px), "rtl_pixels_checked": checked, "rtl_mismatches": mismatches,
              "backend": backend,
+             "fig8_vs_fig7_k1": {"max": round(float(fig8_vs_fig7.max()), 3),
+                                 "mean": round(float(fig8_vs_fig7.mean()), 4)},
              "rows": [{"row": index + 1, "method": row["method"],
                        "fixed": [{k: v for k, v in f.items() if k != "image"} for f in row["fixed"]]}
                       for index, row in enumerate(rows)]}
@@ -85,6 +90,8 @@ def markdown(table):
              f"{table['rtl_pixels_checked']} checked through the RTL ({table['backend']}), "
              f"{table['rtl_mismatches']} mismatches.", "",
              "Specular error in 8-bit levels (max / mean over both lights).", "",
+             f"Figure 8 against Figure 7 (k = 1, n = m²): max {table['fig8_vs_fig7_k1']['max']:.2f}, "
+             f"mean {table['fig8_vs_fig7_k1']['mean']:.3f} levels.", "",
              "| row | float method | fixed-point datapath | vs its own float | vs float phong |",
              "|---|---|---|---|---|"]
     for row in table["rows"]:

@@ -88,3 +88,16 @@ def test_halfway_datapath_follows_lyon_row_8():
     ref = specular("halfway-g2proj-k2", N, raw["l0"] * LSB, raw["v"] * LSB, raw["n"].astype(float))
     got = block.golden(raw)["spec0"] * 2.0 ** -15
     assert np.max(np.abs(got - ref)[raw["n"] <= 256]) * 255 < 1  # measured 0.15
+
+
+def test_halfway_conventions_agree_on_x():
+    # without normalization of H (d3), H = V + L doubles D and the mean convention takes
+    # 4n instead: the same x, the same shape (g2 variants differ: g2 cannot shorten a
+    # V + L longer than √2, Lyon's reason for the code's H = (L+V)/2)
+    from phongfx.config import HalfwayConfig
+    mean = get_block("halfway_datapath", lights=1, halfway=HalfwayConfig(variant="d3"))
+    total = get_block("halfway_datapath", lights=1, halfway=HalfwayConfig(variant="d3", h="sum"))
+    assert (mean.config.shininess[2], total.config.shininess[2]) == (8000, 32000)
+    raw = mean.vectors(count=400, seed=12)
+    # measured 2.75: the mean convention's D has half the resolution, seen at n up to 8000
+    assert _levels(mean, raw, total, raw) < 4
