@@ -58,7 +58,7 @@ def _block(args):
 def _cmd_blocks(args):
     for name in block_names():
         block = get_block(name)
-        print(f"{name:12s} latency {block.latency:3d}  {block.config}")
+        print(f"{name:16s} latency {block.latency:3d}  {block.config}")
     return 0
 
 
