@@ -10,6 +10,7 @@ the block's configuration.  Errors go to stderr with exit code 2 (bad input) or 
 
 import argparse
 import dataclasses
+import os
 import sys
 
 from .blocks import block_names, get_block
@@ -182,6 +183,9 @@ def main(argv=None):
         return 2
     try:
         return args.run(args)
+    except BrokenPipeError:  # output piped into `head` and the like: not an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except ValueError as error:
         print(f"phongfx: error: {error}", file=sys.stderr)
         return 2
