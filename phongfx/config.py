@@ -36,6 +36,13 @@ def _fmt(name, value, *, signed=None, holds_one=False):
     return fmt
 
 
+def _integer_fmt(name, value):
+    fmt = _fmt(name, value, signed=False)
+    if fmt.frac_bits:
+        raise ValueError(f"{name} must be an integer format (m = 0), not {fmt}")
+    return fmt
+
+
 def _int(name, value, lo, hi):
     if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
         raise ValueError(f"{name} must be an integer in {lo}..{hi}, not {value!r}")
@@ -178,10 +185,7 @@ class DifferenceConfig(BlockConfig):
         _fmt("vec", self.vec, signed=True)
         _fmt("d", self.d, signed=True)
         _fmt("dd", self.dd, signed=False)
-        n = _fmt("n", self.n, signed=False)
-        if n.frac_bits:
-            raise ValueError(f"n must be an integer format (m = 0), not {n}")
-        _int("n_max", self.n_max, 1, n.max_raw)
+        _int("n_max", self.n_max, 1, _integer_fmt("n", self.n).max_raw)
         _fmt("x2", self.x2, signed=False)
 
     @property
@@ -262,10 +266,7 @@ class RootConfig(BlockConfig):
     def validate(self):
         _fmt("vec", self.vec, signed=True)
         _fmt("d", self.d, signed=True)
-        m = _fmt("m", self.m, signed=False)
-        if m.frac_bits:
-            raise ValueError(f"m must be an integer format (m = 0), not {m}")
-        _int("m_max", self.m_max, 1, m.max_raw)
+        _int("m_max", self.m_max, 1, _integer_fmt("m", self.m).max_raw)
         frac = _fmt("frac", self.frac, signed=False)
         if frac.int_bits:
             raise ValueError(f"frac must be a fraction-only format (0.m), not {frac}")

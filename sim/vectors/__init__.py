@@ -10,7 +10,7 @@ import numpy as np
 
 from ...golden.fixed import Fixed
 
-__all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "AXES", "axis_pairs",
+__all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "at_angle", "AXES", "axis_pairs",
            "EXHAUSTIVE_LIMIT"]
 
 #: Largest input space that is checked exhaustively.
@@ -42,6 +42,14 @@ def unit_vectors(count, generator):
     """``count`` float unit vectors, uniform on the sphere."""
     v = generator.normal(size=(count, 3))
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def at_angle(alpha, generator):
+    """Pairs of unit vectors ``(r, l)`` at angles ``alpha`` (radians), random orientation."""
+    l = unit_vectors(len(alpha), generator)
+    side = np.cross(l, unit_vectors(len(alpha), generator))
+    side /= np.linalg.norm(side, axis=-1, keepdims=True)
+    return np.cos(alpha)[:, None] * l + np.sin(alpha)[:, None] * side, l
 
 
 def codes(values, fmt):

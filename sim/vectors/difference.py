@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from . import AXES, axis_pairs, codes, concat, random_codes, rng, unit_vectors
+from . import AXES, at_angle, axis_pairs, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors"]
 
@@ -33,10 +33,7 @@ def vectors(config, count=1000, seed=0):
     m = 4 * count // 10 + 1
     n_near = random_codes(nfmt, m, g, 1, config.n_max)
     alpha = np.sqrt(2 * 32 * g.uniform(0, 1, m) ** 2 / n_near)
-    l_near = unit_vectors(m, g)
-    side = np.cross(l_near, unit_vectors(m, g))
-    side /= np.linalg.norm(side, axis=-1, keepdims=True)
-    r_near = np.cos(alpha)[:, None] * l_near + np.sin(alpha)[:, None] * side
+    r_near, l_near = at_angle(alpha, g)
     near = {"r": codes(r_near, vec), "l": codes(l_near, vec), "n": n_near}
 
     # seeded random unit pairs, and raw codes over the whole vec format (|D| up to 4)

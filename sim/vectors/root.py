@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from . import AXES, axis_pairs, codes, concat, random_codes, rng, unit_vectors
+from . import AXES, at_angle, axis_pairs, codes, concat, random_codes, rng, unit_vectors
 
 __all__ = ["vectors", "fraction_codes", "pairs"]
 
@@ -77,10 +77,7 @@ def vectors(config, count=1000, seed=0):
     n = 4 * count // 10 + 1
     m_near = random_codes(mfmt, n, g, 1, config.m_max)
     alpha = np.sqrt(2 * 2.0 ** (config.k + 1) * g.uniform(0, 1, n) ** 2) / m_near
-    l_near = unit_vectors(n, g)
-    side = np.cross(l_near, unit_vectors(n, g))
-    side /= np.linalg.norm(side, axis=-1, keepdims=True)
-    r_near = np.cos(alpha)[:, None] * l_near + np.sin(alpha)[:, None] * side
+    r_near, l_near = at_angle(alpha, g)
     near = {"r": codes(r_near, vec), "l": codes(l_near, vec), "m": m_near}
 
     # seeded random unit pairs, and raw codes over the whole vec format (|D| up to 4)
