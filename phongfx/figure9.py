@@ -112,11 +112,11 @@ def _write(out_dir, scene, rows, table):
 
     columns = 1 + max(len(row["fixed"]) for row in rows)
     for kind, title in (("figure9", "Lyon's Figure 9: float (left), fixed point through the datapaths"),
-                        ("figure9_diff", "|fixed − float| × 8 (black: equal; rows with no datapath blank)")):
+                        ("figure9_diff", "|fixed − float| of the picture × 32 (black: equal, brightest: ≥ 8 levels; float-only rows blank)")):
         fig, axes = plt.subplots(len(rows), columns, figsize=(5.2 * columns, 1.9 * len(rows)))
         for r, row in enumerate(rows):
             panels = [("float " + row["method"], row["float"])] if kind == "figure9" else [(row["method"], None)]
-            panels += [(f["label"], f["image"] if kind == "figure9" else np.abs(f["image"] - row["float"]) * 8)
+            panels += [(f["label"], f["image"] if kind == "figure9" else np.abs(f["image"] - row["float"]) * 32)
                        for f in row["fixed"]]
             for c in range(columns):
                 ax = axes[r, c]
