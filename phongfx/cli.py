@@ -122,10 +122,17 @@ def _cmd_figure9(args):
     return 0
 
 
+# table name -> module with run_table(name, out_dir), markdown(result), to_json(result)
+TABLES = {"lyon": "phongfx.lyon_tables", "szirmay": "phongfx.szirmay_tables"}
+
+
 def _cmd_tables(args):
-    from .lyon_tables import markdown, run_table, to_json
-    result = run_table(args.table, out_dir=args.out)
-    print(to_json(result) if args.json else markdown(result))
+    from importlib import import_module
+    if args.table not in TABLES:
+        raise ValueError(f"unknown table {args.table!r}; valid tables: {', '.join(TABLES)}")
+    module = import_module(TABLES[args.table])
+    result = module.run_table(args.table, out_dir=args.out or f"build/{args.table}")
+    print(module.to_json(result) if args.json else module.markdown(result))
     return 0
 
 
@@ -168,10 +175,11 @@ def _parser():
     p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels (Lyon: 64)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_figure9)
-    p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43)")
-    p.add_argument("table", help="which table (lyon)")
+    p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43), "
+                                         "`tables szirmay` (Szirmay-Kalos et al. 2000)")
+    p.add_argument("table", help="which table (lyon, szirmay)")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
-    p.add_argument("--out", default="build/lyon", help="folder for the plots")
+    p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=_cmd_tables)
     return parser
 

@@ -17,7 +17,8 @@ from .format import Format, check_rounding
 
 __all__ = [
     "BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
-    "ShapeConfig", "DiffuseConfig", "RootConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
+    "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
+    "EulerConfig", "GouraudConfig",
     "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
 ]
 
@@ -355,6 +356,168 @@ class HalfwayConfig(BlockConfig):
     @property
     def outputs(self):
         return {"p": (self.fmt("out"), 3), "q": (self.fmt("out"), 3)}
+
+
+@dataclass(frozen=True)
+class SchlickConfig(BlockConfig):
+    """Schlick (1994) rational specular unit ``S_n(t) = t / (n - n·t + t)``, ``t = cos α``
+    in ``0..1``, ``n`` an integer ``1..n_max``; a pipelined restoring divider.
+
+    ``rounding`` is ``truncate`` (the divider's floor) or ``round_half_up`` (one more
+    quotient bit, then ``(q + 1) >> 1``).  Defaults: ``t`` and ``out`` ``1.15`` (1.0
+    exact, as the shape function's), ``n`` ``13.0`` up to 8000 (Lyon's range).
+    """
+
+    t: str = "1.15"
+    n: str = "13.0"
+    n_max: int = 8000
+    out: str = "1.15"
+    rounding: str = "truncate"
+
+    def validate(self):
+        if self.rounding not in ("truncate", "round_half_up"):
+            raise ValueError(f"rounding must be one of truncate, round_half_up (the divider "
+                             f"floors), not {self.rounding!r}")
+        t = _fmt("t", self.t, signed=False, holds_one=True)
+        _int("n_max", self.n_max, 1, _integer_fmt("n", self.n).max_raw)
+        _fmt("out", self.out, signed=False, holds_one=True)
+        # the golden model forms t << (quotient bits - 1) in int64
+        if t.width + self.quotient_bits - 1 > 62:
+            raise ValueError(f"t ({t}) shifted by {self.quotient_bits - 1} quotient bits "
+                             f"exceeds 62 bits")
+
+    @property
+    def quotient_bits(self):
+        """Quotient bits the divider produces: weights ``2^0 .. 2^-F`` (``F`` fraction bits
+        of ``out``), one more for ``round_half_up``."""
+        return self.fmt("out").frac_bits + 1 + (self.rounding == "round_half_up")
+
+    @property
+    def den(self):
+        """Format of the divisor ``n(1 - t) + t``: exact, from ``1.0`` (``t = 1`` or
+        ``n = 1``) to ``n_max`` (``t = 0``)."""
+        t = self.fmt("t")
+        return Format.covering(0, self.n_max * t.one, t.frac_bits)
+
+    @property
+    def inputs(self):
+        return {"t": (self.fmt("t"), 1), "n": (self.fmt("n"), 1)}
+
+    @property
+    def outputs(self):
+        return {"spec": (self.fmt("out"), 1)}
+
+
+@dataclass(frozen=True)
+class SphericalConfig(BlockConfig):
+    """Szirmay-Kalos et al. (2000) Figure 12 spherical interpolation unit: per scanline
+    ``θ(X) = θ(X-1) + s`` from ``θ = b`` at ``init``, then ``C·cos²θ`` from a ROM (specular,
+    one channel) and ``C_rgb·max(cos θ_d, 0)`` from a second ROM (diffuse, three channels).
+
+    ``theta`` is the angle register in units of π (``S0.11``: 12 bits, the paper's
+    ``bit_v_12``, ``θ ∈ [-π, π)``, wrapping); its top ``addr_bits`` (6) address both ROMs,
+    whose words have the format ``rom`` (``0.6``: the paper's 6 × 6 bits).  ``c`` holds the
+    per-scanline constants, ``out`` the products.  See :mod:`phongfx.golden.spherical`.
+    """
+
+    theta: str = "S0.11"
+    addr_bits: int = 6
+    rom: str = "0.6"
+    c: str = "1.11"
+    out: str = "1.11"
+    rounding: str = "round_half_up"
+
+    def validate(self):
+        theta = _fmt("theta", self.theta, signed=True)
+        if theta.int_bits:
+            raise ValueError(f"theta must be a fraction-only format (S0.m, units of π), not {theta}")
+        _int("addr_bits", self.addr_bits, 2, min(theta.width, 16))
+        rom = _fmt("rom", self.rom, signed=False)
+        if rom.int_bits:
+            raise ValueError(f"rom must be a fraction-only format (0.m), not {rom}")
+        _fmt("c", self.c, signed=False)
+        _fmt("out", self.out, signed=False)
+
+    @property
+    def out_overflow(self):
+        """``"error"`` where ``out`` holds every code of ``c``: a ROM word is below 1, so
+        ``C·w < C``, and rounding to a grid that holds ``C`` cannot pass it; else saturate."""
+        c, out = self.fmt("c"), self.fmt("out")
+        return "error" if out.int_bits >= c.int_bits and out.frac_bits >= c.frac_bits else "saturate"
+
+    @property
+    def inputs(self):
+        theta, c = self.fmt("theta"), self.fmt("c")
+        return {"init": (Format(1, 0), 1), "b": (theta, 1), "s": (theta, 1), "c": (c, 1),
+                "bd": (theta, 1), "sd": (theta, 1), "cd": (c, 3)}
+
+    @property
+    def outputs(self):
+        return {"spec": (self.fmt("out"), 1), "diff": (self.fmt("out"), 3)}
+
+
+@dataclass(frozen=True)
+class EulerConfig(BlockConfig):
+    """Hast, Barrera & Bengtsson corrected Euler unit: per pixel output ``p``, then
+    ``p += t``, ``t += ds`` (equations 16–17); ``init`` loads ``p0``, ``t0``, ``ds``.
+
+    ``p``, ``t``, ``ds`` are the register formats (signed); fraction bits must not fall
+    from ``ds`` to ``t`` to ``p`` so both adders are exact and only the register widths
+    wrap.  ``out`` is the intensity taken from ``p`` by truncation, saturated (``0.8``:
+    ``floor(256·p)`` clamped to 0..255).  See :mod:`phongfx.golden.euler`.
+    """
+
+    p: str = "S1.30"
+    t: str = "S3.30"
+    ds: str = "S3.30"
+    out: str = "0.8"
+
+    def validate(self):
+        _step_formats(self, ("ds", "t", "p"))
+        _fmt("out", self.out)
+
+    @property
+    def inputs(self):
+        return {"init": (Format(1, 0), 1), "p0": (self.fmt("p"), 1), "t0": (self.fmt("t"), 1),
+                "ds": (self.fmt("ds"), 1)}
+
+    @property
+    def outputs(self):
+        return {"p": (self.fmt("p"), 1), "level": (self.fmt("out"), 1)}
+
+
+@dataclass(frozen=True)
+class GouraudConfig(BlockConfig):
+    """Gouraud unit: per pixel output ``p``, then ``p += dp``; ``init`` loads ``p0``, ``dp``.
+
+    Formats as :class:`EulerConfig`: ``dp`` may not have more fraction bits than ``p``.
+    """
+
+    p: str = "S1.30"
+    dp: str = "S3.30"
+    out: str = "0.8"
+
+    def validate(self):
+        _step_formats(self, ("dp", "p"))
+        _fmt("out", self.out)
+
+    @property
+    def inputs(self):
+        return {"init": (Format(1, 0), 1), "p0": (self.fmt("p"), 1), "dp": (self.fmt("dp"), 1)}
+
+    @property
+    def outputs(self):
+        return {"p": (self.fmt("p"), 1), "level": (self.fmt("out"), 1)}
+
+
+def _step_formats(config, names):
+    """Signed register formats whose fraction bits never fall along the adder chain
+    ``names`` (each added into the next), so the recurrence adds exactly."""
+    fmts = [_fmt(name, getattr(config, name), signed=True) for name in names]
+    for (a, fa), (b, fb) in zip(zip(names, fmts), zip(names[1:], fmts[1:])):
+        if fa.frac_bits > fb.frac_bits:
+            raise ValueError(f"{a} ({fa}) may not have more fraction bits than {b} ({fb}): "
+                             f"{a} is added into {b} exactly")
 
 
 SPECULAR_UNITS = ("fig7", "fig8", "halfway")

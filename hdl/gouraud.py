@@ -1,0 +1,42 @@
+"""Gouraud unit: one adder, ``p += dp`` (Gouraud 1971; Hast et al. §1)."""
+
+from amaranth.hdl import Signal
+
+from ..config import GouraudConfig
+from .block import PipelinedBlock
+from .fixed import FixedValue, stage
+
+__all__ = ["Gouraud"]
+
+
+class Gouraud(PipelinedBlock):
+    """One adder and two registers: output ``p``, then ``p += dp``.
+
+    Control as :class:`phongfx.hdl.euler.Euler`: registers change only on valid
+    pixels, ``init`` multiplexes the loads in, the sum wraps in ``p``'s width, and
+    ``level`` is the output register truncated and saturated to ``config.out``;
+    see :func:`phongfx.golden.gouraud.gouraud`.
+
+    Latency: 1 (the output register).
+
+    Ports: ``i.payload`` = ``init`` (``1.0``), ``p0`` (``config.p``), ``dp`` (``config.dp``);
+    ``o.payload`` = ``p`` (``config.p``), ``level`` (``config.out``).
+    """
+
+    config_class = GouraudConfig
+
+    @property
+    def latency(self):
+        return 1
+
+    def datapath(self, m, i):
+        cfg = self.config
+        init, valid = i["init"].value[0], self.i.valid
+        regs = {name: FixedValue(Signal(cfg.fmt(name).shape(), name=f"{name}_reg"), cfg.fmt(name))
+                for name in ("p", "dp")}
+        p, dp = i["p0"].where(init, regs["p"]), i["dp"].where(init, regs["dp"])
+        with m.If(valid):
+            m.d.sync += [regs["p"].value.eq((p + dp).quantize(cfg.p, "truncate", "wrap").value),
+                         regs["dp"].value.eq(dp.value)]
+        out = stage(m, p, "p_out")
+        return {"p": out, "level": out.quantize(cfg.out, "truncate", "saturate")}
