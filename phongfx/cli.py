@@ -123,7 +123,8 @@ def _cmd_figure9(args):
 
 
 # table name -> module with run_table(name, out_dir), markdown(result), to_json(result)
-TABLES = {"lyon": "phongfx.lyon_tables", "szirmay": "phongfx.szirmay_tables"}
+TABLES = {"lyon": "phongfx.lyon_tables", "szirmay": "phongfx.szirmay_tables",
+          "schlick": "phongfx.schlick_table"}
 
 
 def _cmd_tables(args):
@@ -176,8 +177,8 @@ def _parser():
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_figure9)
     p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43), "
-                                         "`tables szirmay` (Szirmay-Kalos et al. 2000)")
-    p.add_argument("table", help="which table (lyon, szirmay)")
+                                         "`tables szirmay` (Szirmay-Kalos et al. 2000), `tables schlick` (Figure 1)")
+    p.add_argument("table", help="which table (lyon, szirmay, schlick)")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=_cmd_tables)

@@ -8,11 +8,14 @@ paper says only that the curves match best near ``t = 1`` and that the new highl
 are broader; the table puts numbers on "broader".
 """
 
+import json
+import os
+
 import numpy as np
 
 from .blocks import get_block
 
-__all__ = ["FIGURE1_N", "schlick_table"]
+__all__ = ["FIGURE1_N", "schlick_table", "run_table", "markdown", "to_json"]
 
 #: The exponents of Schlick's Figure 1.
 FIGURE1_N = (1, 2, 6, 16, 64)
@@ -57,6 +60,28 @@ def schlick_table(png=None, config=None, ns=FIGURE1_N):
     if png is not None:
         _plot(png, t, curves)
     return rows
+
+
+def run_table(name, out_dir="build/schlick"):
+    """``phongfx tables schlick``: the Figure 1 rows; the plot goes to ``out_dir/figure1.png``."""
+    if name != "schlick":
+        raise ValueError(f"unknown table {name!r}; valid tables: schlick")
+    return {"source": "C. Schlick (1994), A Fast Alternative to Phong's Specular Model",
+            "rows": schlick_table(png=os.path.join(out_dir, "figure1.png"))}
+
+
+def markdown(result):
+    lines = [f"# Figure 1, measured ({result['source']})", "",
+             "| n | max \\|S_n − tⁿ\\| (float) | at t | with the fixed-point unit | unit vs float S_n (LSB) |",
+             "|---|---|---|---|---|"]
+    for r in result["rows"]:
+        lines.append(f"| {r['n']} | {r['max_float']:.5f} | {r['t_at_max']:.3f} | {r['max_fixed']:.5f} | "
+                     f"{r['max_lsb']:.5f} |")
+    return "\n".join(lines) + "\n"
+
+
+def to_json(result):
+    return json.dumps(result, indent=2, ensure_ascii=False)
 
 
 def _plot(path, t, curves):

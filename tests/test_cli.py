@@ -57,3 +57,11 @@ def test_console_script_exit_code():
     proc = subprocess.run([os.path.join(os.path.dirname(sys.executable), "phongfx"), "sim", "fig7",
                            "--set", "lights=0"], capture_output=True, text=True)
     assert proc.returncode == 2 and proc.stderr.startswith("phongfx: error: lights must be")
+
+
+def test_tables_schlick_prints_figure1(tmp_path, capsys):
+    assert main(["tables", "schlick", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("# Figure 1, measured")
+    assert "| 1 | 0.00000 |" in out and "| 64 | 0.199" in out
+    assert (tmp_path / "figure1.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
