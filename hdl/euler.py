@@ -6,7 +6,25 @@ from ..config import EulerConfig
 from .block import PipelinedBlock
 from .fixed import FixedValue, stage
 
-__all__ = ["Euler"]
+__all__ = ["Euler", "forward_differences"]
+
+
+def forward_differences(m, valid, init, loads):
+    """Registers stepped as forward differences; returns the first one's value this pixel.
+
+    ``loads`` lists ``(name, load, format)`` from the output down to the constant
+    step (``p, t, ds`` for Euler, ``p, dp`` for Gouraud).  On ``init`` the loads
+    replace the registers at the adders' inputs (a multiplexer each).  On a valid
+    pixel each register takes itself plus the next one, wrapping in its own width
+    as the hardware adder does; the last one holds.  Idle cycles change nothing.
+    """
+    regs = [FixedValue(Signal(fmt.shape(), name=f"{name}_reg"), fmt) for name, _, fmt in loads]
+    current = [load.where(init, reg) for (_, load, _), reg in zip(loads, regs)]
+    with m.If(valid):
+        for here, after, reg in zip(current, current[1:] + [None], regs):
+            step = here if after is None else (here + after).quantize(reg.fmt, "truncate", "wrap")
+            m.d.sync += reg.value.eq(step.value)
+    return current[0]
 
 
 class Euler(PipelinedBlock):
@@ -33,14 +51,7 @@ class Euler(PipelinedBlock):
 
     def datapath(self, m, i):
         cfg = self.config
-        init, valid = i["init"].value[0], self.i.valid
-        regs = {name: FixedValue(Signal(cfg.fmt(name).shape(), name=f"{name}_reg"), cfg.fmt(name))
-                for name in ("p", "t", "ds")}
-        p, t, ds = (load.where(init, regs[name])
-                    for name, load in (("p", i["p0"]), ("t", i["t0"]), ("ds", i["ds"])))
-        with m.If(valid):
-            m.d.sync += [regs["p"].value.eq((p + t).quantize(cfg.p, "truncate", "wrap").value),
-                         regs["t"].value.eq((t + ds).quantize(cfg.t, "truncate", "wrap").value),
-                         regs["ds"].value.eq(ds.value)]
+        p = forward_differences(m, self.i.valid, i["init"].value[0], [
+            ("p", i["p0"], cfg.fmt("p")), ("t", i["t0"], cfg.fmt("t")), ("ds", i["ds"], cfg.fmt("ds"))])
         out = stage(m, p, "p_out")
         return {"p": out, "level": out.quantize(cfg.out, "truncate", "saturate")}

@@ -1,10 +1,9 @@
 """Gouraud unit: one adder, ``p += dp`` (Gouraud 1971; Hast et al. §1)."""
 
-from amaranth.hdl import Signal
-
 from ..config import GouraudConfig
 from .block import PipelinedBlock
-from .fixed import FixedValue, stage
+from .euler import forward_differences
+from .fixed import stage
 
 __all__ = ["Gouraud"]
 
@@ -31,12 +30,7 @@ class Gouraud(PipelinedBlock):
 
     def datapath(self, m, i):
         cfg = self.config
-        init, valid = i["init"].value[0], self.i.valid
-        regs = {name: FixedValue(Signal(cfg.fmt(name).shape(), name=f"{name}_reg"), cfg.fmt(name))
-                for name in ("p", "dp")}
-        p, dp = i["p0"].where(init, regs["p"]), i["dp"].where(init, regs["dp"])
-        with m.If(valid):
-            m.d.sync += [regs["p"].value.eq((p + dp).quantize(cfg.p, "truncate", "wrap").value),
-                         regs["dp"].value.eq(dp.value)]
+        p = forward_differences(m, self.i.valid, i["init"].value[0], [
+            ("p", i["p0"], cfg.fmt("p")), ("dp", i["dp"], cfg.fmt("dp"))])
         out = stage(m, p, "p_out")
         return {"p": out, "level": out.quantize(cfg.out, "truncate", "saturate")}

@@ -38,10 +38,9 @@ def scene_inputs(config, scene, px):
     return encode(config, px.n0, px.n1, px.a, px.n, viewer, viewer, lights, lights)
 
 
-def _chunks(raw, size):
-    count = len(raw["a"])
+def _chunks(arrays, count, size):
     for start in range(0, count, size):
-        yield start, {name: value[start:start + size] for name, value in raw.items()}
+        yield {name: value[start:start + size] for name, value in arrays.items()}
 
 
 def shade(block, raw, backend, chunk=16384, progress=None):
@@ -52,8 +51,9 @@ def shade(block, raw, backend, chunk=16384, progress=None):
     """
     golden = block.golden(raw)
     stats = {"pixels": 0, "mismatches": 0, "cycles": 0, "seconds": 0.0, "first_mismatch": None}
-    for start, part in _chunks(raw, chunk):
-        result = check(block, inputs=part, backend=backend, bubbles=0.0)
+    count = len(raw["a"])
+    for part, want in zip(_chunks(raw, count, chunk), _chunks(golden, count, chunk)):
+        result = check(block, inputs=part, expected=want, backend=backend, bubbles=0.0)
         stats["pixels"] += result.vectors
         stats["cycles"] += result.cycles
         stats["seconds"] += result.seconds
@@ -184,13 +184,12 @@ def run(config=None, *, radius=64, span=8, backend="verilator", out_dir="build/s
         for mode, (scene, px) in prepared.items():
             raw = scene_inputs(config, scene, px)
             golden, stats = shade(block, raw, backend, chunk=chunk, progress=bar.update)
-            results[mode] = {"pixels": px, "stats": stats, "errors": _errors(config, scene, px, golden),
+            results[mode] = {"pixels": px, "raw": raw, "stats": stats, "errors": _errors(config, scene, px, golden),
                              "image": composite(scene, px, *amounts(config, golden))}
     for other in BACKENDS if sample else ():
         if other == backend:
             continue
-        scene, px = prepared["spans"]
-        part = {name: value[:sample] for name, value in scene_inputs(config, scene, px).items()}
+        part = {name: value[:sample] for name, value in results["spans"]["raw"].items()}
         _, speeds[other] = shade(block, part, other, chunk=sample)
 
     summary = {
