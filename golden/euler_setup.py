@@ -31,31 +31,70 @@ import numpy as np
 from ..config import EulerConfig
 from .fixed import Fixed
 
-__all__ = ["span_setup", "duff_curve", "normalized_curve", "euler_curve", "gouraud_curve",
-           "quantize_setup", "quantize_gouraud", "random_spans", "stability", "min_frac_bits"]
+__all__ = ["span_setup", "span_setups", "curves_at", "duff_curve", "normalized_curve", "euler_curve",
+           "gouraud_curve", "quantize_setup", "quantize_gouraud", "random_spans", "stability",
+           "min_frac_bits"]
+
+
+_SETUP_KEYS = ("A", "B", "C", "D", "p_a", "p_b", "dq_a", "dq_b", "di_a", "di_b", "ds", "eps", "deps", "t0")
+
+
+def span_setups(na, nb, light, length):
+    """Float setup of many spans at once (module docstring): ``na``, ``nb`` ``(S, 3)`` unit
+    end normals, ``light`` ``(3,)`` or ``(S, 3)``, ``length`` ``(S,)`` pixels.  Returns a
+    dict of ``(S,)`` arrays: ``n`` (int64) and the paper's ``A, B, C, D, p_a, p_b, dq_a,
+    dq_b, di_a, di_b, ds, eps, deps, t0``; one-pixel spans have all steps exactly 0."""
+    na, nb = np.atleast_2d(np.asarray(na, dtype=np.float64)), np.atleast_2d(np.asarray(nb, dtype=np.float64))
+    light = np.broadcast_to(np.asarray(light, dtype=np.float64), na.shape)
+    length = np.atleast_1d(np.asarray(length))
+    if length.dtype.kind not in "iu":
+        raise ValueError(f"length must be integers, not dtype {length.dtype}")
+    if np.any(length < 1):
+        raise ValueError(f"length must be a positive integer, not {int(length[length < 1][0])}")
+    n = length.astype(np.int64) - 1
+    many = n > 0
+    steps = np.where(many, n, 1).astype(np.float64)[:, None]
+
+    def dot(u, v):
+        return u[:, 0] * v[:, 0] + u[:, 1] * v[:, 1] + u[:, 2] * v[:, 2]
+
+    p_a, p_b = dot(na, light), dot(nb, light)
+    k = np.where(many[:, None], (nb - na) / steps, 0.0)
+    nf = steps[:, 0]
+    A, C, D = dot(k, light), dot(k, k), 2 * dot(k, na)
+    dq_a, dq_b = D, -D
+    di_a, di_b = A - p_a / 2 * dq_a, A - p_b / 2 * dq_b
+    ds = (di_b - di_a) / nf
+    eps = np.where(many, p_a + nf * di_a + (nf * nf - nf) / 2 * ds - p_b, 0.0)
+    deps = eps / nf
+    return {"n": n, "p_a": p_a, "p_b": p_b, "B": p_a, "A": A, "C": C, "D": D, "dq_a": dq_a,
+            "dq_b": dq_b, "di_a": di_a, "di_b": di_b, "ds": ds, "eps": eps, "deps": deps,
+            "t0": di_a - deps}
 
 
 def span_setup(na, nb, light, length):
     """Float setup of one span (module docstring): a dict of ``n`` and the paper's
-    ``A, B, C, D, p_a, p_b, dq_a, dq_b, di_a, di_b, ds, eps, deps, t0``."""
-    na, nb, light = (np.asarray(v, dtype=np.float64) for v in (na, nb, light))
-    if not isinstance(length, int) or length < 1:
+    ``A, B, C, D, p_a, p_b, dq_a, dq_b, di_a, di_b, ds, eps, deps, t0``
+    (:func:`span_setups` on one span)."""
+    if not isinstance(length, (int, np.integer)) or length < 1:
         raise ValueError(f"length must be a positive integer, not {length!r}")
-    n = length - 1
-    p_a, p_b = float(na @ light), float(nb @ light)
-    setup = {"n": n, "p_a": p_a, "p_b": p_b, "B": p_a}
-    if n == 0:
-        zero = dict.fromkeys(("A", "C", "D", "dq_a", "dq_b", "di_a", "di_b", "ds", "eps", "deps",
-                              "t0"), 0.0)
-        return {**setup, **zero}
-    k = (nb - na) / n
-    A, C, D = float(k @ light), float(k @ k), float(2 * k @ na)
-    dq_a, dq_b = D, -D
-    di_a, di_b = A - p_a / 2 * dq_a, A - p_b / 2 * dq_b
-    ds = (di_b - di_a) / n
-    eps = p_a + n * di_a + (n * n - n) / 2 * ds - p_b
-    return {**setup, "A": A, "C": C, "D": D, "dq_a": dq_a, "dq_b": dq_b, "di_a": di_a,
-            "di_b": di_b, "ds": ds, "eps": eps, "deps": eps / n, "t0": di_a - eps / n}
+    many = span_setups(na, nb, light, [int(length)])
+    return {"n": int(many["n"][0]), **{key: float(many[key][0]) for key in _SETUP_KEYS}}
+
+
+def curves_at(setups, span, x):
+    """Float intensities of pixel ``x`` (steps from the start) of span ``span`` (indices
+    into :func:`span_setups` arrays), vectorized over pixels: a dict of ``phong`` (Duff's
+    exact ``p/√q``, equation 4), ``euler`` (uncorrected, ``s_0 = di_a``, equations 12–14),
+    ``corrected`` (``t_0``, equations 16–17) and ``gouraud`` (the chord ``p_a`` to ``p_b``)."""
+    x = np.asarray(x, dtype=np.float64)
+    s = {key: setups[key][span] for key in ("A", "B", "C", "D", "p_a", "p_b", "di_a", "t0", "ds")}
+    n = setups["n"][span].astype(np.float64)
+    bend = x * (x - 1) / 2 * s["ds"]
+    return {"phong": (s["A"] * x + s["B"]) / np.sqrt(s["C"] * x * x + s["D"] * x + 1),
+            "euler": s["p_a"] + x * s["di_a"] + bend,
+            "corrected": s["p_a"] + x * s["t0"] + bend,
+            "gouraud": s["p_a"] + x * np.divide(s["p_b"] - s["p_a"], n, out=np.zeros_like(n), where=n > 0)}
 
 
 def duff_curve(setup):

@@ -17,13 +17,14 @@ Float first, then quantized to the unit's formats (:mod:`phongfx.golden.spherica
 ``φ = 0``, ``A = cos θ1`` (the vectors barely turn, or the rotation is undefined).
 """
 
+import functools
 import math
 
 import numpy as np
 
 from .fixed import Fixed
 
-__all__ = ["solve_a", "span_setup", "quantize_setup", "TINY"]
+__all__ = ["solve_a", "span_setups", "span_setup", "quantize_setup", "TINY"]
 
 #: ``sin γ`` below which a span is treated as not turning.
 TINY = 1e-9
@@ -33,6 +34,7 @@ def _rhs(a):
     return (2 * a * a * (1 - np.cos(np.pi / (2 * a))) - 1) / (4 * a * a - 1)
 
 
+@functools.lru_cache(maxsize=1024)  # one n per material: a frame asks for it once per span
 def solve_a(n, iterations=200):
     """``a(n)`` of §4 (Table 1) by bisection; ``n > 0``, any float."""
     if not n > 0:
@@ -47,29 +49,53 @@ def solve_a(n, iterations=200):
     return (lo + hi) / 2
 
 
+def _dot(a, b):
+    return np.einsum("...i,...i->...", a, b)
+
+
 def _rotate_back(u2, v1, v2):
-    """``u2`` turned by the inverse of the shortest rotation from ``v1`` to ``v2`` (Rodrigues)."""
+    """``u2`` turned by the inverse of the shortest rotation from ``v1`` to ``v2``
+    (Rodrigues), row by row; rows where ``v1 ∥ v2`` are left as they are."""
     axis = np.cross(v1, v2)
-    sin, cos = np.linalg.norm(axis), float(np.dot(v1, v2))
-    if sin < TINY:
-        return u2
-    k = -axis / sin
-    return u2 * cos + np.cross(k, u2) * sin + k * np.dot(k, u2) * (1 - cos)
+    sin, cos = np.linalg.norm(axis, axis=-1, keepdims=True), _dot(v1, v2)[..., None]
+    k = -axis / np.where(sin < TINY, 1.0, sin)
+    turned = u2 * cos + np.cross(k, u2) * sin + k * _dot(k, u2)[..., None] * (1 - cos)
+    return np.where(sin < TINY, u2, turned)
+
+
+def span_setups(u1, u2, v1, v2, n, length, intensity=1.0):
+    """Float setup of many spans: rows ``(S, 3)`` of end vectors, ``length`` ``(S,)``;
+    a dict of ``(S,)`` arrays ``gamma, A, phi, s, b, C, dark`` and the scalar ``a``.
+
+    ``dark`` marks a span whose angle ``x = tγ - φ`` stays on one side of the lobe
+    ``|a·x| <= π/2`` all along (``t`` in 0..1): ``cos²(a·x)`` is 0 over the whole span,
+    so its ``C`` is loaded as 0.  The host must do this, not leave it to the ROM: the
+    angle register wraps at ``±π``, and ``a·x`` reaches ``a·π`` (``a(20) = 2.76``), so
+    such a span would read the lit cells again after one turn.
+    """
+    u1, u2, v1, v2 = (np.asarray(x, dtype=np.float64) for x in (u1, u2, v1, v2))
+    length = np.asarray(length)
+    cos_g = np.clip(_dot(u1, _rotate_back(u2, v1, v2)), -1, 1)
+    gamma, sin_g = np.arccos(cos_g), np.sqrt(np.maximum(1 - cos_g * cos_g, 0.0))
+    c1, c2 = _dot(u1, v1), _dot(u2, v2)
+    turns = sin_g >= TINY
+    a_sin = np.where(turns, (c2 - c1 * cos_g) / np.where(turns, sin_g, 1.0), 0.0)
+    big_a, phi = np.hypot(c1, a_sin), np.arctan2(a_sin, c1)
+    a = solve_a(n)
+    s = np.where(length > 1, a * gamma / np.maximum(length - 1, 1), 0.0)
+    lobe = math.pi / (2 * a)
+    start, end = -phi, gamma - phi
+    dark = ((start > lobe) & (end > lobe)) | ((start < -lobe) & (end < -lobe))
+    return {"gamma": gamma, "A": big_a, "phi": phi, "a": a, "s": s, "b": -a * phi,
+            "C": np.where(dark, 0.0, intensity * big_a ** n), "dark": dark}
 
 
 def span_setup(u1, u2, v1, v2, n, length, intensity=1.0):
-    """Float setup of one span: ``dict(gamma, A, phi, a, s, b, C)``, angles in radians."""
-    u1, u2, v1, v2 = (np.asarray(x, dtype=np.float64) for x in (u1, u2, v1, v2))
-    u2p = _rotate_back(u2, v1, v2)
-    cos_g = float(np.clip(np.dot(u1, u2p), -1, 1))
-    gamma, sin_g = math.acos(cos_g), math.sqrt(max(1 - cos_g * cos_g, 0.0))
-    c1, c2 = float(np.dot(u1, v1)), float(np.dot(u2, v2))
-    a_sin = (c2 - c1 * cos_g) / sin_g if sin_g >= TINY else 0.0
-    big_a, phi = math.hypot(c1, a_sin), math.atan2(a_sin, c1)
-    a = solve_a(n)
-    s = a * gamma / (length - 1) if length > 1 else 0.0
-    return {"gamma": gamma, "A": big_a, "phi": phi, "a": a, "s": s, "b": -a * phi,
-            "C": intensity * big_a ** n}
+    """Float setup of one span (:func:`span_setups`): ``dict(gamma, A, phi, a, s, b, C,
+    dark)``, angles in radians."""
+    setup = span_setups(*(np.asarray(x, dtype=np.float64)[None] for x in (u1, u2, v1, v2)), n,
+                        np.array([length]), intensity)
+    return {name: value if name == "a" else value[0].item() for name, value in setup.items()}
 
 
 def quantize_setup(config, setup):

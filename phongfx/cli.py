@@ -10,6 +10,7 @@ the block's configuration.  Errors go to stderr with exit code 2 (bad input) or 
 
 import argparse
 import dataclasses
+import json
 import os
 import sys
 
@@ -85,6 +86,10 @@ def _cmd_sim(args):
 
 
 def _cmd_render(args):
+    if args.target == "mesh":
+        return _cmd_render_mesh(args)
+    if args.target == "frames":
+        return _cmd_render_frames(args)
     from .config import fig7_config
     from .render import run
     config = apply_settings(fig7_config(), args.set or [])
@@ -102,6 +107,34 @@ def _cmd_render(args):
     if summary["mismatches"]:
         print(f"MISMATCH between golden and RTL: {summary['mismatches']} pixel(s); see summary.json",
               file=sys.stderr)
+        return 1
+    return 0
+
+
+def _cmd_render_mesh(args):
+    from . import mesh_render
+    if args.figure:
+        figure = {"14": mesh_render.figure14, "15": mesh_render.figure15}[args.figure]
+        summary = figure(out_dir=args.mesh_out)
+    else:
+        summary = mesh_render.run(args.method, mesh=args.mesh, polygons=args.polygons,
+                                  stacks=args.stacks, slices=args.slices, n=args.n,
+                                  addr_bits=args.addr_bits, rom_bits=args.rom_bits,
+                                  width=args.size, height=args.size, frame=args.frame,
+                                  out_dir=args.mesh_out)
+    print(json.dumps(summary, indent=2, default=str))
+    return 0
+
+
+def _cmd_render_frames(args):
+    from .frames import UNITS, markdown, run_all
+    result = run_all(out_dir=args.frames_out, units=args.units or UNITS, quiet=args.quiet,
+                     backend=args.frames_backend, polygons=args.polygons, width=args.size,
+                     height=args.size, frame=args.frame)
+    print(markdown(result))
+    print(f"wrote {args.frames_out}/frames.json")
+    if result["mismatches"]:
+        print(f"MISMATCH between golden and RTL: {result['mismatches']} pixel(s)", file=sys.stderr)
         return 1
     return 0
 
@@ -124,7 +157,7 @@ def _cmd_figure9(args):
 
 # table name -> module with run_table(name, out_dir), markdown(result), to_json(result)
 TABLES = {"lyon": "phongfx.lyon_tables", "szirmay": "phongfx.szirmay_tables",
-          "schlick": "phongfx.schlick_table"}
+          "schlick": "phongfx.schlick_table", "hast": "phongfx.hast_tables"}
 
 
 def _cmd_tables(args):
@@ -135,6 +168,33 @@ def _cmd_tables(args):
     result = module.run_table(args.table, out_dir=args.out or f"build/{args.table}")
     print(module.to_json(result) if args.json else module.markdown(result))
     return 0
+
+
+def _mesh_parser(p):
+    p.add_argument("--method", default="phong",
+                   help="phong, gouraud, euler, corrected-euler, cosn, spherical (default phong)")
+    p.add_argument("--figure", choices=("14", "15"),
+                   help="reproduce Szirmay-Kalos et al. Figure 14 (n = 5, 10, 20) or 15 (4- vs 6-bit ROM)")
+    p.add_argument("--mesh", choices=("sphere", "torus"), default="torus")
+    p.add_argument("--polygons", type=int, default=800, help="torus polygons (2k²: 288, 512, 800, 1152)")
+    p.add_argument("--stacks", type=int, default=8, help="UV sphere stacks")
+    p.add_argument("--slices", type=int, default=16, help="UV sphere slices")
+    p.add_argument("--n", type=int, default=20, help="shininess")
+    p.add_argument("--addr-bits", type=int, default=6, help="spherical unit ROM address bits")
+    p.add_argument("--rom-bits", type=int, default=6, help="spherical unit ROM data bits")
+    p.add_argument("--size", type=int, default=256, help="frame width and height in pixels")
+    p.add_argument("--frame", type=int, default=0, help="frame of the 200-frame rotation")
+    p.add_argument("--out", dest="mesh_out", default="build/mesh", help="output folder")
+
+
+def _frames_parser(p):
+    p.add_argument("--units", nargs="+", metavar="UNIT", help="euler gouraud spherical schlick (default all)")
+    p.add_argument("--backend", dest="frames_backend", choices=BACKENDS, default="verilator")
+    p.add_argument("--polygons", type=int, default=800, help="torus polygons")
+    p.add_argument("--size", type=int, default=256, help="frame width and height in pixels")
+    p.add_argument("--frame", type=int, default=0, help="frame of the 200-frame rotation")
+    p.add_argument("--out", dest="frames_out", default="build/frames", help="output folder")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
 def _parser():
@@ -168,7 +228,12 @@ def _parser():
     p.add_argument("--out", default="build/sim", help="output folder")
     p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a DatapathConfig field")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.set_defaults(run=_cmd_render)
+    p.set_defaults(run=_cmd_render, target=None)
+    targets = p.add_subparsers(dest="target", metavar="{mesh,frames}",
+                               help="instead of Lyon's scene: a triangle mesh, or RTL full frames")
+    _mesh_parser(targets.add_parser("mesh", help="shade a tessellated sphere or torus by method (PNG)"))
+    _frames_parser(targets.add_parser(
+        "frames", help="one full torus frame through the RTL of the euler, gouraud, spherical and schlick units"))
 
     p = sub.add_parser("figure9", help="Lyon's Figure 9: float rows and fixed-point rows, RTL-checked")
     p.add_argument("--out", default="build/figure9", help="output folder")
@@ -177,8 +242,9 @@ def _parser():
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_figure9)
     p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43), "
-                                         "`tables szirmay` (Szirmay-Kalos et al. 2000), `tables schlick` (Figure 1)")
-    p.add_argument("table", help="which table (lyon, szirmay, schlick)")
+                                         "`tables szirmay` (Szirmay-Kalos et al. 2000), `tables schlick` (Figure 1), "
+                                         "`tables hast` (Hast et al. Tables 1–2)")
+    p.add_argument("table", help="which table (lyon, szirmay, schlick, hast)")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=_cmd_tables)

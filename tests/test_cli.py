@@ -65,3 +65,34 @@ def test_tables_schlick_prints_figure1(tmp_path, capsys):
     assert out.startswith("# Figure 1, measured")
     assert "| 1 | 0.00000 |" in out and "| 64 | 0.199" in out
     assert (tmp_path / "figure1.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["render", "mesh", "--method", "nope", "--out", "OUT"],
+     r"phongfx: error: method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
+     r"spherical, euler-unit, gouraud-unit, not 'nope'\n"),
+    (["render", "frames", "--units", "euler", "nope", "--out", "OUT"],
+     r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, not 'nope'\n"),
+])
+def test_render_targets_refuse_bad_names_and_write_nothing(argv, message, capsys, tmp_path):
+    argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]
+    assert main(argv) == 2
+    assert __import__("re").fullmatch(message, capsys.readouterr().err)
+    assert not (tmp_path / "out").exists()
+
+
+def test_render_mesh_writes_a_png_and_reports_its_error(tmp_path, capsys):
+    assert main(["render", "mesh", "--method", "corrected-euler", "--polygons", "288", "--size", "64",
+                 "--out", str(tmp_path)]) == 0
+    summary = __import__("json").loads(capsys.readouterr().out)
+    assert (tmp_path / "torus288-corrected-euler-n20-f0.png").stat().st_size > 0
+    assert summary["pixels"] > 1000 and summary["error_8bit"]["diffuse"]["max"] < 2
+
+
+@pytest.mark.verilator
+def test_render_frames_checks_the_rtl(tmp_path, capsys):
+    assert main(["render", "frames", "--units", "gouraud", "--size", "32", "--quiet",
+                 "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "| gouraud |" in out and "Total mismatches 0" in out
+    assert (tmp_path / "frames.json").exists()

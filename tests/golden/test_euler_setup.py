@@ -4,8 +4,8 @@ import pytest
 from phongfx.config import EulerConfig
 from phongfx.golden.euler import euler
 from phongfx.golden.euler_setup import (
-    duff_curve, euler_curve, gouraud_curve, min_frac_bits, normalized_curve, quantize_setup,
-    random_spans, span_setup, stability)
+    curves_at, duff_curve, euler_curve, gouraud_curve, min_frac_bits, normalized_curve, quantize_setup,
+    random_spans, span_setup, span_setups, stability)
 from phongfx.golden.fixed import Fixed, FixedOverflowError
 from phongfx.sim.vectors.euler import span
 
@@ -106,3 +106,30 @@ def test_stability_sweep():
             table[compensate, length] = min_frac_bits(length, compensate=compensate)[0]
     assert table == {(False, 2): 8, (False, 16): 14, (False, 256): 22, (False, 2048): 28,
                      (True, 2): 8, (True, 16): 11, (True, 256): 15, (True, 2048): 18}
+
+
+def test_span_setups_vectorized_curves():
+    # every span of mixed lengths (1 included) against the scalar curves and direct normalization
+    g = np.random.default_rng(7)
+    na, nb, light = random_spans(60, np.pi / 3, g)
+    length = g.integers(1, 40, size=60)
+    setups = span_setups(na, nb, light, length)
+    span = np.repeat(np.arange(60), length)
+    x = np.arange(length.sum()) - np.repeat(np.cumsum(length) - length, length)
+    curves = curves_at(setups, span, x)
+    for i in range(60):
+        one = span_setup(na[i], nb[i], light[i], int(length[i]))
+        mine = span == i
+        exact = normalized_curve(na[i], nb[i], light[i], int(length[i]))
+        np.testing.assert_allclose(curves["phong"][mine], exact, atol=1e-12)
+        np.testing.assert_allclose(curves["corrected"][mine], euler_curve(one), atol=1e-12)
+        np.testing.assert_allclose(curves["euler"][mine], euler_curve(one, corrected=False), atol=1e-12)
+        np.testing.assert_allclose(curves["gouraud"][mine], gouraud_curve(one), atol=1e-12)
+    assert np.all(setups["t0"][length == 1] == 0) and np.all(setups["ds"][length == 1] == 0)
+
+
+def test_span_setups_wants_lengths():
+    with pytest.raises(ValueError, match=r"^length must be a positive integer, not 0$"):
+        span_setups([[0, 0, 1]] * 2, [[0, 0, 1]] * 2, [0, 0, 1], [3, 0])
+    with pytest.raises(ValueError, match=r"^length must be integers, not dtype float64$"):
+        span_setups([[0, 0, 1]], [[0, 0, 1]], [0, 0, 1], [2.5])

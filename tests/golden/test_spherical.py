@@ -181,3 +181,21 @@ def test_golden_refuses_nothing_it_should_ignore():
     other["cd"][steps] = 0
     first, second = block.golden(raw), block.golden(other)
     assert all(np.array_equal(first[name], second[name]) for name in first)
+
+
+def test_a_span_outside_the_lobe_is_loaded_dark_because_the_register_wraps():
+    # N turns from 100° to 140° away from H: cos²(a·x) is 0 all along for n = 20
+    h = np.array([0.0, 0.0, 1.0])
+    u1, u2 = (np.array([math.sin(math.radians(d)), 0.0, math.cos(math.radians(d))]) for d in (100, 140))
+    d = span_setup(u1, u2, h, h, 20, 64)
+    assert d["dark"] and d["C"] == 0.0
+    # loaded with its true C instead, the wrapped angle reads lit cells again
+    block = get_block("spherical")
+    raw = quantize_setup(block.config, {**d, "C": d["A"] ** 20 + 0.5})
+    stream = {name: np.zeros(64, dtype=np.int64) for name in ("init", "b", "s", "c", "bd", "sd")}
+    stream["cd"] = np.zeros((64, 3), dtype=np.int64)
+    stream["init"][0] = 1
+    for name in ("b", "s", "c"):
+        stream[name][0] = raw[name]
+    spec = block.golden(stream)["spec"]
+    assert spec.max() > 0
