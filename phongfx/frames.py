@@ -22,8 +22,8 @@ import time
 import numpy as np
 
 from .blocks import get_block
-from .render import atomic_write
-from .sim.harness import BACKENDS, check
+from .render import atomic_write, shade
+from .sim.harness import BACKENDS
 from .span_inputs import UNITS, first_pixels, inputs
 
 __all__ = ["MESHES", "LIGHT", "frame_spans", "chunk_starts", "rtl_frame", "run_all", "markdown"]
@@ -89,21 +89,9 @@ def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=
     spans = frame_spans(mesh, polygons, width, height, frame)
     raw = inputs(unit, spans, light, n=n)
     block = get_block(unit)
-    golden = block.golden(raw)
     first, count = first_pixels(spans)
-    stats = {"cycles": 0, "mismatches": 0, "seconds": 0.0, "first_mismatch": None}
     bounds = chunk_starts(first, count, chunk)
-    for lo, hi in zip(bounds, bounds[1:]):
-        part = {name: value[lo:hi] for name, value in raw.items()}
-        want = {name: value[lo:hi] for name, value in golden.items()}
-        result = check(block, inputs=part, expected=want, backend=backend, bubbles=0.0)
-        stats["cycles"] += result.cycles
-        stats["seconds"] += result.seconds
-        stats["mismatches"] += result.mismatch_count
-        if result.mismatch_count and stats["first_mismatch"] is None:
-            stats["first_mismatch"] = result.describe(limit=3)
-        if progress:
-            progress(hi - lo)
+    _, stats = shade(block, raw, backend, progress=progress, bounds=bounds)
     return {"unit": unit, "backend": backend, "mesh": mesh, "polygons": polygons, "width": width,
             "height": height, "frame": frame, "pixels": count, "visible": int(np.sum(spans.visible)),
             "spans": len(first), "chunks": len(bounds) - 1, "cycles": stats["cycles"],

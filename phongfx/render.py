@@ -38,22 +38,23 @@ def scene_inputs(config, scene, px):
     return encode(config, px.n0, px.n1, px.a, px.n, viewer, viewer, lights, lights)
 
 
-def _chunks(arrays, count, size):
-    for start in range(0, count, size):
-        yield {name: value[start:start + size] for name, value in arrays.items()}
-
-
-def shade(block, raw, backend, chunk=16384, progress=None):
+def shade(block, raw, backend, chunk=16384, progress=None, bounds=None):
     """Golden outputs of ``raw``, checked against the RTL on ``backend`` chunk by chunk.
 
+    Chunks are ``chunk`` pixels, or run between the given ``bounds`` (``[0, ..., count]``;
+    a stateful unit must be cut where it reloads, see :func:`phongfx.frames.chunk_starts`).
     Returns (golden outputs, stats dict).  ``progress`` is called with the number of
     pixels just checked.
     """
     golden = block.golden(raw)
     stats = {"pixels": 0, "mismatches": 0, "cycles": 0, "seconds": 0.0, "first_mismatch": None}
-    count = len(raw["a"])
-    for part, want in zip(_chunks(raw, count, chunk), _chunks(golden, count, chunk)):
-        result = check(block, inputs=part, expected=want, backend=backend, bubbles=0.0)
+    count = len(next(iter(golden.values())))
+    if bounds is None:
+        bounds = [*range(0, count, chunk), count]
+    for lo, hi in zip(bounds, bounds[1:]):
+        result = check(block, inputs={name: value[lo:hi] for name, value in raw.items()},
+                       expected={name: value[lo:hi] for name, value in golden.items()},
+                       backend=backend, bubbles=0.0)
         stats["pixels"] += result.vectors
         stats["cycles"] += result.cycles
         stats["seconds"] += result.seconds
