@@ -193,8 +193,19 @@ def run(method, *, mesh="torus", polygons=800, stacks=8, slices=16, n=20, addr_b
             "seconds": time.perf_counter() - start}
 
 
-def _panel(pictures, gap=4):
-    """Pictures (rows of equal-size arrays) tiled with a ``gap`` of grey between them."""
+def _label(picture, text):
+    """``picture`` (H, W) with ``text`` written in white in its top-left corner."""
+    from PIL import ImageDraw
+    mask = Image.new("L", picture.shape[::-1], 0)
+    ImageDraw.Draw(mask).text((4, 3), text, fill=255)
+    return np.maximum(picture, np.asarray(mask, dtype=np.float64) / 255)
+
+
+def _panel(pictures, gap=4, labels=None):
+    """Pictures (rows of equal-size arrays) tiled with a ``gap`` of grey between them;
+    ``labels`` (rows of strings) written on the tiles."""
+    if labels:
+        pictures = [[_label(p, text) for p, text in zip(row, names)] for row, names in zip(pictures, labels)]
     rows = []
     for row in pictures:
         h = row[0].shape[0]
@@ -226,7 +237,9 @@ def figure15(out_dir="build/mesh", *, stacks=8, slices=16, n=20, size=256, frame
         if b is not None:
             errors[f"{b}-bit"] = {"vs_cosn": _errors(spans, shaded, cosn),
                                   "vs_phong": _errors(spans, shaded, phong)}
-    path = write_png(os.path.join(out_dir, "figure15.png"), _panel(rows))
+    names = [f"{b}-bit ROM" for b in bits] + ["cos^n (exact)"]
+    labels = [[f"{name}, n = {n}" for name in names], [f"{name}, specular" for name in names]]
+    path = write_png(os.path.join(out_dir, "figure15.png"), _panel(rows, labels=labels))
     return {"path": path, "n": n, "stacks": stacks, "slices": slices, "bits": list(bits),
             "errors": errors}
 
@@ -247,5 +260,7 @@ def figure14(out_dir="build/mesh", *, shininess=(5, 10, 20), stacks=24, slices=4
         errors = _errors(spans, cos2, cosn)
         per_n[str(n)] = {"a": spherical_setup.solve_a(n), "specular": errors["specular"],
                          "total": errors["total"]}
-    path = write_png(os.path.join(out_dir, "figure14.png"), _panel(rows))
+    labels = [[f"cos^n, n = {n}" for n in shininess],
+              [f"cos^2(a x), a = {spherical_setup.solve_a(n):.3f}" for n in shininess]]
+    path = write_png(os.path.join(out_dir, "figure14.png"), _panel(rows, labels=labels))
     return {"path": path, "stacks": stacks, "slices": slices, "difference": per_n}
