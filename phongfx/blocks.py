@@ -92,6 +92,8 @@ REGISTRY = {
               "phongfx.sim.vectors.euler:vectors"),
     "gouraud": (_config.GouraudConfig, "phongfx.golden.gouraud:gouraud",
                 "phongfx.hdl.gouraud:Gouraud", "phongfx.sim.vectors.gouraud:vectors"),
+    "conventional": (_config.ConventionalConfig, "phongfx.golden.conventional:conventional",
+                     "phongfx.hdl.conventional:Conventional", "phongfx.sim.vectors.conventional:vectors"),
     "fig7": (_config.fig7_config, *_DATAPATH),
     "fig8": (_config.fig8_config, *_DATAPATH),
     "halfway_datapath": (_config.halfway_config, *_DATAPATH),
