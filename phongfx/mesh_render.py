@@ -23,7 +23,10 @@ directional light and the viewer at infinity (``H`` constant).  Methods:
   corrected Euler or Gouraud unit (:mod:`phongfx.golden.euler`, ``.gouraud``, default
   formats) fed by :func:`phongfx.span_inputs.euler_inputs` / ``gouraud_inputs``, then
   clamped and raised like the float methods (so ``gouraud-unit`` interpolates the dot
-  products, not the end intensities as ``gouraud`` does).
+  products, not the end intensities as ``gouraud`` does);
+* ``conventional``: the 16-bit conventional Phong baseline (:mod:`phongfx.golden.conventional`:
+  reciprocal square root by table and Newton step, ``t^n`` by log2/exp2 tables) on the
+  interpolated normal of every pixel, fed by :func:`phongfx.span_inputs.conventional_inputs`.
 
 Errors are ``255·|I - I_phong|`` over the visible pixels (8-bit levels, as Hast's
 Table 2), for the composite and for each term.
@@ -40,13 +43,14 @@ from .blocks import get_block
 from .config import SphericalConfig
 from .golden import euler_setup, spherical_setup
 from .render import atomic_write
-from .span_inputs import decode, euler_inputs, gouraud_inputs, halfway, spherical_inputs
+from .span_inputs import (conventional_inputs, decode, euler_inputs, gouraud_inputs, halfway,
+                          spherical_inputs)
 
 __all__ = ["METHODS", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "shade",
            "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
 METHODS = ("phong", "gouraud", "euler", "corrected-euler", "cosn", "cos2", "spherical",
-           "euler-unit", "gouraud-unit")
+           "euler-unit", "gouraud-unit", "conventional")
 MESHES = ("torus", "sphere")
 #: Up, left and towards the viewer, so the highlight sits on the visible side.
 LIGHT = (-0.4, 0.5, 0.77)
@@ -128,6 +132,11 @@ def shade(spans, method, *, light=LIGHT, n=20, addr_bits=6, rom_bits=6):
         curve = [decode(unit, block.golden(feed(spans, v, block.config)), block.config)
                  for v in (light, h)]
         return curve[0], _power(curve[1], n)
+    if method == "conventional":
+        block = get_block("conventional")
+        out = block.golden(conventional_inputs(spans, light, n, block.config))
+        return (decode("conventional", out, block.config, "diff"),
+                decode("conventional", out, block.config, "spec"))
     config = SphericalConfig(addr_bits=addr_bits, rom=f"0.{rom_bits}")
     block = get_block("spherical", addr_bits=addr_bits, rom=f"0.{rom_bits}")
     raw = spherical_inputs(spans, light, n, config)

@@ -22,18 +22,18 @@ Szirmay-Kalos both use).
 
 import numpy as np
 
-from .config import EulerConfig, GouraudConfig, SchlickConfig, SphericalConfig
+from .config import ConventionalConfig, EulerConfig, GouraudConfig, SchlickConfig, SphericalConfig
 from .golden import euler_setup, spherical_setup
 from .golden.fixed import Fixed
 
 __all__ = ["VIEWER", "UNITS", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",
-           "spherical_inputs", "schlick_inputs", "inputs", "decode"]
+           "spherical_inputs", "schlick_inputs", "conventional_inputs", "inputs", "decode"]
 
 #: Viewer direction in eye space (orthographic view along -z, viewer at infinity).
 VIEWER = np.array([0.0, 0.0, 1.0])
 
 #: The units with a per-pixel input stream built here.
-UNITS = ("euler", "gouraud", "spherical", "schlick")
+UNITS = ("euler", "gouraud", "spherical", "schlick", "conventional")
 
 
 def _unit(name, vector):
@@ -160,6 +160,24 @@ def schlick_inputs(spans, light, n, config=SchlickConfig()):
     return {"t": raw.astype(np.int64), "n": np.full(len(raw), int(n), dtype=np.int64)}
 
 
+def conventional_inputs(spans, light, n, config=ConventionalConfig()):
+    """Raw inputs of the conventional Phong baseline: per pixel the interpolated normal
+    ``N`` as it is (the unit normalizes it), unit ``L`` and ``H``, all rounded half up to
+    ``config.vec`` (saturated: a component of exactly 1 is the largest code), and ``n``.
+    Returns ``{normal, light, half, n}``."""
+    if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or not 1 <= n <= config.n_max:
+        raise ValueError(f"n must be an integer in 1..{config.n_max}, not {n!r}")
+    first, count = first_pixels(spans)
+    light = _unit("light", light)
+
+    def codes(vectors):
+        return Fixed.from_float(vectors, config.vec, "round_half_up", "saturate").raw.astype(np.int64)
+    return {"normal": codes(spans.interpolated_normals()),
+            "light": codes(np.broadcast_to(light, (count, 3))),
+            "half": codes(np.broadcast_to(halfway(light), (count, 3))),
+            "n": np.full(count, int(n), dtype=np.int64)}
+
+
 def inputs(unit, spans, light, *, n=32, config=None):
     """The stream of ``unit`` (one of :data:`UNITS`) with its default config, shininess ``n``."""
     if unit == "euler":
@@ -170,12 +188,15 @@ def inputs(unit, spans, light, *, n=32, config=None):
         return spherical_inputs(spans, light, n, config or SphericalConfig())
     if unit == "schlick":
         return schlick_inputs(spans, light, n, config or SchlickConfig())
+    if unit == "conventional":
+        return conventional_inputs(spans, light, n, config or ConventionalConfig())
     raise ValueError(f"unit must be one of {', '.join(UNITS)}, not {unit!r}")
 
 
 def decode(block_name, outputs, config, part="spec"):
     """Float per-pixel intensity from raw outputs: ``p`` (Euler, Gouraud; negative
-    clamped to 0), ``spec`` (Schlick), ``spec`` or ``diff`` ``(P, 3)`` (spherical, ``part``)."""
+    clamped to 0), ``spec`` (Schlick), ``spec`` or ``diff`` ``(P, 3)`` (spherical, ``part``),
+    ``specular`` or ``diffuse`` (conventional, ``part`` ``spec`` or ``diff``)."""
     ports = config.outputs
     if block_name in ("euler", "gouraud"):
         return np.maximum(np.asarray(outputs["p"]) * ports["p"][0].lsb, 0.0)
@@ -185,4 +206,9 @@ def decode(block_name, outputs, config, part="spec"):
         if part not in ("spec", "diff"):
             raise ValueError(f"part must be one of spec, diff, not {part!r}")
         return np.asarray(outputs[part]) * ports[part][0].lsb
+    if block_name == "conventional":
+        name = {"spec": "specular", "diff": "diffuse"}.get(part)
+        if name is None:
+            raise ValueError(f"part must be one of spec, diff, not {part!r}")
+        return np.asarray(outputs[name]) * ports[name][0].lsb
     raise ValueError(f"block_name must be one of {', '.join(UNITS)}, not {block_name!r}")
