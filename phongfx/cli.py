@@ -139,6 +139,22 @@ def _cmd_render_frames(args):
     return 0
 
 
+def _cmd_synth(args):
+    from tqdm import tqdm
+
+    from .synth import markdown, synth
+    block = _block(args)
+    with tqdm(total=3, desc=f"synth {args.name}", disable=args.quiet or args.json,
+              bar_format="{desc}: {n}/{total} steps {elapsed}") as bar:
+        def progress(step):
+            bar.set_description(f"synth {args.name}: {step}")
+            bar.update(1)
+        result = synth(args.name, config=block.config, target=args.target, device=args.device,
+                       freq=args.freq, seed=args.seed, workdir=args.workdir, progress=progress)
+    print(json.dumps(result, indent=2, default=str) if args.json else markdown([result]), end="")
+    return 0
+
+
 def _cmd_figure9(args):
     from tqdm import tqdm
 
@@ -220,6 +236,17 @@ def _parser():
     p.add_argument("--bubbles", type=float, default=0.25, help="probability of an idle cycle")
     p.add_argument("--vcd", help="write a waveform (amaranth back end)")
     p.set_defaults(run=_cmd_sim)
+
+    p = sub.add_parser("synth", help="synthesize, place and route a block: LUTs, FFs, DSPs, Fmax (yowasp tools)")
+    with_block(p)
+    p.add_argument("--target", default="ecp5", help="ecp5 (default) or ice40")
+    p.add_argument("--device", help="part size: ecp5 25k/45k/85k (default 45k), ice40 up5k/hx8k/hx1k")
+    p.add_argument("--freq", type=float, default=150, help="target clock in MHz (default 150)")
+    p.add_argument("--seed", type=int, default=1, help="placer seed")
+    p.add_argument("--workdir", default="build/synth", help="cache and run folder")
+    p.add_argument("--json", action="store_true", help="print the whole result as JSON")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=_cmd_synth)
 
     p = sub.add_parser("render", help="shade Lyon's scene through Figure 7 (what `make sim` runs)")
     p.add_argument("--backend", choices=BACKENDS, default="verilator")

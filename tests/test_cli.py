@@ -96,3 +96,21 @@ def test_render_frames_checks_the_rtl(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "| gouraud |" in out and "Total mismatches 0" in out
     assert (tmp_path / "frames.json").exists()
+
+
+def test_synth_prints_the_table_and_refuses_a_bad_target(monkeypatch, capsys):
+    import phongfx.synth as synth_module
+    calls = []
+
+    def fake(name, **options):
+        calls.append((name, options["target"], options["freq"], options["config"].k))
+        return {"block": name, "target": options["target"], "device": "45k", "lut4": 17, "ff": 35,
+                "carry": 22, "dsp": 1, "bram_bits": 0, "fmax_mhz": 114.7, "pixels_per_second": 114.7e6,
+                "latency": 2, "latency_ns": 17.4}
+    monkeypatch.setattr(synth_module, "synth", fake)
+    assert main(["synth", "shape", "--set", "k=1", "--freq", "200", "--quiet"]) == 0
+    assert calls == [("shape", "ecp5", 200.0, 1)]
+    assert "| shape | ecp5 | 45k | 17 | 35 | 22 | 1 |" in capsys.readouterr().out
+    monkeypatch.undo()
+    assert main(["synth", "shape", "--target", "nope", "--quiet"]) == 2
+    assert capsys.readouterr().err == "phongfx: error: target must be one of 'ecp5', 'ice40', not 'nope'\n"
