@@ -155,6 +155,16 @@ def _cmd_synth(args):
     return 0
 
 
+def _cmd_report(args):
+    from .report import build_report
+    tables = tuple(args.tables) if args.tables is not None else tuple(TABLES)
+    for name in tables:
+        if name not in TABLES:
+            raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
+    print(f"wrote {build_report(out_dir=args.out, sweep_dir=args.sweep, tables=tables, quick=args.quick)}")
+    return 0
+
+
 def _cmd_figure9(args):
     from tqdm import tqdm
 
@@ -173,7 +183,7 @@ def _cmd_figure9(args):
 
 # table name -> module with run_table(name, out_dir), markdown(result), to_json(result)
 TABLES = {"lyon": "phongfx.lyon_tables", "szirmay": "phongfx.szirmay_tables",
-          "schlick": "phongfx.schlick_table", "hast": "phongfx.hast_tables"}
+          "schlick": "phongfx.schlick_table", "hast": "phongfx.hast_tables", "cost": "phongfx.cost_table"}
 
 
 def _cmd_tables(args):
@@ -248,6 +258,14 @@ def _parser():
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_synth)
 
+    p = sub.add_parser("report", help="build/report/index.md: the papers' tables beside our measurements, "
+                                      "the sweep's Pareto plots and cheapest invisible-error datapaths")
+    p.add_argument("--out", default="build/report", help="output folder")
+    p.add_argument("--sweep", default="build/sweep", help="sweep folder holding points.jsonl")
+    p.add_argument("--tables", nargs="*", metavar="TABLE", help="tables to include (default all)")
+    p.add_argument("--quick", action="store_true", help="fewer frames and blocks (a smoke run)")
+    p.set_defaults(run=_cmd_report)
+
     p = sub.add_parser("render", help="shade Lyon's scene through Figure 7 (what `make sim` runs)")
     p.add_argument("--backend", choices=BACKENDS, default="verilator")
     p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels")
@@ -270,8 +288,9 @@ def _parser():
     p.set_defaults(run=_cmd_figure9)
     p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43), "
                                          "`tables szirmay` (Szirmay-Kalos et al. 2000), `tables schlick` (Figure 1), "
-                                         "`tables hast` (Hast et al. Tables 1–2)")
-    p.add_argument("table", help="which table (lyon, szirmay, schlick, hast)")
+                                         "`tables hast` (Hast et al. Tables 1–2), `tables cost` (synthesis: Figure 7 "
+                                         "vs Figure 8 vs the conventional baseline)")
+    p.add_argument("table", help="which table (lyon, szirmay, schlick, hast, cost)")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=_cmd_tables)
