@@ -6,12 +6,12 @@ VENV ?= .venv
 BACKEND ?= verilator
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: sim test test-all clean
+.PHONY: sim test test-all synth sweep report clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
-	$(VENV)/bin/python -m pip install --quiet -e .
+	$(VENV)/bin/python -m pip install --quiet -e '.[cluster]'
 	touch $(STAMP)
 
 sim: $(STAMP)
@@ -23,6 +23,19 @@ test: $(STAMP)
 # everything, including tests marked slow (long sweeps)
 test-all: $(STAMP)
 	$(VENV)/bin/python -m pytest -q -m "" --durations=10
+
+# synthesis, place and route of the Figure 7 and Figure 8 datapaths (ECP5, yowasp tools)
+synth: $(STAMP)
+	$(VENV)/bin/phongfx synth fig7 --quiet
+	$(VENV)/bin/phongfx synth fig8 --quiet
+
+# the small default sweep: error and cost per width point, resumable (build/sweep)
+sweep: $(STAMP)
+	$(VENV)/bin/phongfx sweep sweeps/default.toml --out build/sweep
+
+# build/report/index.md: the papers' tables beside ours, the sweep's Pareto plots
+report: $(STAMP)
+	$(VENV)/bin/phongfx report --out build/report --sweep build/sweep
 
 clean:
 	rm -rf build

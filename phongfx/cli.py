@@ -155,6 +155,31 @@ def _cmd_synth(args):
     return 0
 
 
+def _cmd_sweep(args):
+    from .render import atomic_write
+    from .report import pareto_plot, summary_markdown
+    from .sweep import load_records, run_sweep
+    try:
+        summary = run_sweep(args.spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
+                            progress=not args.quiet)
+    except KeyboardInterrupt:
+        print(f"phongfx: interrupted; finished points are kept in {args.out}/points.jsonl "
+              f"- run again to resume", file=sys.stderr)
+        return 130
+    records = load_records(summary["jsonl"])
+    scene = next((r["scenes"][0] for r in records if r.get("scenes")), "torus")
+    plot = pareto_plot(records, os.path.join(args.out, "pareto.png"), f"{scene}.phong.max")
+    text = "\n".join(summary_markdown(records, f"{scene}.{ref}.max") for ref in ("phong", "self"))
+    atomic_write(os.path.join(args.out, "summary.md"), lambda p: open(p, "w").write(text))
+    print(text)
+    print(f"{summary['ran']} point(s) run ({summary['ok']} ok, {summary['failed']} failed), "
+          f"{summary['skipped']} already done, of {summary['total']}; wrote {summary['csv']}, "
+          f"{args.out}/pareto.png ({plot['plotted']} points with cost), {args.out}/summary.md")
+    if summary["failed"]:
+        print(f"phongfx: {summary['failed']} point(s) failed; see the error column", file=sys.stderr)
+    return 0
+
+
 def _cmd_report(args):
     from .report import build_report
     tables = tuple(args.tables) if args.tables is not None else tuple(TABLES)
@@ -257,6 +282,14 @@ def _parser():
     p.add_argument("--json", action="store_true", help="print the whole result as JSON")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_synth)
+
+    p = sub.add_parser("sweep", help="error against cost over methods and bit widths (TOML spec)")
+    p.add_argument("spec", help="sweep spec, e.g. sweeps/default.toml (see sweeps/README.md)")
+    p.add_argument("--workers", type=int, help="worker processes (default: all cores; 1: in-process)")
+    p.add_argument("--scheduler", help="Dask scheduler address, or 'local' for a LocalCluster")
+    p.add_argument("--out", default="build/sweep", help="output folder")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=_cmd_sweep)
 
     p = sub.add_parser("report", help="build/report/index.md: the papers' tables beside our measurements, "
                                       "the sweep's Pareto plots and cheapest invisible-error datapaths")

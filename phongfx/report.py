@@ -13,7 +13,6 @@ after ``booth`` (958 LUT4 and 18 CCU2C; Yosys' default array mapping takes 1868 
 Speed is ``cost["mpixels_per_s"]`` (one pixel per clock), where higher is better.
 """
 
-import json
 import math
 import os
 
@@ -34,26 +33,13 @@ _COST_LABEL = {"lut_eq": f"cost (LUT4 + {DSP_LUT_WEIGHT}·DSP LUT-equivalents)",
 
 
 def load(path):
-    """Records of ``points.jsonl`` at ``path``, in file order.
-
-    A last line that does not parse (a run killed while appending) is ignored; a bad line
-    anywhere else raises ``ValueError`` naming the line.
-    """
-    with open(path, encoding="utf-8") as f:
-        lines = f.read().split("\n")
-    while lines and not lines[-1].strip():
-        lines.pop()
-    records = []
-    for number, line in enumerate(lines, 1):
-        if not line.strip():
-            continue
-        try:
-            records.append(json.loads(line))
-        except ValueError as error:
-            if number == len(lines):  # torn by an interrupted append
-                break
-            raise ValueError(f"{path} line {number} is not JSON ({error})") from None
-    return records
+    """Records of ``points.jsonl`` at ``path`` (:func:`phongfx.sweep.load_records`: one per
+    point, the last written winning; a torn last line ignored, a bad line elsewhere a
+    ``ValueError``).  A missing file is ``FileNotFoundError``."""
+    from .sweep import load_records
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"no sweep results at {path}: run `make sweep` first")
+    return load_records(path)
 
 
 def lut_equivalent(cost, dsp_weight=DSP_LUT_WEIGHT):

@@ -114,3 +114,23 @@ def test_synth_prints_the_table_and_refuses_a_bad_target(monkeypatch, capsys):
     monkeypatch.undo()
     assert main(["synth", "shape", "--target", "nope", "--quiet"]) == 2
     assert capsys.readouterr().err == "phongfx: error: target must be one of 'ecp5', 'ice40', not 'nope'\n"
+
+
+def test_sweep_writes_csv_plot_and_summary_and_resumes(tmp_path, capsys):
+    spec = tmp_path / "spec.toml"
+    spec.write_text('scenes = ["torus"]\n[[grid]]\nmethod = "fig7"\nvec_frac = [8, 10]\n')
+    out = tmp_path / "out"
+    assert main(["sweep", str(spec), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    assert "2 point(s) run (2 ok, 0 failed), 0 already done, of 2" in capsys.readouterr().out
+    assert {p.name for p in out.iterdir()} >= {"points.jsonl", "points.csv", "pareto.png", "summary.md"}
+    assert "torus.self.max" in (out / "summary.md").read_text()
+    assert main(["sweep", str(spec), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    assert "0 point(s) run (0 ok, 0 failed), 2 already done, of 2" in capsys.readouterr().out
+
+
+def test_sweep_refuses_a_bad_spec_with_exit_2(tmp_path, capsys):
+    spec = tmp_path / "spec.toml"
+    spec.write_text('[[grid]]\nmethod = "fig9"\n')
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--quiet"]) == 2
+    assert capsys.readouterr().err.startswith("phongfx: error: ")
+    assert not (tmp_path / "out").exists()
