@@ -5,6 +5,13 @@ A block's ports come from its configuration (:attr:`BlockConfig.inputs` and
 agree on widths by construction.  Components are fully pipelined: one new input
 every clock, no back-pressure, and ``valid`` travels with the data through exactly
 ``latency`` registers.
+
+Inputs enter :meth:`PipelinedBlock.datapath` at cycle 0 (see the cycle tags of
+:mod:`phongfx.hdl.fixed`); every output should come back at cycle ``latency``.
+Elaboration records the cycle of each output in ``output_cycles``, so a test can
+check a ``latency`` formula against the registers a pipeline depth adds (the
+harness catches a mismatch as well, by timing).  A sub-block's :meth:`results` carry
+the cycle of what was fed to it plus its latency.
 """
 
 from amaranth.hdl import Module
@@ -12,7 +19,7 @@ from amaranth.lib import data, wiring
 from amaranth.lib.wiring import In, Out
 
 from ..config import BlockConfig
-from .fixed import FixedValue, FixedVector, delay
+from .fixed import FixedValue, FixedVector, align, delay
 
 __all__ = ["payload_layout", "stream_signature", "PipelinedBlock"]
 
@@ -41,12 +48,17 @@ class PipelinedBlock(wiring.Component):
     """
 
     config_class = BlockConfig
+    #: inputs tagged with cycle 0, outputs' cycles recorded (False: untagged values)
+    cycle_tags = True
+    #: ``{output: cycle}`` after elaboration (None where untagged)
+    output_cycles = None
 
     def __init__(self, config):
         if not isinstance(config, self.config_class):
             self._MustUse__silence = True  # never built: no "unused elaboratable" warning later
             raise TypeError(f"config must be a {self.config_class.__name__}, not {config!r}")
         self.config = config
+        self._fed = None  # (module, cycle) of the values fed by a composite block
         super().__init__({
             "i": In(stream_signature(config.inputs)),
             "o": Out(stream_signature(config.outputs)),
@@ -66,20 +78,29 @@ class PipelinedBlock(wiring.Component):
 
     def feed(self, m, valid, values):
         """Drive this block's ``i`` from ``valid`` and ``{input: FixedValue | FixedVector}``
-        (used by composite blocks; formats must match the config's)."""
+        (used by composite blocks; formats must match the config's).  The values are
+        first aligned to the latest one's cycle; ``valid`` must be of that cycle."""
+        names = list(values)
+        aligned = dict(zip(names, align(*(values[name] for name in names))))
+        self._fed = (m, max((value.cycle for value in aligned.values() if value.cycle is not None),
+                            default=None))
         m.d.comb += self.i.valid.eq(valid)
-        _drive(m, self.i.payload, self.config.inputs, values, f"{type(self).__name__} input")
+        _drive(m, self.i.payload, self.config.inputs, aligned, f"{type(self).__name__} input")
 
     def results(self):
-        """This block's outputs as ``{output: FixedValue | FixedVector}``."""
-        return _wrap(self.o.payload, self.config.outputs)
+        """This block's outputs as ``{output: FixedValue | FixedVector}``, at the cycle fed plus ``latency``."""
+        m, cycle = self._fed if self._fed is not None else (None, None)
+        cycle = None if cycle is None else cycle + self.latency
+        return _wrap(self.o.payload, self.config.outputs, cycle, m)
 
     def elaborate(self, platform):
         m = Module()
-        outputs = self.datapath(m, _wrap(self.i.payload, self.config.inputs))
+        cycle = 0 if self.cycle_tags else None
+        outputs = self.datapath(m, _wrap(self.i.payload, self.config.inputs, cycle, m, names=True))
         valid = outputs.pop("valid", None)
         if valid is None:
             valid = delay(m, self.i.valid, self.latency, name="valid")
+        self.output_cycles = {name: value.cycle for name, value in outputs.items()}
         _drive(m, self.o.payload, self.config.outputs, outputs, f"{type(self).__name__} output")
         m.d.comb += self.o.valid.eq(valid)
         return m
@@ -96,6 +117,7 @@ def _drive(m, payload, ports, values, what):
             m.d.comb += target.eq(item.value)
 
 
-def _wrap(payload, ports):
-    return {name: FixedValue(payload[name], fmt) if lanes == 1 else FixedVector.from_array(payload[name], fmt)
+def _wrap(payload, ports, cycle, module, names=False):
+    return {name: FixedValue(payload[name], fmt, cycle, module, name if names else None) if lanes == 1
+            else FixedVector.from_array(payload[name], fmt, cycle, module, name if names else None)
             for name, (fmt, lanes) in ports.items()}

@@ -41,6 +41,7 @@ class Conventional(PipelinedBlock):
     """
 
     config_class = ConventionalConfig
+    cycle_tags = False  # hand-aligned registers, no pipeline depth
 
     @property
     def latency(self):

@@ -27,7 +27,10 @@ class Datapath(PipelinedBlock):
 
     Latency: ``front + specular``, where ``front = lirp + normalize`` (the slower of
     the N and L/V fronts) and ``specular`` is ``reflect + difference + shape``,
-    ``reflect + root`` or ``halfway + difference + shape``.
+    ``reflect + root`` or ``halfway + difference + shape``, each block's latency at its
+    own pipeline depth (``DatapathConfig.pipeline`` sets them all at once: 17, 25, 34, 43
+    cycles for Figure 7 and 15, 22, 31, 37 for Figure 8 at depths 0–3).  Side inputs
+    wait by the cycle tags of :mod:`phongfx.hdl.fixed`, so any depth lines up.
     """
 
     config_class = DatapathConfig

@@ -1,8 +1,10 @@
 """Difference vector and ``2x`` component, Lyon (1993) Figure 7c: ``2x = n·D·D``."""
 
+from functools import cached_property
+
 from ..config import DifferenceConfig
 from .block import PipelinedBlock
-from .fixed import delay, stage
+from .fixed import cut, quantize_cut, split_product, stage
 
 __all__ = ["Difference"]
 
@@ -14,21 +16,34 @@ class Difference(PipelinedBlock):
     tree gives ``D·D``, and one 13×22 multiplier scales it by ``n``.  Bit growth and
     saturation are as in :func:`phongfx.golden.difference.difference`.
 
-    Latency: 4 (squares ``D_i²``; the saturated ``D·D``; the product ``n·D·D``; the
-    rounded, saturated ``2x``): each multiplier level is registered before the adder
-    or rounder behind it.  ``n`` waits 2 cycles to meet ``D·D``.
+    Latency: ``4 + [pipeline ≥ 1] + 2·[pipeline ≥ 2] + 3·[pipeline ≥ 3]`` (4, 5, 7, 10).  Depth 0: squares
+    ``D_i²``; the saturated ``D·D``; the product ``n·D·D``; the rounded, saturated
+    ``2x``: each multiplier level is registered before the adder or rounder behind
+    it.  Depth 1 registers ``D`` before the squarers; depth 2 also cuts the
+    subtractors from their saturation and the adder tree from its rounding; depth 3
+    cuts the roundings of ``D·D`` and ``2x`` from their clamps and splits ``n·D·D`` (13×22,
+    wider than one MULT18X18D) into two registered partial products and their sum.  ``n``
+    waits (automatically) to meet ``D·D``.
 
     Ports: ``i.payload`` = ``r``, ``l`` (3 × ``config.vec``), ``n`` (``config.n``);
     ``o.payload`` = ``x2`` (``config.x2``).
     """
 
     config_class = DifferenceConfig
-    latency = 4
+
+    @cached_property
+    def latency(self):
+        depth = self.config.pipeline
+        return 4 + (depth >= 1) + 2 * (depth >= 2) + 3 * (depth >= 3)
 
     def datapath(self, m, i):
-        cfg = self.config
-        d = (i["r"] - i["l"]).quantize(cfg.d, cfg.rounding, "saturate")
+        cfg, depth = self.config, self.config.pipeline
+        d = cut(m, i["r"] - i["l"], depth >= 2, "dsub").quantize(cfg.d, cfg.rounding, "saturate")
+        d = cut(m, d, depth >= 1, "d")
         squares = stage(m, d * d, "squares")
-        dd = stage(m, squares.sum().quantize(cfg.dd, cfg.rounding, "saturate"), "dd")
-        p = stage(m, delay(m, i["n"], 2, "n") * dd, "p")
-        return {"x2": stage(m, p.quantize(cfg.x2, cfg.rounding, "saturate"), "x2")}
+        total = cut(m, squares.sum(), depth >= 2, "total")
+        dd = stage(m, quantize_cut(m, total, cfg.dd, cfg.rounding, "saturate", depth >= 3, "dd_round"),
+                   "dd")
+        p = split_product(m, i["n"], dd, depth >= 3, "p")
+        return {"x2": stage(m, quantize_cut(m, p, cfg.x2, cfg.rounding, "saturate", depth >= 3,
+                                            "x2_round"), "x2")}

@@ -1,8 +1,10 @@
 """Diffuse component: ``max(N·L, 0)``, Lambert's term with the backside test."""
 
+from functools import cached_property
+
 from ..config import DiffuseConfig
 from .block import PipelinedBlock
-from .fixed import FixedValue, stage
+from .fixed import FixedValue, cut, quantize_cut, stage
 
 __all__ = ["Diffuse"]
 
@@ -14,17 +16,24 @@ class Diffuse(PipelinedBlock):
     the sign of the sum selecting 0.  Bit growth and the formats (our
     reconstruction) are as in :func:`phongfx.golden.diffuse.diffuse`.
 
-    Latency: 2 (products registered, then the clamped, rounded sum).
+    Latency: ``2 + pipeline`` (products registered, then the clamped, rounded sum;
+    depth 1 registers ``N`` and ``L`` first, depth 2 also the sum before its rounding,
+    depth 3 the rounding before its clamp).
 
     Ports: ``i.payload`` = ``n``, ``l`` (3 × ``config.vec``);
     ``o.payload`` = ``diff`` (``config.out``).
     """
 
     config_class = DiffuseConfig
-    latency = 2
+
+    @cached_property
+    def latency(self):
+        return 2 + self.config.pipeline
 
     def datapath(self, m, i):
-        cfg = self.config
-        dot = stage(m, i["n"] * i["l"], "nl").sum()
+        cfg, depth = self.config, self.config.pipeline
+        n, l = cut(m, i["n"], depth >= 1, "n_in"), cut(m, i["l"], depth >= 1, "l_in")
+        dot = cut(m, stage(m, n * l, "nl").sum(), depth >= 2, "dot")
         lit = dot.where(dot >= 0, FixedValue.const(0, dot.fmt))
-        return {"diff": stage(m, lit.quantize(cfg.out, cfg.rounding, "saturate"), "diff")}
+        return {"diff": stage(m, quantize_cut(m, lit, cfg.out, cfg.rounding, "saturate", depth >= 3,
+                                              "diff_round"), "diff")}

@@ -44,6 +44,7 @@ class Euler(PipelinedBlock):
     """
 
     config_class = EulerConfig
+    cycle_tags = False  # hand-aligned registers, no pipeline depth
 
     @property
     def latency(self):

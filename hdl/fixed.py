@@ -7,13 +7,28 @@ same :class:`Format` methods, and :meth:`FixedValue.quantize` implements the sam
 rounding and overflow names bit for bit.  :func:`stage` and :func:`delay` add
 pipeline registers, so a component reads like its golden function with the
 register boundaries marked.
+
+Pipelining by cycle tags: a :class:`FixedValue` may carry the ``cycle`` at which it
+is valid (clocks after the block's input, 0 for an input port) and the module its
+registers go in; an untagged one (``cycle=None``: constants, and every value of a
+block that does not use tags) is taken as valid at any cycle.  :func:`stage` adds
+one; an operator whose operands sit at different cycles first delays the earlier
+one to the later (:meth:`FixedValue.at`; registers are shared between uses of the
+same value).  So a block only marks where its registers go (:func:`cut` for the
+optional ones of a pipeline depth, :func:`quantize_cut` and :func:`split_product`
+for the deepest cuts) and every parallel path is padded to match by construction;
+:class:`~phongfx.hdl.block.PipelinedBlock` records the cycle each output leaves at,
+for tests to hold against the block's ``latency`` formula.  Comparisons give plain
+1-bit values (no tag): a flag that must wait alongside the data is made with
+:meth:`FixedValue.flag`.
 """
 
 from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
 from ..format import Format, check_overflow, check_rounding
 
-__all__ = ["FixedValue", "FixedVector", "quantize", "stage", "delay"]
+__all__ = ["FixedValue", "FixedVector", "quantize", "stage", "delay", "cut", "align", "quantize_cut",
+           "split_product", "DSP_BITS"]
 
 
 def _fit(value, fmt):
@@ -34,11 +49,13 @@ def _fit(value, fmt):
     return value.as_signed() if fmt.signed else value.as_unsigned()
 
 
-def quantize(value, frm, to, rounding, overflow):
+def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
     """Narrow ``value`` (raw codes of ``frm``) to ``to``; twin of ``golden.fixed.quantize_raw``.
 
     ``overflow="error"`` declares that overflow cannot happen: the golden model
     checks it and raises; the hardware keeps the low bits, as ``wrap`` does.
+    ``parallel_clamp`` compares with both limits side by side rather than the upper
+    one behind the lower one's multiplexer: the same codes, one comparator deep.
     """
     frm, to = Format.parse(frm), Format.parse(to)
     check_rounding(rounding)
@@ -65,21 +82,52 @@ def quantize(value, frm, to, rounding, overflow):
         shape = value.shape()
         lowest = -(1 << (shape.width - 1)) if shape.signed else 0
         highest = (1 << (shape.width - 1 if shape.signed else shape.width)) - 1
-        if lowest < to.min_raw:
-            value = Mux(value < to.min_raw, to.min_raw, value)
-        if highest > to.max_raw:
-            value = Mux(value > to.max_raw, to.max_raw, value)
+        low = value < to.min_raw if lowest < to.min_raw else None
+        high = value > to.max_raw if highest > to.max_raw else None
+        if parallel_clamp and low is not None and high is not None:
+            value = Mux(low, to.min_raw, Mux(high, to.max_raw, value))
+        else:
+            if low is not None:
+                value = Mux(low, to.min_raw, value)
+            if high is not None:
+                # compared behind the first multiplexer (the depth-0..2 designs keep this form)
+                value = Mux(value > to.max_raw, to.max_raw, value)
     return _fit(value, to)
 
 
 class FixedValue:
-    """An Amaranth value holding raw codes of ``fmt``."""
+    """An Amaranth value holding raw codes of ``fmt``, valid at clock ``cycle`` (None: any).
 
-    def __init__(self, value, fmt):
+    ``module`` is where delay registers for this value go (set by :func:`stage`;
+    any value at a cycle above 0 has one); ``name`` names those registers.
+    """
+
+    def __init__(self, value, fmt, cycle=None, module=None, name=None):
         self.fmt = Format.parse(fmt)
         if isinstance(value, int):
             value = Const(value, self.fmt.shape())
         self.value = Value.cast(value)
+        self.cycle = cycle
+        self.module = module
+        self.name = name
+        self._delayed = [self]  # self delayed by 0, 1, 2 ... cycles, built on demand
+
+    def at(self, cycle):
+        """This value delayed to ``cycle`` (earlier than its own is an error; untagged: itself)."""
+        if self.cycle is None or cycle is None:
+            return self
+        if cycle < self.cycle:
+            raise ValueError(f"{self.name or 'value'} is valid at cycle {self.cycle}, "
+                             f"it cannot be used at {cycle}")
+        while len(self._delayed) <= cycle - self.cycle:
+            last = self._delayed[-1]
+            index = len(self._delayed)
+            self._delayed.append(stage(self.module, last, f"{self.name or 'delay'}_d{index}"))
+        return self._delayed[cycle - self.cycle]
+
+    def flag(self, condition, name=None):
+        """A 1-bit :class:`FixedValue` (format ``1.0``) ``condition`` at this value's cycle."""
+        return FixedValue(condition, "1.0", self.cycle, self.module, name)
 
     @classmethod
     def const(cls, value, fmt):
@@ -90,22 +138,26 @@ class FixedValue:
     def _align(self, fmt):
         return self.value << (fmt.frac_bits - self.fmt.frac_bits)
 
-    def _result(self, expr, fmt):
+    def _result(self, expr, fmt, *others):
         # cast to exactly the format's width (Format's result holds every exact value)
-        return FixedValue(_fit(expr, fmt), fmt)
+        module = next((v.module for v in (self, *others) if v.module is not None), None)
+        return FixedValue(_fit(expr, fmt), fmt, _latest(self, *others), module)
 
     def __add__(self, other):
-        fmt = self.fmt.add(other.fmt)
-        return self._result(self._align(fmt) + other._align(fmt), fmt)
+        a, b = align(self, other)
+        fmt = a.fmt.add(b.fmt)
+        return a._result(a._align(fmt) + b._align(fmt), fmt, b)
 
     def __sub__(self, other):
-        fmt = self.fmt.sub(other.fmt)
-        return self._result(self._align(fmt) - other._align(fmt), fmt)
+        a, b = align(self, other)
+        fmt = a.fmt.sub(b.fmt)
+        return a._result(a._align(fmt) - b._align(fmt), fmt, b)
 
     def __mul__(self, other):
         if isinstance(other, FixedVector):
             return other * self
-        return self._result(self.value * other.value, self.fmt.mul(other.fmt))
+        a, b = align(self, other)
+        return a._result(a.value * b.value, a.fmt.mul(b.fmt), b)
 
     def __neg__(self):
         fmt = self.fmt.neg()
@@ -124,6 +176,7 @@ class FixedValue:
     def _compare_values(self, other):
         # same rule as the golden model: a number compares by its exact raw code
         if isinstance(other, FixedValue):
+            self, other = align(self, other)
             f = max(self.fmt.frac_bits, other.fmt.frac_bits)
             return (self.value << (f - self.fmt.frac_bits),
                     other.value << (f - other.fmt.frac_bits))
@@ -137,15 +190,24 @@ class FixedValue:
         a, b = self._compare_values(other)
         return a < b
 
-    def quantize(self, to, rounding, overflow):
+    def quantize(self, to, rounding, overflow, parallel_clamp=False):
         to = Format.parse(to)
-        return FixedValue(quantize(self.value, self.fmt, to, rounding, overflow), to)
+        return FixedValue(quantize(self.value, self.fmt, to, rounding, overflow, parallel_clamp), to,
+                          self.cycle, self.module)
 
     def where(self, condition, other):
-        """``self`` if ``condition`` else ``other`` (formats must match, as in the golden model)."""
+        """``self`` if ``condition`` else ``other`` (formats must match, as in the golden model).
+
+        ``condition`` is a plain 1-bit value of the operands' cycle or a
+        :meth:`flag`, aligned with them like any operand."""
         if other.fmt != self.fmt:
             raise ValueError(f"where: both sides must have the same format, not {self.fmt} and {other.fmt}")
-        return FixedValue(Mux(condition, self.value, other.value), self.fmt)
+        if isinstance(condition, FixedValue):
+            condition, a, b = align(condition, self, other)
+            condition = condition.value
+        else:
+            a, b = align(self, other)
+        return a._result(Mux(condition, a.value, b.value), a.fmt, b)
 
 
 class FixedVector:
@@ -159,9 +221,17 @@ class FixedVector:
         self.fmt = items[0].fmt
 
     @classmethod
-    def from_array(cls, array, fmt):
+    def from_array(cls, array, fmt, cycle=None, module=None, name=None):
         """Wrap the three elements of an ``ArrayLayout`` view (or any indexable of 3)."""
-        return cls(FixedValue(array[i], fmt) for i in range(3))
+        return cls(FixedValue(array[i], fmt, cycle, module, f"{name}_{axis}" if name else None)
+                   for i, axis in zip(range(3), "xyz"))
+
+    @property
+    def cycle(self):
+        return _latest(*self.items)
+
+    def at(self, cycle):
+        return FixedVector(item.at(cycle) for item in self.items)
 
     def __getitem__(self, index):
         return self.items[index]
@@ -188,14 +258,15 @@ class FixedVector:
     def sum(self):
         """Exact sum of the three elements (adder tree), format as in ``Fixed.sum``."""
         fmt = self.fmt.add(self.fmt).add(self.fmt)
-        total = self.items[0].value + self.items[1].value + self.items[2].value
-        return self.items[0]._result(total, fmt)
+        items = align(*self.items)
+        total = items[0].value + items[1].value + items[2].value
+        return items[0]._result(total, fmt, *items[1:])
 
     def dot(self, other):
         return (self * other).sum()
 
-    def quantize(self, to, rounding, overflow):
-        return FixedVector(a.quantize(to, rounding, overflow) for a in self)
+    def quantize(self, to, rounding, overflow, parallel_clamp=False):
+        return FixedVector(a.quantize(to, rounding, overflow, parallel_clamp) for a in self)
 
     def values(self):
         return [a.value for a in self]
@@ -207,7 +278,8 @@ def stage(m, x, name=None):
         return FixedVector(stage(m, a, f"{name}_{axis}" if name else None)
                            for a, axis in zip(x, "xyz"))
     if isinstance(x, FixedValue):
-        return FixedValue(stage(m, x.value, name), x.fmt)
+        cycle = None if x.cycle is None else x.cycle + 1
+        return FixedValue(stage(m, x.value, name), x.fmt, cycle, m, name)
     x = Value.cast(x)
     reg = Signal(x.shape(), name=name)
     m.d.sync += reg.eq(x)
@@ -219,3 +291,61 @@ def delay(m, x, cycles, name=None):
     for index in range(cycles):
         x = stage(m, x, f"{name}_d{index + 1}" if name else None)
     return x
+
+
+def cut(m, x, on, name=None):
+    """:func:`stage` ``x`` if ``on`` (a pipeline depth's optional register), else ``x``."""
+    return stage(m, x, name) if on else x
+
+
+def quantize_cut(m, x, to, rounding, overflow, on, name=None):
+    """``x.quantize(to, rounding, overflow)``, with a register between its rounding adder and
+    its clamp (comparators) if ``on``: the same codes, one clock later.
+
+    The rounded value is held exactly in ``to``'s fraction bits and one integer bit more
+    than ``x`` has (rounding up can carry that far), so the clamp behind the register sees
+    what the one-step quantize would have clamped; it compares with both limits in parallel.
+    """
+    if not on:
+        return x.quantize(to, rounding, overflow)
+    to = Format.parse(to)
+    mid = Format(x.fmt.int_bits + 1, to.frac_bits, x.fmt.signed)
+    return stage(m, x.quantize(mid, rounding, "wrap"), name).quantize(to, rounding, overflow, True)
+
+
+#: Unsigned bits of a MULT18X18D operand part (18-bit signed inputs hold 17 unsigned bits).
+DSP_BITS = 17
+
+
+def split_product(m, a, b, on, name="product"):
+    """``a * b`` registered; if ``on``, in two clocks: the products of ``a`` with the low
+    :data:`DSP_BITS` bits of the wider operand and with the rest, each registered, then
+    their sum.  Yosys splits a multiplier wider than a MULT18X18D the same way, but
+    with the adder right behind the DSPs, in the same stage.  Same codes either way.
+    """
+    if not on:
+        return stage(m, a * b, name)
+    a, b = align(a, b)
+    if a.fmt.width > b.fmt.width:
+        a, b = b, a
+    fmt = a.fmt.mul(b.fmt)
+    if b.fmt.width <= DSP_BITS + 1:  # one DSP: a second register keeps the latency
+        return stage(m, stage(m, a * b, name), f"{name}_sum")
+    low = stage(m, a.value * b.value[:DSP_BITS], f"{name}_lo")
+    high = b.value[DSP_BITS:]
+    high = stage(m, a.value * (high.as_signed() if b.fmt.signed else high), f"{name}_hi")
+    cycle = None if a.cycle is None else a.cycle + 1
+    total = FixedValue(_fit((high << DSP_BITS) + low, fmt), fmt, cycle, m)
+    return stage(m, total, f"{name}_sum")
+
+
+def align(*values):
+    """``values`` (:class:`FixedValue` / :class:`FixedVector`) each delayed to the latest one's cycle."""
+    cycle = _latest(*values)
+    return [value.at(cycle) for value in values]
+
+
+def _latest(*values):
+    """The latest cycle tag of ``values``, None if none is tagged."""
+    cycles = [value.cycle for value in values if value.cycle is not None]
+    return max(cycles) if cycles else None

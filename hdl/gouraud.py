@@ -23,6 +23,7 @@ class Gouraud(PipelinedBlock):
     """
 
     config_class = GouraudConfig
+    cycle_tags = False  # hand-aligned registers, no pipeline depth
 
     @property
     def latency(self):

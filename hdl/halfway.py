@@ -1,8 +1,10 @@
 """Halfway-vector difference component, Lyon (1993) Figure 5 and Figure 9 rows 7–10."""
 
+from functools import cached_property
+
 from ..config import HalfwayConfig
 from .block import PipelinedBlock
-from .fixed import delay, stage
+from .fixed import cut, delay, quantize_cut, stage
 from .normalize import Normalize
 
 __all__ = ["Halfway"]
@@ -19,11 +21,15 @@ class Halfway(PipelinedBlock):
     doubling of d1/d2 with ``h = "sum"`` is a shift.  Formats, bit growth and error
     bounds are as in :func:`phongfx.golden.halfway.halfway`.
 
-    Latency: ``front + 4`` for d1, d2, d3, g2proj (products; the rounded dot; products
-    ``dot × N_i``; the rounded ``p``) and ``front + 1`` for g2 (the rounded ``q``), where
-    ``front`` is the normalizer's latency (4) for g2proj and g2 and 0 otherwise: 4, 4,
-    4, 8, 5 at the defaults.  ``N`` and ``q`` are delayed to meet ``p``; ``valid`` follows
-    the normalizer's own.
+    Latency: ``front + 4 + [pipeline ≥ 1] + [pipeline ≥ 2] + 2·[pipeline ≥ 3]`` for d1,
+    d2, d3, g2proj (products; the rounded dot; products ``dot × N_i``; the rounded ``p``)
+    and ``front + 1 + [pipeline ≥ 3]`` for g2 (the rounded ``q``).  ``front`` is
+    ``2·[pipeline ≥ 2] + [pipeline ≥ 3]`` (the sum ``V + L``, its rounding and its
+    clamp, cut apart) plus the normalizer's latency for g2proj and g2, and 0 for d1 and
+    d2 (they project ``V`` or ``L``, not ``H``): 4, 4, 4, 8, 5 at the defaults.  Depth 1
+    registers the first multipliers' inputs; depth 2 also cuts the dot's adder tree
+    from its rounding; depth 3 each rounding from its clamp.  ``N`` and ``q`` wait
+    (automatically) to meet ``p``; ``valid`` follows the normalizer's own.
 
     Ports: ``i.payload`` = ``n``, ``l``, ``v`` (3 × ``config.vec``);
     ``o.payload`` = ``p``, ``q`` (3 × ``config.out``).
@@ -40,36 +46,47 @@ class Halfway(PipelinedBlock):
 
     @property
     def _front(self):
-        return self._normalize.latency if self._normalize is not None else 0
+        if self.config.variant in ("d1", "d2"):
+            return 0
+        front = 2 * (self.config.pipeline >= 2) + (self.config.pipeline >= 3)
+        return front + (self._normalize.latency if self._normalize is not None else 0)
 
-    @property
+    @cached_property
     def latency(self):
-        return self._front + (1 if self.config.variant == "g2" else 4)
+        depth = self.config.pipeline
+        if self.config.variant == "g2":
+            return self._front + 1 + (depth >= 3)
+        return self._front + 4 + (depth >= 1) + (depth >= 2) + 2 * (depth >= 3)
 
     def datapath(self, m, i):
-        cfg = self.config
+        cfg, depth = self.config, self.config.pipeline
         n, l, v = i["n"], i["l"], i["v"]
-        h = v + l
+        h = cut(m, v + l, depth >= 2, "hsum")
         if cfg.h == "mean":
             h = h.shift(-1)
-        h = h.quantize(cfg.hvec, cfg.rounding, "saturate")
-        valid = self.i.valid
+        h = quantize_cut(m, h, cfg.hvec, cfg.rounding, "saturate", depth >= 3, "h_round")
+        h = cut(m, h, depth >= 2, "h")
+        valid = delay(m, self.i.valid, h.cycle, "valid_h")
         if self._normalize is not None:
             m.submodules.normalize = self._normalize
-            self._normalize.feed(m, self.i.valid, {"n": h})
+            self._normalize.feed(m, valid, {"n": h})
             # the normalizer's valid pipeline serves this block too: no second one
             h, valid = self._normalize.results()["n"], self._normalize.o.valid
-            n = delay(m, n, self._front, "n_front")
         # rounded before waiting for p: its registers hold out's bits, not hvec's
-        q = h.quantize(cfg.out, cfg.rounding, "saturate")
+        q = quantize_cut(m, h, cfg.out, cfg.rounding, "saturate", depth >= 3, "q_round")
         if cfg.variant == "g2":
             # N waits in vec and widens to out (exactly) at the port
-            p = delay(m, n, 1, "p").quantize(cfg.out, cfg.rounding, "saturate")
-            return {"p": p, "q": stage(m, q, "q"), "valid": delay(m, valid, 1, "valid")}
-        products = stage(m, {"d1": v, "d2": l}.get(cfg.variant, h) * n, "products")
-        dot = stage(m, products.sum().quantize(cfg.dot, cfg.rounding, "saturate"), "dot")
+            q = stage(m, q, "q")
+            return {"p": n.at(q.cycle).quantize(cfg.out, cfg.rounding, "saturate"), "q": q,
+                    "valid": delay(m, valid, q.cycle - h.cycle, "valid")}
+        x = {"d1": v, "d2": l}.get(cfg.variant, h)
+        n_in = cut(m, n, depth >= 1, "n_in")
+        products = stage(m, cut(m, x, depth >= 1, "x_in") * n_in, "products")
+        total = cut(m, products.sum(), depth >= 2, "total")
+        dot = stage(m, quantize_cut(m, total, cfg.dot, cfg.rounding, "saturate", depth >= 3, "dot_round"),
+                    "dot")
         if cfg.variant in ("d1", "d2") and cfg.h == "sum":
             dot = dot << 1  # the paper's 2V (2L); "mean" halves it away
-        p = stage(m, delay(m, n, 2, "n") * dot, "np")
-        return {"p": stage(m, p.quantize(cfg.out, cfg.rounding, "saturate"), "p"),
-                "q": delay(m, q, 4, "q"), "valid": delay(m, valid, 4, "valid")}
+        p = stage(m, quantize_cut(m, stage(m, n_in * dot, "np"), cfg.out, cfg.rounding, "saturate",
+                                  depth >= 3, "p_round"), "p")
+        return {"p": p, "q": q.at(p.cycle), "valid": delay(m, valid, p.cycle - h.cycle, "valid")}

@@ -1,8 +1,10 @@
 """LIRP component, Lyon (1993) Figure 7a: ``N' = (1-a)·N0 + a·N1``."""
 
+from functools import cached_property
+
 from ..config import LirpConfig
 from .block import PipelinedBlock
-from .fixed import FixedValue, stage
+from .fixed import FixedValue, cut, stage
 
 __all__ = ["Lirp"]
 
@@ -14,18 +16,26 @@ class Lirp(PipelinedBlock):
     form ``N0 + a(N1-N0)`` would save three, but this is the figure's structure.
     Bit growth is as in :func:`phongfx.golden.lirp.lirp`.
 
-    Latency: 2 (products registered, then the rounded sum).
+    Latency: ``2 + min(pipeline, 2)`` (products registered, then the rounded sum; depth
+    1 registers the multiplier inputs ``N0``, ``N1``, ``a``, ``1-a``; depth 2 also the
+    sum before its rounding adder; depth 3 adds nothing: no quantize here clamps).
 
     Ports: ``i.payload`` = ``n0``, ``n1`` (3 × ``config.vec``), ``a`` (``config.a``);
     ``o.payload`` = ``n`` (3 × ``config.out``).
     """
 
     config_class = LirpConfig
-    latency = 2
+
+    @cached_property
+    def latency(self):
+        return 2 + min(self.config.pipeline, 2)
 
     def datapath(self, m, i):
-        cfg = self.config
+        cfg, depth = self.config, self.config.pipeline
         b = (FixedValue.const(1, cfg.a) - i["a"]).quantize(cfg.a, "truncate", "error")
-        p0 = stage(m, i["n0"] * b, "p0")
-        p1 = stage(m, i["n1"] * i["a"], "p1")
-        return {"n": stage(m, (p0 + p1).quantize(cfg.out, cfg.rounding, "error"), "n")}
+        n0, b = cut(m, i["n0"], depth >= 1, "n0_in"), cut(m, b, depth >= 1, "b")
+        n1, a = cut(m, i["n1"], depth >= 1, "n1_in"), cut(m, i["a"], depth >= 1, "a_in")
+        p0 = stage(m, n0 * b, "p0")
+        p1 = stage(m, n1 * a, "p1")
+        total = cut(m, p0 + p1, depth >= 2, "sum")
+        return {"n": stage(m, total.quantize(cfg.out, cfg.rounding, "error"), "n")}

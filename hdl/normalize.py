@@ -1,8 +1,10 @@
 """Approximate normalizer component, Lyon (1993) Figure 7a: ``N = g(N'·N')·N'``."""
 
+from functools import cached_property
+
 from ..config import NormalizeConfig
 from .block import PipelinedBlock
-from .fixed import FixedValue, delay, stage
+from .fixed import FixedValue, cut, quantize_cut, stage
 
 __all__ = ["Normalize"]
 
@@ -15,27 +17,45 @@ class Normalize(PipelinedBlock):
     root, as Lyon's "Approximate Normalization" section promises.  Bit growth and
     the formats (our reconstruction) are as in :func:`phongfx.golden.normalize.normalize`.
 
-    Latency: 4 for either order, so the orders are interchangeable in a pipeline
-    (squares | ``z``, ``y``, ``y²`` | ``g`` | ``g·N'``; order 1 only skips a multiplier).
+    Latency: ``4 + 3·[pipeline ≥ 1] + 4·[pipeline ≥ 2] + 4·[pipeline ≥ 3]`` (4, 7, 11, 15)
+    for either order, so
+    the orders are interchangeable in a pipeline (order 1 only skips a multiplier).
+    Depth 0: squares | ``z``, ``y``, ``y²`` | ``g`` | ``g·N'``.  Depth 1 registers
+    ``N'``, ``y`` (the ``y²`` input), ``y·y`` and ``g·N'`` before their rounding.  Depth
+    2 also cuts after the three-square sum, the rounded ``z``, the rounded ``y²`` and
+    ``y + y²``, so each stage holds one multiplier or one carry chain.  Depth 3 cuts
+    the rounding of ``z``, ``y²``, ``g`` and the output from their clamps.
 
     Ports: ``i.payload`` = ``n`` (3 × ``config.vec``); ``o.payload`` = ``n`` (3 × ``config.out``).
     """
 
     config_class = NormalizeConfig
-    latency = 4
+
+    @cached_property
+    def latency(self):
+        depth = self.config.pipeline
+        return 4 + 3 * (depth >= 1) + 4 * (depth >= 2) + 4 * (depth >= 3)
 
     def datapath(self, m, i):
-        cfg = self.config
-        n = i["n"]
+        cfg, depth = self.config, self.config.pipeline
+        n = cut(m, i["n"], depth >= 1, "n_in")
         squares = stage(m, n * n, "squares")
-        z = squares.sum().quantize(cfg.z, cfg.rounding, "saturate")
-        y = FixedValue.const(1, cfg.z) - z
+        total = cut(m, squares.sum(), depth >= 2, "total")
+        z = cut(m, quantize_cut(m, total, cfg.z, cfg.rounding, "saturate", depth >= 3, "z_round"),
+                depth >= 2, "z")
+        y = cut(m, FixedValue.const(1, cfg.z) - z, depth >= 1, "y")
+        # depth 0 registers y² after its rounding, depth 1 only the product, depth 2 both
+        y2_cycle = y.cycle + (depth >= 1) + (depth != 1) + (depth >= 3)
         if cfg.order == 1:
-            half = stage(m, y, "y")
+            half = y.at(y2_cycle)  # waits as long as y² would: same latency for both orders
         else:
-            y2 = (y * y).quantize(cfg.y2, cfg.rounding, cfg.y2_overflow)
-            half = stage(m, y, "y") + stage(m, y2, "y2")
-        g = stage(m, (FixedValue.const(1, cfg.g) + half.shift(-1))
-                  .quantize(cfg.g, cfg.rounding, "saturate"), "g")
-        n = delay(m, n, 3, "n")
-        return {"n": stage(m, (n * g).quantize(cfg.out, cfg.rounding, "saturate"), "out")}
+            yy = cut(m, y * y, depth >= 1, "yy")
+            y2 = quantize_cut(m, yy, cfg.y2, cfg.rounding, cfg.y2_overflow, depth >= 3, "y2_round")
+            y2 = cut(m, y2, depth != 1, "y2")
+            half = y + y2
+        half = cut(m, half, depth >= 2, "half")
+        g = stage(m, quantize_cut(m, FixedValue.const(1, cfg.g) + half.shift(-1), cfg.g,
+                                  cfg.rounding, "saturate", depth >= 3, "g_round"), "g")
+        product = cut(m, n * g, depth >= 1, "ng")
+        return {"n": stage(m, quantize_cut(m, product, cfg.out, cfg.rounding, "saturate",
+                                           depth >= 3, "out_round"), "out")}

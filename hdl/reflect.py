@@ -1,8 +1,10 @@
 """Reflect component, Lyon (1993) Figure 7b: ``R = 2(N·V)N - V``."""
 
+from functools import cached_property
+
 from ..config import ReflectConfig
 from .block import PipelinedBlock
-from .fixed import delay, stage
+from .fixed import cut, quantize_cut, stage
 
 __all__ = ["Reflect"]
 
@@ -15,20 +17,31 @@ class Reflect(PipelinedBlock):
     growth and the formats (our reconstruction) are as in
     :func:`phongfx.golden.reflect.reflect`.
 
-    Latency: 4 (products ``N_i·V_i``; the rounded ``N·V``; products ``2(N·V)·N_i``;
-    the rounded ``R``).  ``N`` waits 2 cycles and ``V`` 3 to meet the second level.
+    Latency: ``4 + [pipeline ≥ 1] + 2·[pipeline ≥ 2] + 2·[pipeline ≥ 3]`` (4, 5, 7, 9).  Depth 0: products
+    ``N_i·V_i``; the rounded ``N·V``; products ``2(N·V)·N_i``; the rounded ``R``.
+    Depth 1 registers ``N`` and ``V`` first (the rounded ``N·V`` is already a
+    register); depth 2 also cuts the adder tree from its rounding and ``2(N·V)N - V``
+    from its; depth 3 cuts both roundings from their clamps.  ``N`` and ``V`` wait (automatically) to meet the second level.
 
     Ports: ``i.payload`` = ``n``, ``v`` (3 × ``config.vec``);
     ``o.payload`` = ``r`` (3 × ``config.out``).
     """
 
     config_class = ReflectConfig
-    latency = 4
+
+    @cached_property
+    def latency(self):
+        depth = self.config.pipeline
+        return 4 + (depth >= 1) + 2 * (depth >= 2) + 2 * (depth >= 3)
 
     def datapath(self, m, i):
-        cfg = self.config
-        nv = stage(m, i["n"] * i["v"], "nv")
-        dot = stage(m, nv.sum().quantize(cfg.dot, cfg.rounding, "saturate"), "dot")
-        p = stage(m, delay(m, i["n"], 2, "n") * (dot << 1), "p")
-        r = (p - delay(m, i["v"], 3, "v")).quantize(cfg.out, cfg.rounding, "saturate")
+        cfg, depth = self.config, self.config.pipeline
+        n, v = cut(m, i["n"], depth >= 1, "n_in"), cut(m, i["v"], depth >= 1, "v_in")
+        nv = stage(m, n * v, "nv")
+        total = cut(m, nv.sum(), depth >= 2, "total")
+        dot = stage(m, quantize_cut(m, total, cfg.dot, cfg.rounding, "saturate", depth >= 3, "dot_round"),
+                    "dot")
+        p = stage(m, n * (dot << 1), "p")
+        r = quantize_cut(m, cut(m, p - v, depth >= 2, "diff"), cfg.out, cfg.rounding, "saturate",
+                         depth >= 3, "r_round")
         return {"r": stage(m, r, "r")}

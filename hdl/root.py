@@ -1,11 +1,13 @@
 """Root-shininess specular unit component, Lyon (1993) Figure 8."""
 
+from functools import cached_property
+
 from amaranth.hdl import Cat
 
 from ..config import RootConfig
 from ..format import Format
 from .block import PipelinedBlock
-from .fixed import FixedValue, FixedVector, delay, stage
+from .fixed import FixedValue, FixedVector, cut, delay, stage
 from .shape import Shape
 
 __all__ = ["Root"]
@@ -21,10 +23,16 @@ class Root(PipelinedBlock):
     a :class:`~phongfx.hdl.shape.Shape` submodule built from :attr:`RootConfig.shape`.
     Formats, rounding and the error bound are as in :func:`phongfx.golden.root.root`.
 
-    Latency: ``3 + (1 + k)``: the products ``m|D_i|``; the squares and the comparator
-    flag; their sum ``2x``; then the shape's ``1 + k``.  Each multiplier level is
-    registered before the adder behind it, as in Figure 7c.  The flag is delayed
-    alongside the sum and the shape, and its multiplexer follows the shape's.
+    Latency: ``3 + [pipeline ≥ 1] + 2·[pipeline ≥ 2] + shape``, ``shape`` being the
+    Shape latency at the same depth (``1 + k`` at depth 0).  Depth 0: the products
+    ``m|D_i|``; the squares and the comparator flag; their sum ``2x``; then the shape.
+    Each multiplier level is registered before the adder behind it, as in Figure 7c.
+    Depth 1 registers ``|D_i|`` and ``m`` before the multipliers (the squarers' inputs
+    are bits of the registered products already); depth 2 also cuts the subtractors
+    from their saturation and that from the rectifiers; depth 3 adds nothing here (the
+    saturations follow a subtractor or negator already cut off, with nothing to round).
+    The flag waits (automatically) alongside the sum and the shape, and its multiplexer
+    follows the shape's.
 
     Ports: ``i.payload`` = ``r``, ``l`` (3 × ``config.vec``), ``m`` (``config.m``);
     ``o.payload`` = ``spec`` (``config.t``).
@@ -37,22 +45,24 @@ class Root(PipelinedBlock):
         self._shape = Shape(config.shape)
         self._shape._MustUse__silence = True  # owned by this block: only an unused Root should warn
 
-    @property
+    @cached_property
     def latency(self):
-        return 3 + self._shape.latency
+        depth = self.config.pipeline
+        return 3 + (depth >= 1) + 2 * (depth >= 2) + self._shape.latency
 
     def datapath(self, m, i):
-        cfg = self.config
+        cfg, depth = self.config, self.config.pipeline
         m.submodules.shape = self._shape
-        d = (i["r"] - i["l"]).quantize(cfg.d, cfg.rounding, "saturate")
-        md = stage(m, FixedVector(_rectify(di, cfg.rounding) for di in d) * i["m"], "md")
+        d = cut(m, i["r"] - i["l"], depth >= 2, "dsub").quantize(cfg.d, cfg.rounding, "saturate")
+        d = cut(m, d, depth >= 2, "d")
+        magnitude = cut(m, FixedVector(_rectify(di, cfg.rounding) for di in d), depth >= 1, "abs")
+        md = stage(m, magnitude * cut(m, i["m"], depth >= 1, "m_in"), "md")
         u = md.shift(-cfg.shift)
-        big = stage(m, Cat(*(ui >= 1 for ui in u)).any(), "big")
+        big = md[0].flag(Cat(*(ui >= 1 for ui in u)).any(), "big")
         frac = u.quantize(cfg.frac, "truncate", "wrap")
         squares = stage(m, frac * frac, "squares")
         x2 = stage(m, squares.sum(), "sum").shift(2 * cfg.shift)
-        self._shape.feed(m, delay(m, self.i.valid, 3, "valid"), {"x2": x2})
-        big = delay(m, big, 1 + self._shape.latency, "big")
+        self._shape.feed(m, delay(m, self.i.valid, x2.cycle, "valid"), {"x2": x2})
         return {"spec": FixedValue.const(0, cfg.t).where(big, self._shape.results()["spec"]),
                 "valid": self._shape.o.valid}
 

@@ -28,6 +28,7 @@ class Schlick(PipelinedBlock):
     """
 
     config_class = SchlickConfig
+    cycle_tags = False  # hand-aligned registers, no pipeline depth
 
     @property
     def latency(self):

@@ -1,9 +1,11 @@
 """Shape function component, Lyon (1993) Figure 7d: ``f_k(x) = (1 - x/2^k)^(2^k)``."""
 
+from functools import cached_property
+
 from ..config import ShapeConfig
 from ..format import Format
 from .block import PipelinedBlock
-from .fixed import FixedValue, delay, stage
+from .fixed import FixedValue, cut, stage
 
 __all__ = ["Shape"]
 
@@ -15,26 +17,28 @@ class Shape(PipelinedBlock):
     shifted bits.  ``k`` squaring multipliers (16×16 for ``t`` = ``1.15``) follow.
     Formats, rounding and the error bound are as in :func:`phongfx.golden.shape.shape`.
 
-    Latency: ``1 + k`` (``1 - u`` and ``ge1``; then each squarer's rounded output).
-    ``ge1`` is delayed alongside the squarers; the multiplexer after the last
-    register selects 0 or ``t``.
+    Latency: ``1 + k·(1 + [pipeline ≥ 1])``: ``1 - u``; then each squarer's rounded
+    output, with depth ≥ 1 registering each product before its rounding adder (depth 2
+    and 3 add nothing: every stage already holds one multiplier or one carry chain).
+    ``ge1`` waits (automatically) alongside the squarers; the multiplexer after the
+    last register selects 0 or ``t``.
 
     Ports: ``i.payload`` = ``x2`` (``config.x2``); ``o.payload`` = ``spec`` (``config.t``).
     """
 
     config_class = ShapeConfig
 
-    @property
+    @cached_property
     def latency(self):
-        return 1 + self.config.k
+        return 1 + self.config.k * (1 + (self.config.pipeline >= 1))
 
     def datapath(self, m, i):
         cfg = self.config
         v = i["x2"] >> (cfg.k + 1)
-        ge1 = stage(m, v >= 1, "ge1")
+        ge1 = v.flag(v >= 1, "ge1")
         u = v.quantize(Format(0, v.fmt.frac_bits), "truncate", "wrap")
         t = stage(m, (FixedValue.const(1, "1.0") - u).quantize(cfg.t, cfg.rounding, "error"), "t0")
         for index in range(cfg.k):
-            t = stage(m, (t * t).quantize(cfg.t, cfg.rounding, "error"), f"t{index + 1}")
-        ge1 = delay(m, ge1, cfg.k, "ge1")
+            square = cut(m, t * t, cfg.pipeline >= 1, f"tt{index + 1}")
+            t = stage(m, square.quantize(cfg.t, cfg.rounding, "error"), f"t{index + 1}")
         return {"spec": FixedValue.const(0, cfg.t).where(ge1, t)}

@@ -31,6 +31,7 @@ class Spherical(PipelinedBlock):
     """
 
     config_class = SphericalConfig
+    cycle_tags = False  # hand-aligned registers, no pipeline depth
 
     @property
     def latency(self):

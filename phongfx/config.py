@@ -20,6 +20,7 @@ __all__ = [
     "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
     "EulerConfig", "GouraudConfig", "ConventionalConfig",
     "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
+    "MAX_PIPELINE",
 ]
 
 
@@ -51,6 +52,9 @@ def _fraction_fmt(name, value):
     return fmt
 
 
+MAX_PIPELINE = 3
+
+
 def _int(name, value, lo, hi):
     if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
         raise ValueError(f"{name} must be an integer in {lo}..{hi}, not {value!r}")
@@ -62,7 +66,13 @@ class BlockConfig:
     """Base of block configurations: validation hook and port declarations.
 
     Leaf blocks carry a ``rounding`` field: the rounding of every quantize in the
-    block that drops fraction bits.
+    block that drops fraction bits.  The blocks of Lyon's datapaths also carry
+    ``pipeline`` (``0..MAX_PIPELINE``, default 0): the depth of pipelining (GitHub
+    issue 5, §1).  0 is the original design; 1 registers every multiplier's inputs
+    and outputs; 2 also cuts the carry chains, so that no stage holds more than one
+    multiplier or one long carry chain; 3 also puts a register between each
+    saturating quantize's rounding adder and its clamp.  Only the latency changes with it (each
+    component's docstring gives the formula); the function does not.
     """
 
     def __post_init__(self):
@@ -100,8 +110,10 @@ class LirpConfig(BlockConfig):
     a: str = "1.10"
     out: str = "S1.10"
     rounding: str = "round_half_up"
+    pipeline: int = 0
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         _fmt("vec", self.vec, signed=True)
         _fmt("a", self.a, signed=False, holds_one=True)
         _fmt("out", self.out, signed=True)
@@ -126,8 +138,10 @@ class NormalizeConfig(BlockConfig):
     g: str = "1.12"
     out: str = "S1.10"
     rounding: str = "round_half_up"
+    pipeline: int = 0
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         _fmt("vec", self.vec, signed=True)
         _int("order", self.order, 1, 2)
         _fmt("z", self.z, signed=False, holds_one=True)
@@ -162,8 +176,10 @@ class ReflectConfig(BlockConfig):
     dot: str = "S1.12"
     out: str = "S1.10"
     rounding: str = "round_half_up"
+    pipeline: int = 0
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         _fmt("vec", self.vec, signed=True)
         _fmt("dot", self.dot, signed=True, holds_one=True)
         _fmt("out", self.out, signed=True)
@@ -188,8 +204,10 @@ class DifferenceConfig(BlockConfig):
     n_max: int = 8000
     x2: str = "13.12"
     rounding: str = "round_half_up"
+    pipeline: int = 0
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         _fmt("vec", self.vec, signed=True)
         _fmt("d", self.d, signed=True)
         _fmt("dd", self.dd, signed=False)
@@ -213,8 +231,10 @@ class ShapeConfig(BlockConfig):
     k: int = 2
     t: str = "1.15"
     rounding: str = "round_half_up"
+    pipeline: int = 0
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         x2 = _fmt("x2", self.x2, signed=False)
         _int("k", self.k, 0, 4)
         if x2.int_bits < self.k + 2:
@@ -238,8 +258,10 @@ class DiffuseConfig(BlockConfig):
     vec: str = "S1.10"
     out: str = "1.10"
     rounding: str = "round_half_up"
+    pipeline: int = 0
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         _fmt("vec", self.vec, signed=True)
         _fmt("out", self.out, signed=False, holds_one=True)
 
@@ -270,8 +292,10 @@ class RootConfig(BlockConfig):
     k: int = 1
     t: str = "1.15"
     rounding: str = "round_half_up"
+    pipeline: int = 0
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         _fmt("vec", self.vec, signed=True)
         _fmt("d", self.d, signed=True)
         _int("m_max", self.m_max, 1, _integer_fmt("m", self.m).max_raw)
@@ -298,7 +322,8 @@ class RootConfig(BlockConfig):
         frac = self.fmt("frac")
         square = frac.mul(frac)
         x2 = square.add(square).add(square).shift(2 * self.shift)
-        return ShapeConfig(x2=str(x2), k=self.k, t=self.t, rounding=self.rounding)
+        return ShapeConfig(x2=str(x2), k=self.k, t=self.t, rounding=self.rounding,
+                           pipeline=self.pipeline)
 
     @property
     def inputs(self):
@@ -330,6 +355,7 @@ class HalfwayConfig(BlockConfig):
     ``V + L`` (``S2.10``) and ``(V + L)/2`` (``S1.11``) exactly, so ``h`` changes without
     touching a format; ``dot`` has two integer bits for ``H·N = 2`` (``"sum"``, ``V = L = N``)
     and two guard bits; ``out`` holds ``|D|`` up to 2; ``normalize.vec`` must be ``hvec``.
+    ``pipeline`` raises ``normalize.pipeline`` to at least its own depth.
     """
 
     vec: str = "S1.10"
@@ -340,8 +366,14 @@ class HalfwayConfig(BlockConfig):
     out: str = "S2.10"
     normalize: NormalizeConfig = NormalizeConfig(vec="S2.11", out="S2.11")
     rounding: str = "round_half_up"
+    pipeline: int = 0
+
+    def __post_init__(self):
+        _inherit_pipeline(self, ("normalize",))
+        super().__post_init__()
 
     def validate(self):
+        _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         if self.variant not in HALFWAY_VARIANTS:
             raise ValueError(f"variant must be one of {', '.join(HALFWAY_VARIANTS)}, not {self.variant!r}")
         if self.h not in ("sum", "mean"):
@@ -617,6 +649,16 @@ class ConventionalConfig(BlockConfig):
         return {"diffuse": (self.fmt("out"), 1), "specular": (self.fmt("out"), 1)}
 
 
+def _inherit_pipeline(config, names):
+    """Raise the ``pipeline`` of the sub-configs ``names`` of ``config`` to at least its own
+    (validated first; a sub-config of the wrong type is left for ``validate`` to name)."""
+    depth = _int("pipeline", config.pipeline, 0, MAX_PIPELINE)
+    for name in names:
+        sub = getattr(config, name)
+        if isinstance(sub, BlockConfig) and getattr(sub, "pipeline", depth) < depth:
+            object.__setattr__(config, name, replace(sub, pipeline=depth))
+
+
 SPECULAR_UNITS = ("fig7", "fig8", "halfway")
 
 
@@ -637,6 +679,9 @@ class DatapathConfig(BlockConfig):
     otherwise they are constant inputs and no LIRP or normalizer is built for them.
     Blocks that depend on L are repeated per light.  All direction vectors after the
     normalizers share the format ``normalize.out``; connected formats must agree.
+
+    ``pipeline`` raises the pipeline depth of every block config to at least its value
+    (``fig7_config(pipeline=2)``, ``--set pipeline=2``); a block's own field may go deeper.
     """
 
     specular: str = "fig7"
@@ -652,6 +697,12 @@ class DatapathConfig(BlockConfig):
     local_lights: bool = False
     local_viewer: bool = False
     direction_normalize: NormalizeConfig = NormalizeConfig()
+    pipeline: int = 0
+
+    def __post_init__(self):
+        _inherit_pipeline(self, ("lirp", "normalize", "reflect", "difference", "shape", "root",
+                                 "halfway", "diffuse", "direction_normalize"))
+        super().__post_init__()
 
     def validate(self):
         for name, cls in (("lirp", LirpConfig), ("normalize", NormalizeConfig),

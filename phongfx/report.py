@@ -258,9 +258,6 @@ def _baseline(records, error_key, dsp_weight):
     return lines + [""]
 
 
-_TABLE_MODULES = {"lyon": "phongfx.lyon_tables", "szirmay": "phongfx.szirmay_tables",
-                  "schlick": "phongfx.schlick_table", "hast": "phongfx.hast_tables",
-                  "cost": "phongfx.cost_table"}
 #: Smaller runs of the slow tables for ``quick=True``.
 _QUICK = {"hast": {"frames": 4}, "cost": {"blocks": ("difference", "shape", "root")}}
 
@@ -272,11 +269,9 @@ def _demote(text):
 
 
 def _table_section(name, out_dir, quick):
-    from importlib import import_module
+    from .tables import table_module
 
-    if name not in _TABLE_MODULES:
-        raise ValueError(f"table must be one of {', '.join(_TABLE_MODULES)}, not {name!r}")
-    module = import_module(_TABLE_MODULES[name])
+    module = table_module(name)
     where = os.path.join(out_dir, name)
     os.makedirs(where, exist_ok=True)
     result = module.run_table(name, out_dir=where, **(_QUICK.get(name, {}) if quick else {}))
@@ -317,7 +312,7 @@ def _sweep_section(records, points, sweep_dir, out_dir, error_keys, dsp_weight):
 
 
 def build_report(out_dir="build/report", sweep_dir="build/sweep",
-                 tables=("lyon", "szirmay", "hast", "schlick", "cost"), quick=False,
+                 tables=("lyon", "szirmay", "hast", "schlick", "cost", "pipeline"), quick=False,
                  error_keys=("torus.phong.max", "torus.self.max"), dsp_weight=DSP_LUT_WEIGHT):
     """Write ``out_dir/index.md``: the papers' tables measured, then the sweep's Pareto plots,
     cheapest invisible-error datapaths and the conventional baseline.

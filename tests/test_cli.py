@@ -35,7 +35,7 @@ def test_vcd_is_written(tmp_path):
 
 @pytest.mark.parametrize("argv, message", [
     (["sim", "shape", "--set", "k=9"], r"phongfx: error: k must be an integer in 0\.\.4, not 9\n"),
-    (["sim", "shape", "--set", "q=1"], r"phongfx: error: --set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding\n"),
+    (["sim", "shape", "--set", "q=1"], r"phongfx: error: --set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding, pipeline\n"),
     (["sim", "shape", "--set", "k=two"], r"phongfx: error: --set k: k must be an integer, not 'two'\n"),
     (["render", "--radius", "2", "--out", "OUT"], r"phongfx: error: radius must be an integer in 4\.\.4096, not 2\n"),
 ])
