@@ -86,6 +86,14 @@ def _cmd_sim(args):
     return 0 if result.ok else 1
 
 
+def _exit_on_mismatch(count, where=""):
+    """Exit code 1 (and a line on stderr) if golden and RTL differed on ``count`` pixels."""
+    if count:
+        print(f"MISMATCH between golden and RTL: {count} pixel(s){where}", file=sys.stderr)
+        return 1
+    return 0
+
+
 def _cmd_render(args):
     if args.target == "mesh":
         return _cmd_render_mesh(args)
@@ -105,11 +113,7 @@ def _cmd_render(args):
             if isinstance(value, dict):
                 print(f"  {mode:6s} {what:22s} max {value['max']:7.2f}  mean {value['mean']:7.3f} levels")
     print(f"wrote {args.out}/fig7.png, {args.out}/fig7_error.png, {args.out}/summary.json")
-    if summary["mismatches"]:
-        print(f"MISMATCH between golden and RTL: {summary['mismatches']} pixel(s); see summary.json",
-              file=sys.stderr)
-        return 1
-    return 0
+    return _exit_on_mismatch(summary["mismatches"], "; see summary.json")
 
 
 def _cmd_render_mesh(args):
@@ -134,10 +138,7 @@ def _cmd_render_frames(args):
                      height=args.size, frame=args.frame)
     print(markdown(result))
     print(f"wrote {args.frames_out}/frames.json")
-    if result["mismatches"]:
-        print(f"MISMATCH between golden and RTL: {result['mismatches']} pixel(s)", file=sys.stderr)
-        return 1
-    return 0
+    return _exit_on_mismatch(result["mismatches"])
 
 
 def _cmd_synth(args):
@@ -200,10 +201,7 @@ def _cmd_figure9(args):
         table = run(out_dir=args.out, backend=args.backend, radius=args.radius, progress=bar.update)
     print(markdown(table))
     print(f"wrote {args.out}/figure9.png, figure9_diff.png, figure9.md, figure9.json")
-    if table["rtl_mismatches"]:
-        print(f"MISMATCH between golden and RTL: {table['rtl_mismatches']} pixel(s)", file=sys.stderr)
-        return 1
-    return 0
+    return _exit_on_mismatch(table["rtl_mismatches"])
 
 
 
