@@ -263,9 +263,9 @@ _QUICK = {"hast": {"frames": 4}, "cost": {"blocks": ("difference", "shape", "roo
 
 
 def _demote(text):
-    """Headings one level down; the modules' own "Plots:" line dropped (we link them relative)."""
+    """Headings one level down; the modules' own plot links dropped (we link them relative)."""
     return "\n".join("#" + line if line.startswith("#") else line for line in text.splitlines()
-                     if not line.startswith("Plots: "))
+                     if not line.startswith(("Plots: ", "![")))
 
 
 def _table_section(name, out_dir, quick):
