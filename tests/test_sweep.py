@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import pytest
 
-from phongfx import sweep
+from phongfx import sweep, sweep_spec
 from phongfx.sweep import SweepSpecError, load_records, load_spec, run_sweep
 
 
@@ -46,7 +46,7 @@ def stub_evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):
 
 @pytest.fixture
 def stub(monkeypatch, tmp_path):
-    monkeypatch.setattr(sweep, "_catalog", lambda: (STUB_METHODS, STUB_SCENES))
+    monkeypatch.setattr(sweep_spec, "_catalog", lambda: (STUB_METHODS, STUB_SCENES))
     monkeypatch.setenv("SWEEP_TEST_COUNT", str(tmp_path / "calls.txt"))
     return tmp_path
 
