@@ -3,10 +3,10 @@
 
 PYTHON ?= python3
 VENV ?= .venv
-BACKEND ?= verilator
+BACKEND ?= verilator-fast
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: sim test test-all synth sweep report clean
+.PHONY: sim test test-all synth sweep report bench clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -36,6 +36,11 @@ sweep: $(STAMP)
 # build/report/index.md: the papers' tables beside ours, the sweep's Pareto plots
 report: $(STAMP)
 	$(VENV)/bin/phongfx report --out build/report --sweep build/sweep
+
+# benchmarks (not part of make test): RTL verification throughput, golden model throughput
+bench: $(STAMP)
+	$(VENV)/bin/python -m bench.rtl
+	$(VENV)/bin/python -m bench.golden
 
 clean:
 	rm -rf build

@@ -48,7 +48,7 @@ def _error(spec, reference):
     return np.max([np.abs(s - r) for s, r in zip(spec, reference)], axis=0) * 255
 
 
-def run(out_dir="build/figure9", backend="verilator", radius=64, progress=None):
+def run(out_dir="build/figure9", backend="verilator-fast", radius=64, progress=None):
     """Render, check through the RTL, write PNGs and tables; returns the table dict."""
     scene = Scene(radius=radius)
     px = pixels(scene)

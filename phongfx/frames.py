@@ -70,7 +70,7 @@ def chunk_starts(first, count, chunk):
 
 
 def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=0, light=LIGHT, n=32,
-              backend="verilator", chunk=16384, progress=None):
+              backend="verilator-fast", chunk=16384, progress=None):
     """Check one full frame of ``unit`` (one of ``euler``, ``gouraud``, ``spherical``,
     ``schlick``) on the RTL against the golden model, pixel by pixel.
 

@@ -161,7 +161,7 @@ def _plots(out_dir, scene, results):
     plt.close(fig)
 
 
-def run(config=None, *, radius=64, span=8, backend="verilator", out_dir="build/sim",
+def run(config=None, *, radius=64, span=8, backend="verilator-fast", out_dir="build/sim",
         chunk=16384, sample=2000, quiet=False):
     """Shade both modes, check every pixel on ``backend``, write pictures and summary.
 

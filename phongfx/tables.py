@@ -16,6 +16,7 @@ TABLES = {
     "hast": "phongfx.hast_tables",          # Hast, Barrera, Bengtsson: Tables 1-2 on tori
     "cost": "phongfx.cost_table",           # synthesis: Figure 7 vs Figure 8 vs conventional
     "pipeline": "phongfx.pipeline_table",   # synthesis: Fmax against pipeline depth
+    "extremes": "phongfx.extremes",         # issue 6 §2: every block at its extreme inputs
 }
 
 

@@ -7,9 +7,12 @@ output cycle with the golden model: ``o.valid`` must rise exactly ``latency``
 cycles after each valid input and nowhere else, and the payload of each valid
 output must equal the golden output bit for bit.
 
-Back ends (see :data:`BACKENDS`): ``amaranth`` (Amaranth's simulator, optional VCD)
-and ``verilator`` (the emitted Verilog under cocotb + Verilator).  Both take and
-return packed payload integers, so packing, scheduling and comparing live here once.
+Back ends (see :data:`BACKENDS`): ``amaranth`` (Amaranth's simulator, optional VCD),
+``verilator`` (the emitted Verilog under cocotb + Verilator) and ``verilator-fast``
+(Verilator with a compiled checker, :mod:`phongfx.sim.fast_backend`).  The first
+two take and return packed payload integers, so packing, scheduling and comparing
+live here once; the fast one packs with numpy and compares in C++, and :func:`check`
+hands it the whole job.
 """
 
 import time
@@ -20,7 +23,7 @@ import numpy as np
 __all__ = ["BACKENDS", "Mismatch", "Result", "HarnessMismatch", "pack", "unpack", "schedule",
            "check", "run_backend"]
 
-BACKENDS = ("amaranth", "verilator")
+BACKENDS = ("amaranth", "verilator", "verilator-fast")
 
 
 def _fields(ports):
@@ -142,6 +145,8 @@ def run_backend(backend, component, in_valid, in_payload, cycles, **options):
         from .amaranth_backend import run
     elif backend == "verilator":
         from .verilator_backend import run
+    elif backend == "verilator-fast":
+        from .fast_backend import run
     else:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
     return run(component, in_valid, in_payload, cycles, **options)
@@ -166,12 +171,17 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
         Defaults to ``block.vectors(count, seed)``.
     expected : dict of raw code arrays, optional
         The golden outputs of ``inputs`` when the caller has them already.
-    backend : {"amaranth", "verilator"}
+    backend : {"amaranth", "verilator", "verilator-fast"}
     bubbles : float
         Probability of an idle (``valid`` low, junk payload) cycle before each vector.
     options
         Passed to the back end (``vcd=PATH`` for ``amaranth``, ``build_dir`` ...).
     """
+    if backend == "verilator-fast":
+        from .fast_backend import check as fast_check
+
+        return fast_check(block, inputs, expected=expected, bubbles=bubbles, seed=seed,
+                          count=count, max_report=max_report, **options)
     config = block.config
     if inputs is None:
         inputs = block.vectors(count=count, seed=seed)

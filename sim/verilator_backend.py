@@ -22,7 +22,8 @@ directory and renamed into place when complete, so concurrent runs never use hal
 a build.  Verilator's run-time library objects (``verilated*.o``), which do not
 depend on the design and are most of the C++ compile, are kept once per tool
 version in ``<root>/runtime-<key>`` and copied into each new build, so ``make``
-finds them up to date and compiles only the design.
+finds them up to date and compiles only the design.  :func:`cached_build` is that
+cache on its own, for other flavours of build (:mod:`phongfx.sim.fast_backend`).
 """
 
 import functools
@@ -40,7 +41,7 @@ from cocotb_tools.runner import Verilator, get_runner
 
 from ..hdl.emit import verilog
 
-__all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "run"]
+__all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "cached_build", "run"]
 
 BLOCK = 32  # cycles per Python wake-up in the testbench
 TB_MODULE = "phongfx.sim.cocotb_tb"
@@ -165,18 +166,23 @@ def _digest(parts):
     return hashlib.sha256("\0".join(parts).encode()).hexdigest()[:20]
 
 
-def _runtime_dir(root, waves):
-    """Cache of the design-independent ``verilated*`` objects (flags depend on ``waves``)."""
-    return root / f"runtime-{_digest([f'waves={bool(waves)}', *_BUILD_ARGS, *_tool_versions()])}"
+def _runtime_dir(root, waves, flavour=()):
+    """Cache of the design-independent ``verilated*`` objects.
+
+    Their flags depend on ``waves`` and on the ``flavour`` of build (the extra
+    Verilator and ``make`` arguments of a non-cocotb build), so each gets its own.
+    """
+    parts = [f"waves={bool(waves)}", *_BUILD_ARGS, *flavour, *_tool_versions()]
+    return root / f"runtime-{_digest(parts)}"
 
 
 def _runtime_files(directory):
     return [f for f in directory.glob("verilated*") if f.suffix in (".o", ".d")]
 
 
-def _seed_runtime(root, work, waves):
+def _seed_runtime(root, work, waves, flavour=()):
     """Copy cached run-time objects into ``work``; returns the object files copied."""
-    cache = _runtime_dir(root, waves)
+    cache = _runtime_dir(root, waves, flavour)
     if not cache.is_dir():
         return []
     for file in _runtime_files(cache):
@@ -184,9 +190,9 @@ def _seed_runtime(root, work, waves):
     return [work / f.name for f in _runtime_files(cache) if f.suffix == ".o"]
 
 
-def _keep_runtime(root, work, waves):
+def _keep_runtime(root, work, waves, flavour=()):
     """Save the run-time objects of a successful build, if none are saved yet."""
-    cache = _runtime_dir(root, waves)
+    cache = _runtime_dir(root, waves, flavour)
     if cache.is_dir():
         return
     temp = Path(tempfile.mkdtemp(prefix=f".{cache.name}.", dir=root))
@@ -286,7 +292,45 @@ def build(component, *, build_dir=None, waves=False):
     in_width = len(component.i.payload.as_value())
     out_width = len(component.o.payload.as_value())
     top_text = wrapper(module, in_width, out_width)
+
+    def compile_(work, source, log):
+        seeded = _seed_runtime(root, work, waves)
+        _runner(seeded).build(sources=[source], hdl_toplevel=top, build_dir=work,
+                              waves=bool(waves), build_args=_BUILD_ARGS,
+                              timescale=("1ns", "1ps"), log_file=log)
+        _keep_runtime(root, work, waves)
+
     root = _cache_root(build_dir)
+    return cached_build(component, module, top, top_text, compile_, root=root, waves=waves)
+
+
+def cached_build(component, module, top, top_text, compile_, *, root, waves=False, executable=None):
+    """Find or make the build of ``component`` under top ``top`` in the cache ``root``.
+
+    The shared half of :func:`build` and of other simulation flavours (such as
+    :mod:`phongfx.sim.fast_backend`): the cache key hashes the design with
+    ``top_text`` (all that the flavour adds: wrapper Verilog, C++ main, flags), the
+    build happens in a private directory that is renamed into place when complete.
+
+    Parameters
+    ----------
+    component : PipelinedBlock
+    module, top : str
+        Verilog names of the block and of the simulated top.
+    top_text : str
+        Verilog appended to the block's, followed by anything else the build depends on.
+    compile_ : callable
+        ``compile_(work, source, log)`` compiles ``source`` (the Verilog) in the
+        directory ``work``, logging to ``log``; raises one of the tool errors.
+    root : pathlib.Path
+    waves : bool
+    executable : str, optional
+        The file the build must make (default ``top``).
+
+    Returns
+    -------
+    Build
+    """
     final = root / _key(component, module, top_text, waves)
     if (final / _MARKER).is_file():
         return Build(final, top, built=False)
@@ -295,19 +339,15 @@ def build(component, *, build_dir=None, waves=False):
     work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
     source = work / f"{top}.v"
     source.write_text(verilog(component, module, emit_src=False) + top_text)
-    seeded = _seed_runtime(root, work, waves)
     log = work / "build.log"
     try:
-        _runner(seeded).build(sources=[source], hdl_toplevel=top, build_dir=work,
-                              waves=bool(waves), build_args=_BUILD_ARGS,
-                              timescale=("1ns", "1ps"), log_file=log)
+        compile_(work, source, log)
     except _TOOL_ERRORS as error:
         raise RuntimeError(f"Verilator build of {module} failed ({error}); log {log}:\n"
                            f"{_tail(log)}") from None
-    if not (work / top).is_file():
+    if not (work / (executable or top)).is_file():
         raise RuntimeError(f"Verilator build of {module} made no executable; log {log}:\n"
                            f"{_tail(log)}")
-    _keep_runtime(root, work, waves)
     (work / _MARKER).write_text(f"{top}\n")
     try:
         work.rename(final)

@@ -1,0 +1,312 @@
+"""Back end: the emitted Verilog under Verilator, checked in compiled code.
+
+The fast path of issue 6 ("RTL verification throughput"): no cocotb and no Python
+in the simulation loop.  Python packs the per-cycle input words and the expected
+per-cycle output words with numpy into one binary stream; a small C++ main
+(``fast_main.cpp``, linked with the Verilated design) maps it, drives the design
+clock by clock, compares every cycle's ``o.valid`` and (when valid) ``o.payload``,
+and writes back only a summary: the cycle count, the number of mismatching
+cycles, and the first ``max_report`` of them with their cycle and words.
+
+Words are 32-bit, least significant first, as Verilator's ``VlWide`` stores a
+wide port, so payloads of any width (Figure 7's input is 204 bits) need no
+special case: the simulated top, :func:`wrapper`, pads ``{i.payload, i.valid}``
+and ``{o.payload, o.valid}`` to at least three words, which makes both ports
+``VlWide`` whatever the block.
+
+Builds share :mod:`phongfx.sim.verilator_backend`'s cache, tool environment and
+run-time object cache (in a flavour of their own, as the flags differ).
+"""
+
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from . import verilator_backend as vb
+from .harness import Mismatch, Result, _fields, _row, schedule, unpack
+
+__all__ = ["MAIN", "words_of", "pack_words", "wrapper", "build", "stream", "check",
+           "check_timed", "run"]
+
+MAIN = Path(__file__).with_name("fast_main.cpp")
+EXECUTABLE = "phongfx_sim"
+_MAGIC = 0x3174736166786670  # "pfxfast1", as in fast_main.cpp
+_MIN_WORDS = 3  # > 64 bits: every port is a VlWide
+_VERILATOR_ARGS = ["--cc", "--exe", "--prefix", "Vtop", "-O3", "--x-assign", "fast",
+                   "-o", EXECUTABLE]
+# The design's C++ at -O2 rather than verilated.mk's -Os: slower to build, faster to run.
+_MAKE_ARGS = ["OPT_FAST=-O2"]
+
+
+def words_of(bits):
+    """32-bit words of a port ``bits`` wide (at least :data:`_MIN_WORDS`)."""
+    return max(_MIN_WORDS, (bits + 31) // 32)
+
+
+def pack_words(ports, raw, valid=True):
+    """Pack raw codes into the words ``{payload, valid}``, vectorized.
+
+    Parameters
+    ----------
+    ports : dict
+        ``{name: (Format, lanes)}``, as a block config's ``inputs`` or ``outputs``.
+    raw : dict of int64 arrays
+        ``{name: (count,) or (count, lanes)}``.
+    valid : bool
+        Value of bit 0 of every word.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(count, words_of(width + 1))`` uint32, bit ``k`` of the payload at bit
+        ``k + 1``, as :func:`phongfx.sim.harness.pack` shifted left by one.
+    """
+    fields_, width = _fields(ports)
+    count = None
+    out = None
+    for name, lane, offset, bits, _ in fields_:
+        column = np.asarray(raw[name], dtype=np.int64)
+        column = column[:, lane] if lane is not None else column
+        if count is None:
+            count = len(column)
+            out = np.zeros((count, words_of(width + 1)), dtype=np.uint32)
+            out[:, 0] = int(valid)
+        elif len(column) != count:
+            raise ValueError(f"input {name} has {len(column)} vectors, others have {count}")
+        # two's complement bits of the code: the int64 to uint64 cast wraps
+        value = column.astype(np.uint64) & np.uint64((1 << bits) - 1)
+        start = offset + 1
+        first, shift = divmod(start, 32)
+        # a field of up to 64 bits spans up to three words
+        for word in range(first, (start + bits - 1) // 32 + 1):
+            amount = 32 * (word - first) - shift
+            part = value << np.uint64(-amount) if amount < 0 else value >> np.uint64(amount)
+            out[:, word] |= (part & np.uint64(0xFFFFFFFF)).astype(np.uint32)
+    return out
+
+
+def _to_int(words):
+    return int.from_bytes(np.ascontiguousarray(words, dtype="<u4").tobytes(), "little")
+
+
+def wrapper(module, in_width, out_width):
+    """Verilog of the simulation top ``<module>_fast``: word ports around block ``module``.
+
+    ``i_word`` is ``{pad, i.payload, i.valid}`` and ``o_word`` ``{0, o.payload, o.valid}``,
+    each :func:`words_of` 32-bit words, combinational both ways.
+    """
+    ni, no = words_of(in_width + 1), words_of(out_width + 1)
+    pad = 32 * no - out_width - 1
+    tie = f"  assign o_word[{32 * no - 1}:{out_width + 1}] = {pad}'d0;\n" if pad else ""
+    return f"""
+module {module}_fast(clk, i_word, o_word);
+  input clk;
+  input [{32 * ni - 1}:0] i_word;
+  output [{32 * no - 1}:0] o_word;
+  {module} dut (
+    .clk(clk), .rst(1'b0),
+    .i__valid(i_word[0]), .i__payload(i_word[{in_width}:1]),
+    .o__valid(o_word[0]), .o__payload(o_word[{out_width}:1])
+  );
+{tie}endmodule
+"""
+
+
+def _widths(component):
+    return len(component.i.payload.as_value()), len(component.o.payload.as_value())
+
+
+def build(component, *, build_dir=None):
+    """Compile ``component`` with the C++ checker, or find it in the cache.
+
+    Returns
+    -------
+    phongfx.sim.verilator_backend.Build
+        ``directory / EXECUTABLE`` is the checker.
+
+    Raises
+    ------
+    RuntimeError
+        If Verilator or the C++ compile fails; the message ends with the log tail.
+    """
+    module = type(component).__name__.lower()
+    top = f"{module}_fast"
+    main = MAIN.read_text()
+    flavour = ("fast", *_VERILATOR_ARGS, *_MAKE_ARGS)
+    # the key covers everything the executable depends on beyond the design
+    top_text = wrapper(module, *_widths(component)) + "/*\n" + "\n".join(flavour) + main + "*/\n"
+    root = vb._cache_root(build_dir)
+
+    def compile_(work, source, log):
+        (work / MAIN.name).write_text(main)
+        seeded = vb._seed_runtime(root, work, False, flavour)
+        verilator = vb.tool_environment()
+        with open(log, "w") as out:
+            run_ = dict(cwd=work, stdout=out, stderr=subprocess.STDOUT, check=True)
+            subprocess.run([str(verilator), *_VERILATOR_ARGS, *vb._BUILD_ARGS, "--top-module", top,
+                            "--Mdir", str(work), str(source), str(work / MAIN.name)], **run_)
+            # make rebuilds objects older than Vtop.mk, just written: refresh the seeded ones
+            if seeded:
+                subprocess.run(["touch", "-c", *map(str, seeded)], **run_)
+            subprocess.run(["make", "-f", "Vtop.mk", "-j", "2", *_MAKE_ARGS], **run_)
+        vb._keep_runtime(root, work, False, flavour)
+
+    return vb.cached_build(component, module, top, top_text, compile_, root=root,
+                           executable=EXECUTABLE)
+
+
+def _execute(compiled, header, arrays):
+    """Write the stream, run the checker on it; returns (result bytes, seconds split)."""
+    run_dir = Path(tempfile.mkdtemp(prefix="fast-", dir=compiled.directory))
+    stream_, result = run_dir / "stream.bin", run_dir / "result.bin"
+    start = time.perf_counter()
+    with open(stream_, "wb") as file:
+        file.write(np.array(header, dtype="<u8").tobytes())
+        for array in arrays:
+            file.write(memoryview(np.ascontiguousarray(array, dtype="<u4")).cast("B"))
+    written = time.perf_counter()
+    done = subprocess.run([str(compiled.directory / EXECUTABLE), str(stream_), str(result)],
+                          capture_output=True, text=True)
+    simulated = time.perf_counter()
+    if done.returncode:
+        raise RuntimeError(f"Verilator fast check of {compiled.top} failed (exit "
+                           f"{done.returncode}); run directory {run_dir}:\n{done.stderr[-2000:]}")
+    data = result.read_bytes()
+    for file in (stream_, result):
+        file.unlink()
+    run_dir.rmdir()
+    return data, {"write": written - start, "simulate": simulated - written}
+
+
+def stream(block, inputs, expected, slots, latency, seed):
+    """Per-cycle input and expected output words of a ``slots`` schedule (see :func:`check`)."""
+    config = block.config
+    _, in_width = _fields(config.inputs)
+    vectors = pack_words(config.inputs, inputs)
+    results = pack_words(config.outputs, expected)
+    cycles = len(slots) + latency
+    in_words = np.zeros((cycles, vectors.shape[1]), dtype=np.uint32)
+    busy = slots >= 0
+    in_words[:len(slots)][busy] = vectors[slots[busy]]
+    idle = np.flatnonzero(~busy)
+    if len(idle):
+        # junk payload (valid low) on bubbles, to show the design ignores it
+        rng = np.random.default_rng(seed + 1)
+        junk = rng.integers(0, 1 << 32, size=(len(idle), vectors.shape[1]), dtype=np.uint32)
+        ones = np.zeros(32 * vectors.shape[1], dtype=np.uint8)
+        ones[1:in_width + 1] = 1
+        mask = np.packbits(ones, bitorder="little").view("<u4")
+        in_words[idle] = junk & mask
+    want = np.zeros((cycles, results.shape[1]), dtype=np.uint32)
+    # the vector whose result is due at each cycle, -1 if none
+    source = np.full(cycles, -1, dtype=np.int64)
+    source[latency:] = slots
+    live = source >= 0
+    want[live] = results[source[live]]
+    return in_words, want
+
+
+def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, count=1000,
+                max_report=10, build_dir=None):
+    """:func:`check`, also returning the seconds spent in each step.
+
+    Returns
+    -------
+    (Result, dict)
+        The dict has ``vectors``, ``golden``, ``build``, ``pack``, ``write``,
+        ``simulate`` (simulation and comparison in the C++ checker) and ``report``.
+    """
+    config = block.config
+    times = {}
+    start = time.perf_counter()
+    if inputs is None:
+        inputs = block.vectors(count=count, seed=seed)
+    times["vectors"] = time.perf_counter() - start
+    start = time.perf_counter()
+    if expected is None:
+        expected = block.golden(inputs)
+    times["golden"] = time.perf_counter() - start
+
+    start = time.perf_counter()
+    component = block.component()
+    latency = component.latency
+    compiled = build(component, build_dir=build_dir)
+    times["build"] = time.perf_counter() - start
+
+    start = time.perf_counter()
+    count = len(np.asarray(next(iter(inputs.values()))))
+    # schedule() loops in Python per vector; back to back its result is just this
+    slots = np.arange(count, dtype=np.int64) if not bubbles else schedule(count, bubbles, seed)
+    in_words, want = stream(block, inputs, expected, slots, latency, seed)
+    cycles, ni = in_words.shape
+    no = want.shape[1]
+    times["pack"] = time.perf_counter() - start
+
+    data, split = _execute(compiled, [_MAGIC, cycles, ni, no, max_report, 0, 0, 0],
+                           [in_words, want])
+    times.update(split)
+    start = time.perf_counter()
+    ran, mismatches, recorded = np.frombuffer(data[:24], dtype="<u8").tolist()
+    if ran != cycles:
+        raise RuntimeError(f"Verilator fast check ran {ran} cycles, expected {cycles}")
+    result = Result(block.name, "verilator-fast", count, cycles,
+                    times["write"] + times["simulate"])
+    record = np.dtype([("cycle", "<u8"), ("got", "<u4", no), ("want", "<u4", no)])
+    for entry in np.frombuffer(data[24:], dtype=record, count=recorded):
+        cycle = int(entry["cycle"])
+        index = int(slots[cycle - latency]) if cycle >= latency else -1
+        got_valid, want_valid = int(entry["got"][0] & 1), int(entry["want"][0] & 1)
+        if got_valid != want_valid:
+            result.mismatches.append(Mismatch(
+                cycle, index, _row(config.inputs, inputs, index) if index >= 0 else {},
+                {"valid": want_valid}, {"valid": got_valid},
+                f"o.valid is {got_valid}, expected {want_valid} (latency {latency})"))
+        else:
+            got = unpack(config.outputs, [_to_int(entry["got"]) >> 1])
+            result.mismatches.append(Mismatch(
+                cycle, index, _row(config.inputs, inputs, index),
+                _row(config.outputs, expected, index), _row(config.outputs, got, 0),
+                "payload differs"))
+    result.mismatch_count = int(mismatches)
+    times["report"] = time.perf_counter() - start
+    return result, times
+
+
+def check(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, count=1000,
+          max_report=10, build_dir=None):
+    """:func:`phongfx.sim.harness.check` on the fast path; same arguments and :class:`Result`.
+
+    ``Result.seconds`` covers writing the stream and the compiled simulate-and-compare
+    run, not the golden model, packing or the build (see :func:`check_timed`).
+    """
+    return check_timed(block, inputs, expected=expected, bubbles=bubbles, seed=seed,
+                       count=count, max_report=max_report, build_dir=build_dir)[0]
+
+
+def run(component, in_valid, in_payload, cycles, *, build_dir=None):
+    """The :func:`phongfx.sim.harness.run_backend` contract: per-cycle outputs, no comparing.
+
+    Returns
+    -------
+    (list of int, list of int)
+        ``o.valid`` and packed ``o.payload`` of each cycle.
+    """
+    if cycles == 0:
+        return [], []
+    if len(in_valid) < cycles or len(in_payload) < cycles:
+        raise ValueError(f"need {cycles} cycles of stimulus, got {len(in_valid)} valid "
+                         f"and {len(in_payload)} payload values")
+    in_width, out_width = _widths(component)
+    ni, no = words_of(in_width + 1), words_of(out_width + 1)
+    mask = (1 << in_width) - 1
+    data = b"".join(((int(p) & mask) << 1 | int(v) & 1).to_bytes(4 * ni, "little")
+                    for v, p in zip(in_valid[:cycles], in_payload[:cycles]))
+    compiled = build(component, build_dir=build_dir)
+    out, _ = _execute(compiled, [_MAGIC, cycles, ni, no, 0, 1, 0, 0],
+                      [np.frombuffer(data, dtype="<u4")])
+    words = np.frombuffer(out, dtype="<u4").reshape(cycles, no)
+    values = [_to_int(row) for row in words]
+    return [w & 1 for w in values], [w >> 1 for w in values]
