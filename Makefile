@@ -41,6 +41,7 @@ report: $(STAMP)
 bench: $(STAMP)
 	$(VENV)/bin/python -m bench.rtl
 	$(VENV)/bin/python -m bench.golden
+	$(VENV)/bin/python -m bench.scaling
 
 clean:
 	rm -rf build
