@@ -11,7 +11,7 @@ STAMP := $(VENV)/.installed-stamp
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
-	$(VENV)/bin/python -m pip install --quiet -e '.[cluster]'
+	$(VENV)/bin/python -m pip install --quiet -e '.[cluster,bench]'
 	touch $(STAMP)
 
 sim: $(STAMP)

@@ -18,7 +18,19 @@ from .blocks import block_names, get_block
 from .sim.harness import BACKENDS
 from .tables import TABLES, table_module
 
-__all__ = ["main", "apply_settings"]
+__all__ = ["main", "apply_settings", "MAX_SIZE"]
+
+#: Largest ``--size`` of ``render mesh`` / ``render frames`` (an 8K frame).
+MAX_SIZE = 8192
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but a usage error is one ``phongfx: error:`` line like every other bad input."""
+
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        where = self.prog.partition(" ")[2]
+        self.exit(2, f"phongfx: error: {where + ': ' if where else ''}{message}\n")
 
 
 def apply_settings(config, settings):
@@ -37,6 +49,11 @@ def _set(config, parts, text, path):
         raise ValueError(f"--set {path}: {type(config).__name__} has no field {parts[0]!r}; "
                          f"fields: {', '.join(names)}")
     current = getattr(config, parts[0])
+    if len(parts) == 1 and dataclasses.is_dataclass(current):
+        # a whole sub-config cannot be parsed from one string; point at its fields instead
+        fields = ", ".join(f"{parts[0]}.{f.name}" for f in dataclasses.fields(current))
+        raise ValueError(f"--set {path}: {parts[0]} is a {type(current).__name__}; set one of its "
+                         f"fields instead: {fields}")
     if len(parts) > 1:
         if not dataclasses.is_dataclass(current):
             raise ValueError(f"--set {path}: {parts[0]} has no sub-fields")
@@ -75,6 +92,8 @@ def _cmd_verilog(args):
 
 def _cmd_sim(args):
     from .sim.harness import check
+    if args.seed < 0:
+        raise ValueError(f"--seed must be a non-negative integer, not {args.seed}")
     block = _block(args)
     options = {"vcd": args.vcd} if args.vcd else {}
     if args.vcd and args.backend != "amaranth":
@@ -116,8 +135,15 @@ def _cmd_render(args):
     return _exit_on_mismatch(summary["mismatches"], "; see summary.json")
 
 
+def _check_size(size):
+    # the frame buffers are size² int64 arrays per quantity: bound them before allocating
+    if size > MAX_SIZE:
+        raise ValueError(f"--size must be an integer in 1..{MAX_SIZE}, not {size}")
+
+
 def _cmd_render_mesh(args):
     from . import mesh_render
+    _check_size(args.size)
     if args.figure:
         figure = {"14": mesh_render.figure14, "15": mesh_render.figure15}[args.figure]
         summary = figure(out_dir=args.mesh_out)
@@ -133,6 +159,7 @@ def _cmd_render_mesh(args):
 
 def _cmd_render_frames(args):
     from .frames import UNITS, markdown, run_all
+    _check_size(args.size)
     result = run_all(out_dir=args.frames_out, units=args.units or UNITS, quiet=args.quiet,
                      backend=args.frames_backend, polygons=args.polygons, width=args.size,
                      height=args.size, frame=args.frame)
@@ -232,7 +259,7 @@ def _mesh_parser(p):
 
 def _frames_parser(p):
     p.add_argument("--units", nargs="+", metavar="UNIT", help="euler gouraud spherical schlick (default all)")
-    p.add_argument("--backend", dest="frames_backend", choices=BACKENDS, default="verilator")
+    p.add_argument("--backend", dest="frames_backend", choices=BACKENDS, default="verilator-fast")
     p.add_argument("--polygons", type=int, default=800, help="torus polygons")
     p.add_argument("--size", type=int, default=256, help="frame width and height in pixels")
     p.add_argument("--frame", type=int, default=0, help="frame of the 200-frame rotation")
@@ -241,7 +268,7 @@ def _frames_parser(p):
 
 
 def _parser():
-    parser = argparse.ArgumentParser(prog="phongfx", description=__doc__.split("\n\n")[0])
+    parser = _Parser(prog="phongfx", description=__doc__.split("\n\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
 
     sub.add_parser("blocks", help="list the datapath blocks").set_defaults(run=_cmd_blocks)
@@ -257,7 +284,7 @@ def _parser():
 
     p = sub.add_parser("sim", help="check a block against its golden model, cycle by cycle")
     with_block(p)
-    p.add_argument("--backend", choices=BACKENDS, default="amaranth")
+    p.add_argument("--backend", choices=BACKENDS, default="verilator-fast")
     p.add_argument("--vectors", type=int, default=1000, help="random vectors beyond the directed ones")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--bubbles", type=float, default=0.25, help="probability of an idle cycle")
@@ -292,7 +319,7 @@ def _parser():
     p.set_defaults(run=_cmd_report)
 
     p = sub.add_parser("render", help="shade Lyon's scene through Figure 7 (what `make sim` runs)")
-    p.add_argument("--backend", choices=BACKENDS, default="verilator")
+    p.add_argument("--backend", choices=BACKENDS, default="verilator-fast")
     p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels")
     p.add_argument("--span", type=int, default=8, help="span length for interpolated normals")
     p.add_argument("--out", default="build/sim", help="output folder")
@@ -307,7 +334,7 @@ def _parser():
 
     p = sub.add_parser("figure9", help="Lyon's Figure 9: float rows and fixed-point rows, RTL-checked")
     p.add_argument("--out", default="build/figure9", help="output folder")
-    p.add_argument("--backend", choices=BACKENDS, default="verilator")
+    p.add_argument("--backend", choices=BACKENDS, default="verilator-fast")
     p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels (Lyon: 64)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=_cmd_figure9)
@@ -322,8 +349,24 @@ def _parser():
     return parser
 
 
+def _os_error(error):
+    """``path: reason`` of a failed read or write (the target, not the temporary, of a rename)."""
+    where = error.filename2 if error.filename2 is not None else error.filename
+    return f"{where}: {error.strerror}" if where is not None and error.strerror else str(error)
+
+
 def main(argv=None):
-    args = _parser().parse_args(argv)
+    """Run the command line; returns the exit code (0 ok, 1 mismatch, 2 bad input, 130 interrupted).
+
+    Bad input of any kind (usage, ``ValueError`` from a config, a config whose formats
+    overflow in the golden model, a file that cannot be read or written, a frame too
+    large for memory) is one ``phongfx: error:`` line on stderr and exit code 2,
+    never a traceback (``tests/test_bad_input.py`` fuzzes this).
+    """
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as stop:  # --help (0) or a usage error (2, already printed)
+        return 0 if stop.code is None else stop.code
     if getattr(args, "vectors", 1) < 0:
         print("phongfx: error: --vectors must be a non-negative integer", file=sys.stderr)
         return 2
@@ -334,6 +377,17 @@ def main(argv=None):
         return 0
     except ValueError as error:
         print(f"phongfx: error: {error}", file=sys.stderr)
+        return 2
+    except OverflowError as error:
+        # golden.fixed.FixedOverflowError: formats a config accepted that cannot hold a value
+        # the block computes (e.g. an output without the integer bit 1.0 needs)
+        print(f"phongfx: error: overflow: {error}; widen that format", file=sys.stderr)
+        return 2
+    except OSError as error:  # missing input, unwritable or non-directory output folder
+        print(f"phongfx: error: {_os_error(error)}", file=sys.stderr)
+        return 2
+    except MemoryError as error:
+        print(f"phongfx: error: out of memory ({error}); ask for a smaller problem", file=sys.stderr)
         return 2
 
 

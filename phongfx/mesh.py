@@ -79,7 +79,7 @@ def uv_sphere(stacks, slices):
 def torus(polygons, major=1.0, minor=0.4):
     """Torus of ``polygons = 2k²`` quads: ``2k`` around the ring by ``k`` around the tube
     (288, 512, 800, 1152 → 24×12, 32×16, 40×20, 48×24, Hast Tables 1–2)."""
-    k = int(round(np.sqrt(polygons / 2))) if isinstance(polygons, (int, np.integer)) else 0
+    k = int(round(np.sqrt(polygons / 2))) if isinstance(polygons, (int, np.integer)) and polygons > 0 else 0
     if isinstance(polygons, bool) or k < 3 or 2 * k * k != polygons:
         raise ValueError(f"polygons must be 2·k² for an integer k >= 3 (18, 32, ..., 288, 512, "
                          f"800, 1152), not {polygons!r}")
