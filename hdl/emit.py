@@ -6,8 +6,6 @@ each payload field (``\\i__payload.n0[1]`` ...), so waveforms and lint messages
 read in the block's own terms.
 """
 
-import os
-import tempfile
 from pathlib import Path
 
 from amaranth.back import verilog as _verilog
@@ -44,16 +42,9 @@ def write_verilog(component, name, path, *, emit_src=True):
     The text goes to a temporary file in the same directory, then replaces
     ``path`` in one step, so a reader (or a crash) never sees half a module.
     """
+    from ..files import atomic_write
+
     path = Path(path)
     text = verilog(component, name, emit_src=emit_src)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, temp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as file:
-            file.write(text)
-        os.chmod(temp, 0o644)  # mkstemp makes it private; a Verilog file is not
-        os.replace(temp, path)
-    except BaseException:
-        Path(temp).unlink(missing_ok=True)
-        raise
+    atomic_write(path, lambda temp: Path(temp).write_text(text))
     return path

@@ -12,13 +12,13 @@ background) as in the appendix code.
 
 import json
 import os
-import tempfile
 import time
 
 import numpy as np
 
 from .blocks import get_block
 from .config import fig7_config
+from .files import atomic_write
 from .golden.reference import specular
 from .scene import Scene, pixels
 from .sim.harness import BACKENDS, check
@@ -107,24 +107,6 @@ def composite(scene, px, spec, diff):
     image = np.full((scene.height, scene.width), 255.0)
     image[px.row, px.col] = np.clip(total, 0, 255)
     return image
-
-
-def atomic_write(path, write):
-    """Call ``write(tmp)`` on a temporary file beside ``path``, then move it into place:
-    a failed write leaves no half-written ``path``."""
-    directory = os.path.dirname(path) or "."
-    os.makedirs(directory, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=directory, suffix=os.path.splitext(path)[1])
-    os.close(fd)
-    umask = os.umask(0)
-    os.umask(umask)
-    try:
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes it private; outputs are for reading
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
 
 
 def _plots(out_dir, scene, results):
