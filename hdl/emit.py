@@ -10,7 +10,7 @@ from pathlib import Path
 
 from amaranth.back import verilog as _verilog
 
-__all__ = ["verilog", "write_verilog"]
+__all__ = ["verilog", "write_verilog", "payload_widths"]
 
 
 def verilog(component, name, *, emit_src=True):
@@ -48,3 +48,9 @@ def write_verilog(component, name, path, *, emit_src=True):
     text = verilog(component, name, emit_src=emit_src)
     atomic_write(path, lambda temp: Path(temp).write_text(text))
     return path
+
+
+def payload_widths(component):
+    """Bit widths ``(in, out)`` of a block's ``i.payload`` and ``o.payload``: what every
+    wrapper around the emitted module (simulation tops, the synthesis harness) needs."""
+    return len(component.i.payload.as_value()), len(component.o.payload.as_value())

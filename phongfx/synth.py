@@ -232,13 +232,12 @@ def _yosys_script(module, target, options):
 
 def _flow(block, module, target, device, freq, seed, work, progress):
     """Run the tools in ``work``; returns the result (without ``cached``, ``directory``)."""
-    from .hdl.emit import write_verilog
+    from .hdl.emit import payload_widths, write_verilog
 
     info = TARGETS[target]
     part, flag, package, options = info.devices[device]
     component = block.component()
-    in_width = len(component.i.payload.as_value())
-    out_width = len(component.o.payload.as_value())
+    in_width, out_width = payload_widths(component)
     progress("verilog")
     write_verilog(component, module, work / f"{module}.v", emit_src=False)
     (work / "harness.v").write_text(harness(module, in_width, out_width))

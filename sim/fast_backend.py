@@ -25,8 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..hdl.emit import payload_widths
 from . import verilator_backend as vb
-from .harness import Mismatch, Result, _fields, _row, schedule, unpack
+from .harness import Mismatch, Result, _fields, _row, columns, schedule, unpack
 
 __all__ = ["MAIN", "words_of", "pack_words", "wrapper", "build", "stream", "check",
            "check_timed", "run"]
@@ -64,18 +65,12 @@ def pack_words(ports, raw, valid=True):
         ``(count, words_of(width + 1))`` uint32, bit ``k`` of the payload at bit
         ``k + 1``, as :func:`phongfx.sim.harness.pack` shifted left by one.
     """
-    fields_, width = _fields(ports)
-    count = None
+    _, width = _fields(ports)
     out = None
-    for name, lane, offset, bits, _ in fields_:
-        column = np.asarray(raw[name], dtype=np.int64)
-        column = column[:, lane] if lane is not None else column
-        if count is None:
-            count = len(column)
-            out = np.zeros((count, words_of(width + 1)), dtype=np.uint32)
+    for column, offset, bits in columns(ports, raw):
+        if out is None:
+            out = np.zeros((len(column), words_of(width + 1)), dtype=np.uint32)
             out[:, 0] = int(valid)
-        elif len(column) != count:
-            raise ValueError(f"input {name} has {len(column)} vectors, others have {count}")
         # two's complement bits of the code: the int64 to uint64 cast wraps
         value = column.astype(np.uint64) & np.uint64((1 << bits) - 1)
         start = offset + 1
@@ -115,10 +110,6 @@ module {module}_fast(clk, i_word, o_word);
 """
 
 
-def _widths(component):
-    return len(component.i.payload.as_value()), len(component.o.payload.as_value())
-
-
 def build(component, *, build_dir=None):
     """Compile ``component`` with the C++ checker, or find it in the cache.
 
@@ -137,7 +128,7 @@ def build(component, *, build_dir=None):
     main = MAIN.read_text()
     flavour = ("fast", *_VERILATOR_ARGS, *_MAKE_ARGS)
     # the key covers everything the executable depends on beyond the design
-    top_text = wrapper(module, *_widths(component)) + "/*\n" + "\n".join(flavour) + main + "*/\n"
+    top_text = wrapper(module, *payload_widths(component)) + "/*\n" + "\n".join(flavour) + main + "*/\n"
     root = vb._cache_root(build_dir)
 
     def compile_(work, source, log):
@@ -299,7 +290,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None):
     if len(in_valid) < cycles or len(in_payload) < cycles:
         raise ValueError(f"need {cycles} cycles of stimulus, got {len(in_valid)} valid "
                          f"and {len(in_payload)} payload values")
-    in_width, out_width = _widths(component)
+    in_width, out_width = payload_widths(component)
     ni, no = words_of(in_width + 1), words_of(out_width + 1)
     mask = (1 << in_width) - 1
     data = b"".join(((int(p) & mask) << 1 | int(v) & 1).to_bytes(4 * ni, "little")

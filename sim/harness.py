@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["BACKENDS", "Mismatch", "Result", "HarnessMismatch", "pack", "unpack", "schedule",
+__all__ = ["BACKENDS", "Mismatch", "Result", "HarnessMismatch", "columns", "pack", "unpack", "schedule",
            "check", "run_backend"]
 
 BACKENDS = ("amaranth", "verilator", "verilator-fast")
@@ -37,17 +37,24 @@ def _fields(ports):
     return out, offset
 
 
-def pack(ports, raw):
-    """Pack raw codes ``{name: array (count,) or (count, lanes)}`` into payload integers."""
+def columns(ports, raw):
+    """``(column, offset, width)`` of each payload field, ``column`` the int64 codes of
+    that field (one lane of a vector port); all columns must have the same length."""
     fields_, _ = _fields(ports)
     count = None
-    packed = None
-    for name, lane, offset, width, signed in fields_:
+    for name, lane, offset, width, _ in fields_:
         column = np.asarray(raw[name], dtype=np.int64)
         column = column[:, lane] if lane is not None else column
         count = len(column) if count is None else count
         if len(column) != count:
             raise ValueError(f"input {name} has {len(column)} vectors, others have {count}")
+        yield column, offset, width
+
+
+def pack(ports, raw):
+    """Pack raw codes ``{name: array (count,) or (count, lanes)}`` into payload integers."""
+    packed = None
+    for column, offset, width in columns(ports, raw):
         mask = (1 << width) - 1
         bits = [(int(v) & mask) << offset for v in column.tolist()]
         packed = bits if packed is None else [p | b for p, b in zip(packed, bits)]

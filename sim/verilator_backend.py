@@ -39,7 +39,7 @@ from pathlib import Path
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator, get_runner
 
-from ..hdl.emit import verilog
+from ..hdl.emit import payload_widths, verilog
 
 __all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "cached_build", "run"]
 
@@ -289,9 +289,7 @@ def build(component, *, build_dir=None, waves=False):
     """
     module = type(component).__name__.lower()
     top = f"{module}_tb"
-    in_width = len(component.i.payload.as_value())
-    out_width = len(component.o.payload.as_value())
-    top_text = wrapper(module, in_width, out_width)
+    top_text = wrapper(module, *payload_widths(component))
 
     def compile_(work, source, log):
         seeded = _seed_runtime(root, work, waves)

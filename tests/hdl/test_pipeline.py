@@ -181,6 +181,24 @@ def test_untagged_values_align_with_anything():
     assert (one + late).cycle == 2 and one.at(5) is one and (one + one).cycle is None
 
 
+def _clocked(m, signals, rows, value):
+    """``value`` read after each clock, ``signals`` set to each of ``rows`` in turn."""
+    seen = []
+
+    async def bench(ctx):
+        for row in rows:
+            for signal, code in zip(signals, row):
+                ctx.set(signal, code)
+            await ctx.tick()
+            seen.append(ctx.get(value))
+
+    sim = Simulator(m)
+    sim.add_clock(1e-6)
+    sim.add_testbench(bench)
+    sim.run()
+    return seen
+
+
 @pytest.mark.parametrize("rounding", ["round_half_up", "round_half_even", "truncate"])
 def test_quantize_cut_is_quantize_one_clock_later(rounding):
     # every code of S3.4 to S1.2: rounding carries into the top, then the clamp
@@ -190,18 +208,7 @@ def test_quantize_cut_is_quantize_one_clock_later(rounding):
     out = quantize_cut(m, FixedValue(a, frm, 0, m), to, rounding, "saturate", True)
     assert out.cycle == 1
     codes = np.arange(frm.min_raw, frm.max_raw + 1)
-    seen = []
-
-    async def bench(ctx):
-        for code in codes.tolist():
-            ctx.set(a, code)
-            await ctx.tick()
-            seen.append(ctx.get(out.value))
-
-    sim = Simulator(m)
-    sim.add_clock(1e-6)
-    sim.add_testbench(bench)
-    sim.run()
+    seen = _clocked(m, [a], [(code,) for code in codes.tolist()], out.value)
     want = quantize_raw(codes, frm, to, rounding, "saturate")
     assert seen == want.tolist()
 
@@ -217,17 +224,5 @@ def test_split_product_is_the_product_two_clocks_later(fmts):
     a, b = Signal(fa.shape()), Signal(fb.shape())
     out = split_product(m, FixedValue(a, fa, 0, m), FixedValue(b, fb, 0, m), True)
     assert out.cycle == 2 and out.fmt == fa.mul(fb)
-    seen = []
-
-    async def bench(ctx):
-        for x, y in zip(xs.tolist() + [0, 0], ys.tolist() + [0, 0]):
-            ctx.set(a, x)
-            ctx.set(b, y)
-            await ctx.tick()
-            seen.append(ctx.get(out.value))
-
-    sim = Simulator(m)
-    sim.add_clock(1e-6)
-    sim.add_testbench(bench)
-    sim.run()
+    seen = _clocked(m, [a, b], list(zip(xs.tolist() + [0, 0], ys.tolist() + [0, 0])), out.value)
     assert seen[1:-1] == [x * y for x, y in zip(xs.tolist(), ys.tolist())]
