@@ -12,16 +12,34 @@ Elaboration records the cycle of each output in ``output_cycles``, so a test can
 check a ``latency`` formula against the registers a pipeline depth adds (the
 harness catches a mismatch as well, by timing).  A sub-block's :meth:`results` carry
 the cycle of what was fed to it plus its latency.
+
+No silent overflow (issue 6): ``o.payload`` carries one more field than the config's
+outputs, ``overflow`` (:data:`OVERFLOW`): high on a valid output whose computation met an
+``overflow="error"`` quantize out of range, in this block or a sub-block it fed.  The
+golden model raises on such a value, so the harness expects 0 on every valid output:
+a 1 is an overflow in the RTL that the golden model did not predict.  Synthesis builds
+under :func:`~phongfx.hdl.fixed.overflow_checks` ``(False)``, where the field is 0.
 """
 
-from amaranth.hdl import Module
+from amaranth.hdl import Const, Module
 from amaranth.lib import data, wiring
 from amaranth.lib.wiring import In, Out
 
 from ..config import BlockConfig
-from .fixed import FixedValue, FixedVector, align, delay
+from ..format import Format
+from .fixed import FixedValue, FixedVector, align, delay, overflow_flags, report_overflow
 
-__all__ = ["payload_layout", "stream_signature", "PipelinedBlock"]
+__all__ = ["OVERFLOW", "checked_outputs", "payload_layout", "stream_signature", "PipelinedBlock"]
+
+#: The output field that flags an undeclared overflow in the RTL (see the module docstring).
+OVERFLOW = "overflow"
+
+
+def checked_outputs(config):
+    """The ports of ``o.payload``: ``config.outputs`` and the 1-bit :data:`OVERFLOW` last."""
+    if OVERFLOW in config.outputs:
+        raise ValueError(f"an output may not be named {OVERFLOW!r}: the overflow flag uses it")
+    return {**config.outputs, OVERFLOW: (Format(1, 0), 1)}
 
 
 def payload_layout(ports):
@@ -61,7 +79,7 @@ class PipelinedBlock(wiring.Component):
         self._fed = None  # (module, cycle) of the values fed by a composite block
         super().__init__({
             "i": In(stream_signature(config.inputs)),
-            "o": Out(stream_signature(config.outputs)),
+            "o": Out(stream_signature(checked_outputs(config))),
         })
 
     @property
@@ -86,6 +104,9 @@ class PipelinedBlock(wiring.Component):
                             default=None))
         m.d.comb += self.i.valid.eq(valid)
         _drive(m, self.i.payload, self.config.inputs, aligned, f"{type(self).__name__} input")
+        cycle = self._fed[1]
+        report_overflow(FixedValue(self.o.payload[OVERFLOW], "1.0",
+                                   None if cycle is None else cycle + self.latency, m))
 
     def results(self):
         """This block's outputs as ``{output: FixedValue | FixedVector}``, at the cycle fed plus ``latency``."""
@@ -96,14 +117,32 @@ class PipelinedBlock(wiring.Component):
     def elaborate(self, platform):
         m = Module()
         cycle = 0 if self.cycle_tags else None
-        outputs = self.datapath(m, _wrap(self.i.payload, self.config.inputs, cycle, m, names=True))
+        with overflow_flags() as flags:
+            outputs = self.datapath(m, _wrap(self.i.payload, self.config.inputs, cycle, m, names=True))
         valid = outputs.pop("valid", None)
         if valid is None:
             valid = delay(m, self.i.valid, self.latency, name="valid")
         self.output_cycles = {name: value.cycle for name, value in outputs.items()}
         _drive(m, self.o.payload, self.config.outputs, outputs, f"{type(self).__name__} output")
         m.d.comb += self.o.valid.eq(valid)
+        m.d.comb += self.o.payload[OVERFLOW].eq(self._overflow(flags) & valid if flags else Const(0))
         return m
+
+    def _overflow(self, flags):
+        """The OR of ``flags``, each delayed to the output cycle (``latency``)."""
+        untagged = [flag for flag in flags if flag.cycle is None]
+        if untagged:
+            # a block without cycle tags must tag the values it quantizes with "error"
+            raise ValueError(f"{type(self).__name__}: an overflow=\"error\" quantize has no cycle "
+                             f"tag, so its flag cannot be aligned with valid")
+        late = [flag.cycle for flag in flags if flag.cycle > self.latency]
+        if late:
+            raise ValueError(f"{type(self).__name__}: an overflow flag at cycle {late[0]} is later "
+                             f"than the latency {self.latency}")
+        any_ = Const(0)
+        for flag in flags:
+            any_ = any_ | flag.at(self.latency).value
+        return any_
 
 
 def _drive(m, payload, ports, values, what):

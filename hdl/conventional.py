@@ -54,20 +54,21 @@ class Conventional(PipelinedBlock):
         m.d.comb += port.addr.eq(address)
         return FixedValue(port.data, fmt)
 
-    def _interpolate(self, m, name, tables, code, bits, addr_bits, fmt):
+    def _interpolate(self, m, name, tables, code, bits, addr_bits, fmt, cycle):
         """``V + D·phi`` from registers holding the two words at the top ``addr_bits`` of
-        ``code`` and its low bits ``phi`` (one stage)."""
+        ``code`` and its low bits ``phi`` (one stage); ``cycle``: that stage's output cycle."""
         low = bits - addr_bits
         value = stage(m, self._rom(m, f"{name}_value", tables[0], fmt, code[low:]), f"{name}_v")
         slope = stage(m, self._rom(m, f"{name}_slope", tables[1], tables[2], code[low:]), f"{name}_d")
         phi = stage(m, FixedValue(code[:low], Format(0, low)), f"{name}_phi")
-        return value + (slope * phi).shift(-addr_bits).quantize(fmt, self.config.rounding, "error")
+        step = (slope * phi).shift(-addr_bits).tagged(cycle, m)
+        return value + step.quantize(fmt, self.config.rounding, "error")
 
     def datapath(self, m, i):
         cfg = self.config
         rounding, qfmt = cfg.rounding, cfg.q
         normal = i["normal"]
-        q = stage(m, normal.dot(normal).quantize(qfmt, "truncate", "error"), "q")
+        q = stage(m, normal.dot(normal).tagged(0, m).quantize(qfmt, "truncate", "error"), "q")
         dots = [stage(m, normal.dot(i[name]), f"d_{name}") for name in ("light", "half")]
 
         # even shift: j leading all-zero bit pairs (a priority encoder), M = Q << 2j
@@ -123,7 +124,7 @@ class Conventional(PipelinedBlock):
         n = delay(m, n, 3, "n_log")
 
         log = self._interpolate(m, "log", log2_tables(cfg), mantissa, frac, cfg.log_addr,
-                                cfg.fmt("log"))
+                                cfg.fmt("log"), cycle=9)
         s = FixedValue(stage(m, s, "s_d"), Format.covering(0, frac, 0))
         lam = stage(m, log - s, "lam")
         x = stage(m, n * lam, "x")
@@ -135,11 +136,12 @@ class Conventional(PipelinedBlock):
         lsh = stage(m, Mux(v < 0, 0, Mux(v > cfg.flush, cfg.flush, v))[:cfg.flush.bit_length()], "lsh")
         keep = stage(m, v >= 0, "keep")
         e = self._interpolate(m, "exp", exp2_tables(cfg), x.value[:xf], xf, cfg.exp_addr,
-                              cfg.fmt("exp"))
+                              cfg.fmt("exp"), cycle=12)
         e = stage(m, e, "e")
         lsh, keep = stage(m, lsh, "lsh_d"), stage(m, keep, "keep_d")
 
         wide = Format(e.fmt.int_bits, e.fmt.frac_bits + cfg.flush)
-        spec = FixedValue((e.value << lsh)[:wide.width], wide).quantize(cfg.out, cfg.rounding, "error")
+        spec = FixedValue((e.value << lsh)[:wide.width], wide, LATENCY - 1, m)
+        spec = spec.quantize(cfg.out, cfg.rounding, "error")
         spec = spec.where(keep & ~zero, FixedValue.const(0, cfg.out))
         return stage(m, spec, "specular")

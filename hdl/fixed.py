@@ -21,13 +21,24 @@ for the deepest cuts) and every parallel path is padded to match by construction
 for tests to hold against the block's ``latency`` formula.  Comparisons give plain
 1-bit values (no tag): a flag that must wait alongside the data is made with
 :meth:`FixedValue.flag`.
+
+Overflow assertions: a :meth:`FixedValue.quantize` with ``overflow="error"`` (the
+designer's claim that the value always fits) also builds, while a block is being
+elaborated, a 1-bit flag "it did not fit" at the value's cycle (:func:`overflow_flags`
+collects them; :class:`~phongfx.hdl.block.PipelinedBlock` ORs them into its ``overflow``
+output).  Simulation checks the claim on every pixel; synthesis builds under
+:func:`overflow_checks` ``(False)`` and pays nothing for it.
 """
+
+import contextlib
+import contextvars
 
 from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
 from ..format import Format, check_overflow, check_rounding
 
-__all__ = ["FixedValue", "FixedVector", "quantize", "stage", "delay", "cut", "align", "quantize_cut",
+__all__ = ["FixedValue", "FixedVector", "quantize", "overflowed", "overflow_checks", "overflow_flags",
+           "report_overflow", "stage", "delay", "cut", "align", "quantize_cut",
            "split_product", "DSP_BITS"]
 
 
@@ -49,17 +60,8 @@ def _fit(value, fmt):
     return value.as_signed() if fmt.signed else value.as_unsigned()
 
 
-def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
-    """Narrow ``value`` (raw codes of ``frm``) to ``to``; twin of ``golden.fixed.quantize_raw``.
-
-    ``overflow="error"`` declares that overflow cannot happen: the golden model
-    checks it and raises; the hardware keeps the low bits, as ``wrap`` does.
-    ``parallel_clamp`` compares with both limits side by side rather than the upper
-    one behind the lower one's multiplexer: the same codes, one comparator deep.
-    """
-    frm, to = Format.parse(frm), Format.parse(to)
-    check_rounding(rounding)
-    check_overflow(overflow)
+def _rounded(value, frm, to, rounding):
+    """``value`` (raw codes of ``frm``) rounded to ``to``'s fraction bits, not yet narrowed."""
     value = Value.cast(value)
     value = value.as_signed() if frm.signed else value.as_unsigned()
     drop = frm.frac_bits - to.frac_bits
@@ -76,14 +78,37 @@ def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
         value = value >> drop
     elif drop < 0:
         value = value << -drop
+    return value
+
+
+def _out_of_range(value, to):
+    """(below, above): 1-bit values, or None on a side ``value``'s shape cannot reach.
+
+    A comparison that is constant (an unsigned value < 0) is dead logic, and Verilator
+    lint flags it, so it is not built.
+    """
+    shape = value.shape()
+    lowest = -(1 << (shape.width - 1)) if shape.signed else 0
+    highest = (1 << (shape.width - 1 if shape.signed else shape.width)) - 1
+    return (value < to.min_raw if lowest < to.min_raw else None,
+            value > to.max_raw if highest > to.max_raw else None)
+
+
+def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
+    """Narrow ``value`` (raw codes of ``frm``) to ``to``; twin of ``golden.fixed.quantize_raw``.
+
+    ``overflow="error"`` declares that overflow cannot happen: the golden model
+    checks it and raises; the hardware keeps the low bits, as ``wrap`` does, and
+    :meth:`FixedValue.quantize` raises a simulation-only flag (see :func:`overflow_flags`).
+    ``parallel_clamp`` compares with both limits side by side rather than the upper
+    one behind the lower one's multiplexer: the same codes, one comparator deep.
+    """
+    frm, to = Format.parse(frm), Format.parse(to)
+    check_rounding(rounding)
+    check_overflow(overflow)
+    value = _rounded(value, frm, to, rounding)
     if overflow == "saturate":
-        # clamp only on a side the value can reach: a comparison that is constant
-        # (an unsigned value < 0) is dead logic, and Verilator lint flags it
-        shape = value.shape()
-        lowest = -(1 << (shape.width - 1)) if shape.signed else 0
-        highest = (1 << (shape.width - 1 if shape.signed else shape.width)) - 1
-        low = value < to.min_raw if lowest < to.min_raw else None
-        high = value > to.max_raw if highest > to.max_raw else None
+        low, high = _out_of_range(value, to)
         if parallel_clamp and low is not None and high is not None:
             value = Mux(low, to.min_raw, Mux(high, to.max_raw, value))
         else:
@@ -93,6 +118,50 @@ def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
                 # compared behind the first multiplexer (the depth-0..2 designs keep this form)
                 value = Mux(value > to.max_raw, to.max_raw, value)
     return _fit(value, to)
+
+
+def overflowed(value, frm, to, rounding):
+    """1-bit: ``value`` rounded to ``to`` lies outside it (None where it cannot)."""
+    frm, to = Format.parse(frm), Format.parse(to)
+    flags = [flag for flag in _out_of_range(_rounded(value, frm, to, rounding), to) if flag is not None]
+    return None if not flags else flags[0] if len(flags) == 1 else flags[0] | flags[1]
+
+
+#: The flags of the block being elaborated (None: checks off, or no block).
+_FLAGS = contextvars.ContextVar("phongfx_overflow_flags", default=None)
+#: Whether blocks elaborated now build overflow checks (off for synthesis).
+_CHECKS = contextvars.ContextVar("phongfx_overflow_checks", default=True)
+
+
+@contextlib.contextmanager
+def overflow_checks(enabled):
+    """Build blocks elaborated inside with (``True``, the default) or without the RTL
+    overflow flags: simulation wants them, synthesis must not pay for them."""
+    token = _CHECKS.set(bool(enabled))
+    try:
+        yield
+    finally:
+        _CHECKS.reset(token)
+
+
+@contextlib.contextmanager
+def overflow_flags():
+    """Collect, while a block's datapath is built, a 1-bit :class:`FixedValue` per
+    ``overflow="error"`` quantize that could overflow (and per sub-block fed): the list
+    yielded, or None when checks are off."""
+    flags = [] if _CHECKS.get() else None
+    token = _FLAGS.set(flags)
+    try:
+        yield flags
+    finally:
+        _FLAGS.reset(token)
+
+
+def report_overflow(flag):
+    """Add ``flag`` (a 1-bit :class:`FixedValue` at its cycle) to the block being built."""
+    flags = _FLAGS.get()
+    if flags is not None:
+        flags.append(flag)
 
 
 class FixedValue:
@@ -124,6 +193,11 @@ class FixedValue:
             index = len(self._delayed)
             self._delayed.append(stage(self.module, last, f"{self.name or 'delay'}_d{index}"))
         return self._delayed[cycle - self.cycle]
+
+    def tagged(self, cycle, module):
+        """This value declared valid at ``cycle`` in ``module``: how a block with
+        hand-aligned registers (no cycle tags) marks what its overflow flags must wait for."""
+        return FixedValue(self.value, self.fmt, cycle, module, self.name)
 
     def flag(self, condition, name=None):
         """A 1-bit :class:`FixedValue` (format ``1.0``) ``condition`` at this value's cycle."""
@@ -192,6 +266,10 @@ class FixedValue:
 
     def quantize(self, to, rounding, overflow, parallel_clamp=False):
         to = Format.parse(to)
+        if overflow == "error" and _FLAGS.get() is not None:
+            bad = overflowed(self.value, self.fmt, to, rounding)
+            if bad is not None:
+                report_overflow(self.flag(bad, "overflow"))
         return FixedValue(quantize(self.value, self.fmt, to, rounding, overflow, parallel_clamp), to,
                           self.cycle, self.module)
 

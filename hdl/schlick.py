@@ -36,7 +36,7 @@ class Schlick(PipelinedBlock):
 
     def datapath(self, m, i):
         cfg = self.config
-        t, bits = i["t"], cfg.quotient_bits
+        t, bits = i["t"].tagged(0, m), cfg.quotient_bits
         unsigned_t = Format(t.fmt.int_bits, t.fmt.frac_bits)
         u = (FixedValue.const(1, "1.0") - t).quantize(unsigned_t, "truncate", "error")
         den = stage(m, (i["n"] * u + t).quantize(cfg.den, "truncate", "error").value, "den")
@@ -54,5 +54,5 @@ class Schlick(PipelinedBlock):
                 r = stage(m, (Mux(ge, r - den, r) << 1)[:width], f"r{k + 1}")
                 den = stage(m, den, f"den{k + 1}")
         # quotient bits weigh 2^0 .. 2^-(Q-1); round_half_up drops the extra one
-        q = FixedValue(q, Format(1, bits - 1))
+        q = FixedValue(q, Format(1, bits - 1), self.latency, m)
         return {"spec": q.quantize(cfg.out, cfg.rounding, "error")}

@@ -59,7 +59,8 @@ class Spherical(PipelinedBlock):
         products = []
         for index, reg in enumerate(held):
             c = stage(m, FixedValue(reg, cfg.c), f"{name}_c{index}_d")
-            products.append(stage(m, (c * word).quantize(cfg.out, cfg.rounding, cfg.out_overflow),
+            product = (c * word).tagged(self.latency - 1, m)  # the stage before the output
+            products.append(stage(m, product.quantize(cfg.out, cfg.rounding, cfg.out_overflow),
                                   f"{name}_out{index}"))
         return products
 

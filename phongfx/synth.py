@@ -122,8 +122,10 @@ def _key(block, module, target, device, freq, seed):
 
     from .sim.verilator_backend import _digest
 
-    component = block.component()
-    design = rtlil.convert(component, name=module, emit_src=False)
+    from .hdl.fixed import overflow_checks
+
+    with overflow_checks(False):  # simulation-only flags cost nothing in the netlist
+        design = rtlil.convert(block.component(), name=module, emit_src=False)
     return _digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
                     str(seed), design, *_tool_versions(target)])
 
@@ -233,13 +235,15 @@ def _yosys_script(module, target, options):
 def _flow(block, module, target, device, freq, seed, work, progress):
     """Run the tools in ``work``; returns the result (without ``cached``, ``directory``)."""
     from .hdl.emit import payload_widths, write_verilog
+    from .hdl.fixed import overflow_checks
 
     info = TARGETS[target]
     part, flag, package, options = info.devices[device]
     component = block.component()
     in_width, out_width = payload_widths(component)
     progress("verilog")
-    write_verilog(component, module, work / f"{module}.v", emit_src=False)
+    with overflow_checks(False):  # the overflow field stays 0: no logic, no registers
+        write_verilog(component, module, work / f"{module}.v", emit_src=False)
     (work / "harness.v").write_text(harness(module, in_width, out_width))
     (work / "synth.ys").write_text(_yosys_script(module, target, options))
 

@@ -27,7 +27,9 @@ import numpy as np
 
 from ..hdl.emit import payload_widths
 from . import verilator_backend as vb
-from .harness import Mismatch, Result, _fields, _row, columns, schedule, unpack
+from ..hdl.block import checked_outputs
+from .harness import (Mismatch, Result, _fields, _row, checked_expected, columns, payload_mismatch,
+                      schedule)
 
 __all__ = ["MAIN", "words_of", "pack_words", "wrapper", "build", "stream", "check",
            "check_timed", "run"]
@@ -177,7 +179,7 @@ def stream(block, inputs, expected, slots, latency, seed):
     config = block.config
     _, in_width = _fields(config.inputs)
     vectors = pack_words(config.inputs, inputs)
-    results = pack_words(config.outputs, expected)
+    results = pack_words(checked_outputs(config), checked_expected(expected))
     cycles = len(slots) + latency
     in_words = np.zeros((cycles, vectors.shape[1]), dtype=np.uint32)
     busy = slots >= 0
@@ -256,11 +258,8 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
                 {"valid": want_valid}, {"valid": got_valid},
                 f"o.valid is {got_valid}, expected {want_valid} (latency {latency})"))
         else:
-            got = unpack(config.outputs, [_to_int(entry["got"]) >> 1])
-            result.mismatches.append(Mismatch(
-                cycle, index, _row(config.inputs, inputs, index),
-                _row(config.outputs, expected, index), _row(config.outputs, got, 0),
-                "payload differs"))
+            result.mismatches.append(payload_mismatch(config, inputs, expected, index, cycle,
+                                                      _to_int(entry["got"]) >> 1))
     result.mismatch_count = int(mismatches)
     times["report"] = time.perf_counter() - start
     return result, times

@@ -5,7 +5,9 @@ per-cycle schedule (back to back, or with seeded random ``valid`` bubbles whose
 payload is random junk), runs the component on a back end, and compares every
 output cycle with the golden model: ``o.valid`` must rise exactly ``latency``
 cycles after each valid input and nowhere else, and the payload of each valid
-output must equal the golden output bit for bit.
+output must equal the golden output bit for bit, with the RTL's overflow flag
+(:data:`~phongfx.hdl.block.OVERFLOW`) low: the assertion that no ``overflow="error"``
+quantize met a value its format cannot hold.
 
 Back ends (see :data:`BACKENDS`): ``amaranth`` (Amaranth's simulator, optional VCD),
 ``verilator`` (the emitted Verilog under cocotb + Verilator) and ``verilator-fast``
@@ -20,8 +22,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..hdl.block import OVERFLOW, checked_outputs
+
 __all__ = ["BACKENDS", "Mismatch", "Result", "HarnessMismatch", "columns", "pack", "unpack", "schedule",
-           "check", "run_backend"]
+           "checked_expected", "payload_mismatch", "check", "run_backend"]
 
 BACKENDS = ("amaranth", "verilator", "verilator-fast")
 
@@ -146,6 +150,27 @@ class Result:
             raise HarnessMismatch(self.describe())
 
 
+def checked_expected(expected):
+    """The golden outputs and :data:`~phongfx.hdl.block.OVERFLOW` all 0: the golden model
+    raises on an undeclared overflow, so every output it gives must come without one."""
+    count = len(np.asarray(next(iter(expected.values()))))
+    return {**expected, OVERFLOW: np.zeros(count, dtype=np.int64)}
+
+
+def payload_mismatch(config, inputs, expected, index, cycle, got_packed):
+    """The :class:`Mismatch` of a valid output whose packed payload differs from golden."""
+    ports = checked_outputs(config)
+    got = _row(ports, unpack(ports, [got_packed]), 0)
+    want = _row(ports, checked_expected(expected), index)
+    what = "payload differs"
+    if got[OVERFLOW] and {k: v for k, v in got.items() if k != OVERFLOW} == \
+            {k: v for k, v in want.items() if k != OVERFLOW}:
+        what = "RTL overflow that the golden model did not predict"
+    elif got[OVERFLOW]:
+        what = "payload differs, and the RTL overflowed where the golden model did not"
+    return Mismatch(cycle, index, _row(config.inputs, inputs, index), want, got, what)
+
+
 def run_backend(backend, component, in_valid, in_payload, cycles, **options):
     """Run ``component`` for ``cycles`` clocks; returns (out_valid, out_payload) lists."""
     if backend == "amaranth":
@@ -195,7 +220,7 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
     if expected is None:
         expected = block.golden(inputs)
     packed_in = pack(config.inputs, inputs)
-    packed_out = pack(config.outputs, expected)
+    packed_out = pack(checked_outputs(config), checked_expected(expected))
     count = len(packed_in)
 
     slots = schedule(count, bubbles, seed)
@@ -231,9 +256,6 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
                 f"o.valid is {out_valid[cycle]}, expected {want_valid} (latency {latency})"),
                 max_report)
         elif want_valid and out_payload[cycle] != packed_out[index]:
-            got = unpack(config.outputs, [out_payload[cycle]])
-            result._add(Mismatch(
-                cycle, index, _row(config.inputs, inputs, index),
-                _row(config.outputs, expected, index), _row(config.outputs, got, 0),
-                "payload differs"), max_report)
+            result._add(payload_mismatch(config, inputs, expected, index, cycle, out_payload[cycle]),
+                        max_report)
     return result

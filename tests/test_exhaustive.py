@@ -8,7 +8,9 @@ largest whole ones we check:
   k = 2 (about 11 s and 3.4 GB here), the other k in the slow run;
 * the spherical unit's angle register and both ROMs: every one of the 2^12 codes of
   ``θ`` loaded by a one-pixel span (``s = 0``) with the largest ``C``, through the
-  specular and diffuse channels at once.
+  specular and diffuse channels at once;
+* Schlick's unit, every ``t`` in 0..1 (2^15 + 1 codes of ``1.15``) at n = 1, 2, 16, 255
+  and 8000: slices of its 2^29-code space, one per divisor range of the divider.
 """
 
 import numpy as np
@@ -56,3 +58,18 @@ def test_spherical_every_angle_code_through_both_roms():
     quarter = 1 << (theta.width - 2)
     assert np.all(spec[np.abs(codes) >= quarter + (1 << (theta.width - block.config.addr_bits))] == 0)
     assert np.all(spec[np.abs(codes) < quarter - (1 << (theta.width - block.config.addr_bits))] > 0)
+
+
+def test_schlick_every_t_at_several_n():
+    block = get_block("schlick")
+    one = block.config.fmt("t").exact_raw(1.0)
+    shininess = (1, 2, 16, 255, block.config.n_max)
+    t = np.tile(np.arange(one + 1, dtype=np.int64), len(shininess))
+    n = np.repeat(np.array(shininess, dtype=np.int64), one + 1)
+    result = check(block, {"t": t, "n": n}, backend="verilator-fast", bubbles=0.1, seed=2)
+    assert result.vectors == len(shininess) * ((1 << 15) + 1)
+    result.raise_on_mismatch()
+    spec = block.golden({"t": t, "n": n})["spec"].reshape(len(shininess), one + 1)
+    np.testing.assert_array_equal(spec[0], np.arange(one + 1))  # S_1(t) = t
+    assert np.all(spec[:, -1] == one) and np.all(spec[:, 0] == 0)  # S_n(1) = 1, S_n(0) = 0
+    assert np.all(np.diff(spec, axis=1) >= 0)  # monotonic in t for every n

@@ -18,6 +18,7 @@ import pytest
 from phongfx.blocks import get_block
 from phongfx.format import OVERFLOWS
 from phongfx.golden.fixed import Fixed, FixedOverflowError, quantize_raw
+from phongfx.hdl.fixed import overflow_checks
 from phongfx.sim.harness import check
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -157,10 +158,16 @@ def test_block_golden_raises_on_an_overflow_it_declared_impossible():
         block.golden(inputs)
 
 
-def test_rtl_keeps_low_bits_on_declared_error_overflow():
-    """The documented HDL behaviour of ``overflow="error"`` (:func:`phongfx.hdl.fixed.quantize`):
-    no check, the low bits are kept, so +1.0 leaves an ``S0.10`` port as −1.0.  Nothing in
-    simulation flags it yet (see the robustness report); this pins what the RTL does."""
+def test_rtl_flags_a_declared_error_overflow():
+    """The HDL behaviour of ``overflow="error"`` (:func:`phongfx.hdl.fixed.quantize`): the low
+    bits are kept (+1.0 leaves an ``S0.10`` port as −1.0) and the block's overflow flag rises,
+    so the harness reports the cycle even when handed the wrapped value as "expected"."""
     block, inputs = _lirp_narrow()
     wrapped = {"n": np.array([[-1024, 0, 0]])}  # 1024 in 11 bits, two's complement
-    assert check(block, inputs, expected=wrapped, bubbles=0).ok
+    result = check(block, inputs, expected=wrapped, bubbles=0)
+    assert result.mismatch_count == 1
+    mm = result.mismatches[0]
+    assert (mm.cycle, mm.what) == (block.latency, "RTL overflow that the golden model did not predict")
+    assert mm.got == {"n": [-1024, 0, 0], "overflow": 1}
+    with overflow_checks(False):  # as synthesized: the same low bits, no flag
+        assert check(block, inputs, expected=wrapped, bubbles=0).ok

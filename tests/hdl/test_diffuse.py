@@ -10,7 +10,7 @@ def test_latency_and_ports():
     dut = Diffuse(DiffuseConfig())
     assert dut.latency == 2
     assert len(dut.i.payload.as_value()) == 2 * 3 * 12
-    assert len(dut.o.payload.as_value()) == 11
+    assert len(dut.o.payload.as_value()) == 11 + 1  # and the overflow flag
 
 
 def test_constructor_wants_its_config():

@@ -13,7 +13,7 @@ def test_latency_and_ports():
     assert dut.latency == 1
     # init 1, p0 32, t0 34, ds 34; p 32, level 8
     assert len(dut.i.payload.as_value()) == 1 + 32 + 34 + 34
-    assert len(dut.o.payload.as_value()) == 32 + 8
+    assert len(dut.o.payload.as_value()) == 32 + 8 + 1  # and the overflow flag
 
 
 def test_constructor_wants_its_config():

@@ -11,7 +11,7 @@ def test_latency_and_ports():
     dut = Gouraud(GouraudConfig())
     assert dut.latency == 1
     assert len(dut.i.payload.as_value()) == 1 + 32 + 34
-    assert len(dut.o.payload.as_value()) == 32 + 8
+    assert len(dut.o.payload.as_value()) == 32 + 8 + 1  # and the overflow flag
 
 
 def test_constructor_wants_its_config():

@@ -15,7 +15,7 @@ def test_latency_and_ports(variant, h):
     dut = Halfway(HalfwayConfig(variant=variant, h=h))
     assert dut.latency == LATENCY[variant]
     assert len(dut.i.payload.as_value()) == 3 * 3 * 12
-    assert len(dut.o.payload.as_value()) == 2 * 3 * 13
+    assert len(dut.o.payload.as_value()) == 2 * 3 * 13 + 1  # and the overflow flag
 
 
 def test_constructor_wants_its_config():

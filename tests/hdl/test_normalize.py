@@ -11,7 +11,7 @@ def test_latency_and_ports(order):
     dut = Normalize(NormalizeConfig(order=order))
     assert dut.latency == 4  # the same for both orders: drop-in interchangeable
     assert len(dut.i.payload.as_value()) == 3 * 12
-    assert len(dut.o.payload.as_value()) == 3 * 12
+    assert len(dut.o.payload.as_value()) == 3 * 12 + 1  # and the overflow flag
 
 
 def test_constructor_wants_its_config():

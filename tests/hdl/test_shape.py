@@ -12,7 +12,7 @@ def test_latency_and_ports(k):
     dut = Shape(ShapeConfig(k=k))
     assert dut.latency == 1 + k
     assert len(dut.i.payload.as_value()) == 25
-    assert len(dut.o.payload.as_value()) == 16
+    assert len(dut.o.payload.as_value()) == 16 + 1  # and the overflow flag
 
 
 def test_constructor_wants_its_config():

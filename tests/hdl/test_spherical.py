@@ -13,7 +13,7 @@ def test_latency_and_ports():
     assert dut.latency == 3
     # init 1, b s bd sd 4 × 12, c 12, cd 3 × 12; spec and diff 4 × 12
     assert len(dut.i.payload.as_value()) == 1 + 4 * 12 + 12 + 36
-    assert len(dut.o.payload.as_value()) == 48
+    assert len(dut.o.payload.as_value()) == 48 + 1  # and the overflow flag
 
 
 def test_constructor_wants_its_config():

@@ -194,10 +194,11 @@ def test_truncation_is_caught(backend):
     mm = result.mismatches[0]
     assert (mm.cycle, mm.index, mm.what) == (first + 2, first, "payload differs")
     assert mm.inputs == _row(inputs, first)
-    assert mm.expected == {"n": golden[first].tolist()}
-    assert mm.got == {"n": truncated[first].tolist()}
+    assert mm.expected == {"n": golden[first].tolist(), "overflow": 0}
+    assert mm.got == {"n": truncated[first].tolist(), "overflow": 0}
     report = (f"cycle {first + 2}: payload differs; input #{first} {_row(inputs, first)}; "
-              f"golden {{'n': {golden[first].tolist()}}}; rtl {{'n': {truncated[first].tolist()}}}")
+              f"golden {{'n': {golden[first].tolist()}, 'overflow': 0}}; "
+              f"rtl {{'n': {truncated[first].tolist()}, 'overflow': 0}}")
     assert report in result.describe()
     with pytest.raises(HarnessMismatch, match=re.escape(report)):
         result.raise_on_mismatch()
@@ -218,8 +219,8 @@ def test_overstated_latency_is_caught(backend):
     mm = result.mismatches[0]
     assert (mm.cycle, mm.index, mm.what) == (first + 3, first, "payload differs")
     assert mm.inputs == _row(inputs, first)
-    assert mm.expected == {"n": golden[first].tolist()}
-    assert mm.got == {"n": golden[first + 1].tolist()}
+    assert mm.expected == {"n": golden[first].tolist(), "overflow": 0}
+    assert mm.got == {"n": golden[first + 1].tolist(), "overflow": 0}
     assert f"cycle {first + 3}: payload differs; input #{first} " in result.describe()
 
 
@@ -235,8 +236,8 @@ def test_understated_latency_is_caught(backend):
     assert result.mismatch_count == len(differ)
     mm = result.mismatches[0]
     assert (mm.cycle, mm.index) == (2, 0)
-    assert mm.expected == {"n": golden[0].tolist()}
-    assert mm.got == {"n": [0, 0, 0]}
+    assert mm.expected == {"n": golden[0].tolist(), "overflow": 0}
+    assert mm.got == {"n": [0, 0, 0], "overflow": 0}
     assert f"cycle 2: payload differs; input #0 {_row(inputs, 0)}; " in result.describe()
 
 
