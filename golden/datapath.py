@@ -27,7 +27,8 @@ def datapath(config, **ports):
     config : DatapathConfig
     ports : Fixed
         ``n0``, ``n1`` (span-end normals; equal with ``a = 0`` for exact normals), ``a``,
-        the shininess ``n`` (or ``m`` for Figure 8), ``v`` or ``v0``/``v1`` (local viewer),
+        the shininess ``n`` (or ``m`` for Figure 8; none when ``config.shininess_const``
+        fixes it), ``v`` or ``v0``/``v1`` (local viewer),
         and ``l<i>`` or ``l<i>_0``/``l<i>_1`` (local lights), as ``config.inputs`` lists.
 
     Returns
@@ -43,7 +44,8 @@ def datapath(config, **ports):
     normal = interpolated(ports["n0"], ports["n1"], config.normalize)
     view = (interpolated(ports["v0"], ports["v1"], config.direction_normalize)
             if config.local_viewer else ports["v"])
-    shininess = ports[config.shininess[0]]
+    # a constant shininess (config.shininess None) lives in the unit's own config
+    shininess = ports[config.shininess[0]] if config.shininess is not None else None
     if config.specular in ("fig7", "fig8"):
         r = reflect(config.reflect, normal, view)["r"]
     out = {}
@@ -57,7 +59,8 @@ def datapath(config, **ports):
             out[f"spec{index}"] = root(config.root, r, light, shininess)["spec"]
         else:
             d = halfway(config.halfway, normal, light, view)
-            x2 = difference(config.difference, d["p"], d["q"], shininess.shift(config.halfway_shift))["x2"]
+            scaled = shininess.shift(config.halfway_shift) if shininess is not None else None
+            x2 = difference(config.difference, d["p"], d["q"], scaled)["x2"]
             out[f"spec{index}"] = shape(config.shape, x2)["spec"]
         out[f"diff{index}"] = diffuse(config.diffuse, normal, light)["diff"]
     return out

@@ -18,14 +18,33 @@ already gives a specular amount of 0, so a clamped ``2x`` changes nothing.
 
 Error against exact ``n·|R-L|²`` on the same codes, when nothing saturates:
 ``D`` and ``D·D`` are exact, ``2x`` is within 1/2 LSB (``2^-13``).
+
+With :attr:`~phongfx.config.DifferenceConfig.n_const` set, ``n`` is that constant in the
+same format ``n``: the product and its rounding are those of feeding it on the port.
 """
 
-from .fixed import check_range
+import numpy as np
 
-__all__ = ["difference"]
+from .fixed import Fixed, check_range
+
+__all__ = ["difference", "shininess_input"]
 
 
-def difference(config, r, l, n):
+def shininess_input(name, value, constant, fmt, top, count):
+    """The shininess operand ``name`` (``n`` or ``m``): the port's ``value`` (checked to lie
+    in ``1..top``) when ``constant`` is 0, else ``constant`` in ``fmt`` for each of ``count``
+    cases, which must then come without a port value."""
+    if constant:
+        if value is not None:
+            raise ValueError(f"{name} must not be given: {name}_const = {constant} fixes it")
+        return Fixed(np.full(count, constant), fmt)
+    if value is None:
+        raise ValueError(f"{name} must be given: {name}_const = 0 makes it an input")
+    check_range(name, value, 1, top)
+    return value
+
+
+def difference(config, r, l, n=None):
     """``2x = n·(R-L)·(R-L)`` for reflected view ``r``, light ``l`` and shininess ``n``.
 
     Parameters
@@ -33,13 +52,14 @@ def difference(config, r, l, n):
     config : DifferenceConfig
     r, l : Fixed, shape (count, 3), format ``config.vec``
     n : Fixed, shape (count,), format ``config.n``, integers 1..``config.n_max``
+        Exactly when ``config.n_const`` is 0 (``n`` is a port); otherwise None.
 
     Returns
     -------
     dict
         ``{"x2": Fixed (count,) in config.x2}``
     """
-    check_range("n", n, 1, config.n_max)
+    n = shininess_input("n", n, config.n_const, config.n, config.n_max, len(r))
     d = (r - l).quantize(config.d, config.rounding, "saturate", op="difference D")
     dd = d.dot(d).quantize(config.dd, config.rounding, "saturate", op="difference D·D")
     return {"x2": (n * dd).quantize(config.x2, config.rounding, "saturate", op="difference 2x")}

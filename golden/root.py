@@ -54,13 +54,14 @@ small or odd ``m``, near nothing where ``m`` is a multiple of ``2^(s+1)`` (no bi
 import numpy as np
 
 from ..format import Format
-from .fixed import Fixed, check_range
+from .difference import shininess_input
+from .fixed import Fixed
 from .shape import shape
 
 __all__ = ["root"]
 
 
-def root(config, r, l, m):
+def root(config, r, l, m=None):
     """Specular amount ``f_k(x)``, ``x = (m²/2)·|R-L|²``, by Figure 8's datapath.
 
     Parameters
@@ -68,13 +69,15 @@ def root(config, r, l, m):
     config : RootConfig
     r, l : Fixed, shape (count, 3), format ``config.vec``
     m : Fixed, shape (count,), format ``config.m``, integers 1..``config.m_max``
+        Exactly when ``config.m_const`` is 0 (``m`` is a port); otherwise None: ``m`` is
+        ``m_const`` in format ``m``, the same codes as feeding it on the port.
 
     Returns
     -------
     dict
         ``{"spec": Fixed (count,) in config.t}``
     """
-    check_range("m", m, 1, config.m_max)
+    m = shininess_input("m", m, config.m_const, config.m, config.m_max, len(r))
     d = (r - l).quantize(config.d, config.rounding, "saturate", op="root D")
     # rectifier: negator and multiplexer; only D = -2^int_bits saturates into the unsigned twin
     neg = -d

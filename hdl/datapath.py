@@ -31,6 +31,10 @@ class Datapath(PipelinedBlock):
     own pipeline depth (``DatapathConfig.pipeline`` sets them all at once: 17, 25, 34, 43
     cycles for Figure 7 and 15, 22, 31, 37 for Figure 8 at depths 0–3).  Side inputs
     wait by the cycle tags of :mod:`phongfx.hdl.fixed`, so any depth lines up.
+
+    A constant shininess (``difference.n_const``, ``root.m_const``; see
+    :attr:`~phongfx.config.DatapathConfig.shininess_const`) removes the ``n`` / ``m``
+    port and its delay line; the unit multiplies by the constant, in the same cycles.
     """
 
     config_class = DatapathConfig
@@ -96,22 +100,23 @@ class Datapath(PipelinedBlock):
         if self._reflect is not None:
             self._reflect.feed(m, valid, {"n": normal, "v": view})
             r, unit_valid = self._reflect.results()["r"], self._reflect.o.valid
-        shininess_name = c.shininess[0]
-        shininess = delay(m, i[shininess_name], self._to_unit, shininess_name)
+        # a constant shininess (c.shininess None) lives in the unit's own config: no port
+        side = {}
+        if c.shininess is not None:
+            name = c.shininess[0]
+            side[name] = delay(m, i[name], self._to_unit, name)
         out = {}
         for index, (unit, diffuse) in enumerate(zip(self._units, self._diffuse)):
             light = vectors[f"l{index}"]
-            if c.specular == "fig8":
+            if c.specular in ("fig7", "fig8"):
                 unit[0].feed(m, unit_valid, {"r": r, "l": delay(m, light, self._reflect.latency),
-                                             "m": shininess})
-            elif c.specular == "fig7":
-                unit[0].feed(m, unit_valid, {"r": r, "l": delay(m, light, self._reflect.latency),
-                                             "n": shininess})
+                                             **side})
             else:
                 unit[0].feed(m, valid, {"n": normal, "l": light, "v": view})
-                scaled = delay(m, shininess, unit[0].latency).shift(c.halfway_shift)
+                scaled = {name: delay(m, value, unit[0].latency).shift(c.halfway_shift)
+                          for name, value in side.items()}
                 d = unit[0].results()
-                unit[1].feed(m, unit[0].o.valid, {"r": d["p"], "l": d["q"], "n": scaled})
+                unit[1].feed(m, unit[0].o.valid, {"r": d["p"], "l": d["q"], **scaled})
             if c.specular != "fig8":
                 unit[-1].feed(m, unit[-2].o.valid, unit[-2].results())
             out[f"spec{index}"] = unit[-1].results()["spec"]

@@ -7,6 +7,7 @@ from amaranth.hdl import Cat
 from ..config import RootConfig
 from ..format import Format
 from .block import PipelinedBlock
+from .difference import const_product
 from .fixed import FixedValue, FixedVector, cut, delay, stage
 from .shape import Shape
 
@@ -34,8 +35,12 @@ class Root(PipelinedBlock):
     The flag waits (automatically) alongside the sum and the shape, and its multiplexer
     follows the shape's.
 
-    Ports: ``i.payload`` = ``r``, ``l`` (3 × ``config.vec``), ``m`` (``config.m``);
-    ``o.payload`` = ``spec`` (``config.t``).
+    With ``config.m_const`` there is no ``m`` port and the three multipliers are constant
+    ones, shifts and adds (:func:`~phongfx.hdl.difference.const_product`; none for a power
+    of two), with the same codes, registers and latency.
+
+    Ports: ``i.payload`` = ``r``, ``l`` (3 × ``config.vec``), ``m`` (``config.m``; absent
+    when ``config.m_const`` is set); ``o.payload`` = ``spec`` (``config.t``).
     """
 
     config_class = RootConfig
@@ -56,7 +61,11 @@ class Root(PipelinedBlock):
         d = cut(m, i["r"] - i["l"], depth >= 2, "dsub").quantize(cfg.d, cfg.rounding, "saturate")
         d = cut(m, d, depth >= 2, "d")
         magnitude = cut(m, FixedVector(_rectify(di, cfg.rounding) for di in d), depth >= 1, "abs")
-        md = stage(m, magnitude * cut(m, i["m"], depth >= 1, "m_in"), "md")
+        if cfg.m_const:
+            md = FixedVector(const_product(m, mi, cfg.m_const, cfg.m, False, f"md_{axis}")
+                             for mi, axis in zip(magnitude, "xyz"))
+        else:
+            md = stage(m, magnitude * cut(m, i["m"], depth >= 1, "m_in"), "md")
         u = md.shift(-cfg.shift)
         big = md[0].flag(Cat(*(ui >= 1 for ui in u)).any(), "big")
         frac = u.quantize(cfg.frac, "truncate", "wrap")

@@ -195,7 +195,15 @@ class ReflectConfig(BlockConfig):
 
 @dataclass(frozen=True)
 class DifferenceConfig(BlockConfig):
-    """Figure 7c difference vector and ``2x = n·D·D``; ``n`` is an integer ``1..n_max``."""
+    """Figure 7c difference vector and ``2x = n·D·D``; ``n`` is an integer ``1..n_max``.
+
+    ``n_const``: 0 (default) takes ``n`` per pixel on the ``n`` port, through a full
+    ``n × D·D`` multiplier; ``1..n_max`` fixes ``n`` in the hardware (issue 7 §2.2, "a
+    constant multiplier (or none) for a single n"): no ``n`` port, a multiplication
+    by a constant in shifts and adds (a pure shift for a power of two; see
+    :func:`phongfx.hdl.difference.const_product`), the same codes as feeding
+    ``n = n_const`` on the port, in the same cycles.
+    """
 
     vec: str = "S1.10"
     d: str = "S1.10"
@@ -205,6 +213,7 @@ class DifferenceConfig(BlockConfig):
     x2: str = "13.12"
     rounding: str = "round_half_up"
     pipeline: int = 0
+    n_const: int = 0
 
     def validate(self):
         _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
@@ -212,11 +221,15 @@ class DifferenceConfig(BlockConfig):
         _fmt("d", self.d, signed=True)
         _fmt("dd", self.dd, signed=False)
         _int("n_max", self.n_max, 1, _integer_fmt("n", self.n).max_raw)
+        _int("n_const", self.n_const, 0, self.n_max)
         _fmt("x2", self.x2, signed=False)
 
     @property
     def inputs(self):
-        return {"r": (self.fmt("vec"), 3), "l": (self.fmt("vec"), 3), "n": (self.fmt("n"), 1)}
+        ports = {"r": (self.fmt("vec"), 3), "l": (self.fmt("vec"), 3)}
+        if not self.n_const:
+            ports["n"] = (self.fmt("n"), 1)
+        return ports
 
     @property
     def outputs(self):
@@ -281,7 +294,10 @@ class RootConfig(BlockConfig):
 
     ``frac`` is the fraction of each ``u_i = m|D_i|/2^s`` that the dot product sees;
     :attr:`shift` is ``s`` and :attr:`shape` the Figure 7d config fed with ``2x``
-    (see :mod:`phongfx.golden.root`).
+    (see :mod:`phongfx.golden.root`).  ``m_const``: 0 (default) takes ``m`` per pixel on
+    the ``m`` port; ``1..m_max`` fixes it in the hardware (no ``m`` port; the three
+    ``m × |D_i|`` become constant multiplications), with the codes and latency of
+    feeding ``m = m_const``, as :attr:`DifferenceConfig.n_const` does for ``n``.
     """
 
     vec: str = "S1.10"
@@ -293,12 +309,14 @@ class RootConfig(BlockConfig):
     t: str = "1.15"
     rounding: str = "round_half_up"
     pipeline: int = 0
+    m_const: int = 0
 
     def validate(self):
         _int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         _fmt("vec", self.vec, signed=True)
         _fmt("d", self.d, signed=True)
         _int("m_max", self.m_max, 1, _integer_fmt("m", self.m).max_raw)
+        _int("m_const", self.m_const, 0, self.m_max)
         frac = _fmt("frac", self.frac, signed=False)
         if frac.int_bits:
             raise ValueError(f"frac must be a fraction-only format (0.m), not {frac}")
@@ -327,7 +345,10 @@ class RootConfig(BlockConfig):
 
     @property
     def inputs(self):
-        return {"r": (self.fmt("vec"), 3), "l": (self.fmt("vec"), 3), "m": (self.fmt("m"), 1)}
+        ports = {"r": (self.fmt("vec"), 3), "l": (self.fmt("vec"), 3)}
+        if not self.m_const:
+            ports["m"] = (self.fmt("m"), 1)
+        return ports
 
     @property
     def outputs(self):
@@ -682,6 +703,11 @@ class DatapathConfig(BlockConfig):
 
     ``pipeline`` raises the pipeline depth of every block config to at least its value
     (``fig7_config(pipeline=2)``, ``--set pipeline=2``); a block's own field may go deeper.
+
+    A single shininess is fixed in the unit's own config: ``difference.n_const`` (Figure 7;
+    for the halfway unit the scaled ``n·2^halfway_shift``) or ``root.m_const`` (Figure 8).
+    Then :attr:`inputs` has no ``n`` / ``m`` port, :attr:`shininess` is None and
+    :attr:`shininess_const` gives the constant.
     """
 
     specular: str = "fig7"
@@ -741,13 +767,23 @@ class DatapathConfig(BlockConfig):
             if self.difference.fmt("n").int_bits < self.halfway_shift + 1:
                 raise ValueError(f"difference.n must have at least {self.halfway_shift + 1} integer "
                                  f"bits to take n·2^{self.halfway_shift}, not {self.difference.n}")
+            if self.difference.n_const % (1 << self.halfway_shift):
+                raise ValueError(f"difference.n_const must be a multiple of {1 << self.halfway_shift} "
+                                 f"(it is n·2^{self.halfway_shift}), not {self.difference.n_const}")
         for a_name, a, b_name, b in links:
             if Format.parse(a) != Format.parse(b):
                 raise ValueError(f"{a_name} ({a}) must equal {b_name} ({b}): they are connected")
 
     @property
     def shininess(self):
-        """(port name, format, largest value) of the per-pixel shininess input."""
+        """(port name, format, largest value) of the per-pixel shininess input, or None when
+        the shininess is a constant of the hardware (:attr:`shininess_const`): no such port.
+
+        The port is ``m = √n`` for Figure 8, else ``n``; for the halfway unit, ``n`` before
+        its scaling by ``2^halfway_shift``.
+        """
+        if self.shininess_const:
+            return None
         if self.specular == "fig8":
             return "m", self.root.fmt("m"), self.root.m_max
         n = self.difference.fmt("n")
@@ -755,6 +791,20 @@ class DatapathConfig(BlockConfig):
             shift = self.halfway_shift
             return "n", Format(n.int_bits - shift, 0), self.difference.n_max >> shift
         return "n", n, self.difference.n_max
+
+    @property
+    def shininess_const(self):
+        """The shininess fixed in the hardware, in the port's terms (``m`` for Figure 8, else
+        ``n``), or 0 when it is a per-pixel input.
+
+        From ``root.m_const`` (Figure 8) or ``difference.n_const`` (Figure 7, halfway).  The
+        halfway unit's difference block multiplies by ``n·2^halfway_shift``, so its
+        ``n_const`` is that product (validated a multiple of ``2^halfway_shift``): the pixel
+        sees ``n = difference.n_const >> halfway_shift``, bit for bit as if fed on the port.
+        """
+        if self.specular == "fig8":
+            return self.root.m_const
+        return self.difference.n_const >> (self.halfway_shift if self.specular == "halfway" else 0)
 
     @property
     def halfway_shift(self):
@@ -769,8 +819,10 @@ class DatapathConfig(BlockConfig):
     @property
     def inputs(self):
         vec, end = self.normalize.fmt("out"), self.lirp.fmt("vec")
-        name, fmt, _ = self.shininess
-        ports = {"n0": (end, 3), "n1": (end, 3), "a": (self.lirp.fmt("a"), 1), name: (fmt, 1)}
+        ports = {"n0": (end, 3), "n1": (end, 3), "a": (self.lirp.fmt("a"), 1)}
+        if self.shininess is not None:
+            name, fmt, _ = self.shininess
+            ports[name] = (fmt, 1)
         if self.local_viewer:
             ports.update({"v0": (end, 3), "v1": (end, 3)})
         else:

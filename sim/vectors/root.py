@@ -1,4 +1,8 @@
-"""Stimulus for the root-shininess unit: R = ±L, extreme m, both comparators' edges, random."""
+"""Stimulus for the root-shininess unit: R = ±L, extreme m, both comparators' edges, random.
+
+With ``m_const`` set, every case takes that m (the comparators' edges are those of the one
+m the hardware has) and no ``m`` port is returned.
+"""
 
 import numpy as np
 
@@ -37,7 +41,9 @@ def _directed(config, ms, d):
 def vectors(config, count=1000, seed=0):
     vec, mfmt, dfmt = config.fmt("vec"), config.fmt("m"), config.fmt("d")
     g = rng(seed)
-    ms = sorted({1, min(2, config.m_max), (1 + config.m_max) // 2, config.m_max})
+    # the m range the hardware takes: 1..m_max, or the constant
+    lo, hi = (config.m_const, config.m_const) if config.m_const else (1, config.m_max)
+    ms = sorted({lo, min(lo + 1, hi), (lo + hi) // 2, hi})
 
     # every pair of ± AXES (R = L: x = 0; R = -L: |D| = 2, rectified -2 saturating;
     # 90°, a grazing light), and off-axis R = L and R = -L, at m = 1, m_max and between
@@ -50,7 +56,7 @@ def vectors(config, count=1000, seed=0):
 
     # augmented comparator, every m: along ±X, the largest |D| with u < 1 and the
     # smallest with u >= 1 (its fraction near 0: without the flag, a peak of ~1.0)
-    every = np.arange(1, config.m_max + 1)
+    every = np.arange(lo, hi + 1)
     edge = -(-(1 << (dfmt.frac_bits + config.shift)) // every)
     mags = np.stack([edge - 1, edge], axis=-1).ravel()
     keep = mags <= dfmt.max_raw
@@ -63,7 +69,7 @@ def vectors(config, count=1000, seed=0):
     # the last code below and the first at or past the shape's threshold (or the flag)
     rows, mrows = [], []
     steps = np.arange(1 << (dfmt.int_bits + dfmt.frac_bits + 1))
-    for mi in sorted({1, 3, 7, 16, 40, config.m_max} & set(every.tolist())):
+    for mi in sorted({lo, 3, 7, 16, 40, hi} & set(every.tolist())):
         for w in np.concatenate([AXES[:3], unit_vectors(6, g)]):
             d = np.clip(np.rint(steps[:, None] * w), dfmt.min_raw, dfmt.max_raw).astype(np.int64)
             big_, v = fraction_codes(config, np.full(len(d), mi), d)
@@ -75,14 +81,15 @@ def vectors(config, count=1000, seed=0):
 
     # grazing approach to the peak: x = (m²/2)·α² over 0 .. 2^(k+1), denser near 0
     n = 4 * count // 10 + 1
-    m_near = random_codes(mfmt, n, g, 1, config.m_max)
+    m_near = random_codes(mfmt, n, g, lo, hi)
     alpha = np.sqrt(2 * 2.0 ** (config.k + 1) * g.uniform(0, 1, n) ** 2) / m_near
     r_near, l_near = at_angle(alpha, g)
     near = {"r": codes(r_near, vec), "l": codes(l_near, vec), "m": m_near}
 
     # seeded random unit pairs, and raw codes over the whole vec format (|D| up to 4)
     unit = {"r": codes(unit_vectors(count, g), vec), "l": codes(unit_vectors(count, g), vec),
-            "m": random_codes(mfmt, count, g, 1, config.m_max)}
+            "m": random_codes(mfmt, count, g, lo, hi)}
     full = {"r": random_codes(vec, (count, 3), g), "l": random_codes(vec, (count, 3), g),
-            "m": random_codes(mfmt, count, g, 1, config.m_max)}
-    return concat(axis, big, threshold, near, unit, full)
+            "m": random_codes(mfmt, count, g, lo, hi)}
+    raw = concat(axis, big, threshold, near, unit, full)
+    return {name: raw[name] for name in config.inputs}

@@ -2,7 +2,8 @@ import numpy as np
 import pytest
 
 from phongfx.blocks import get_block
-from phongfx.config import DatapathConfig, ShapeConfig
+from phongfx.config import (DatapathConfig, DifferenceConfig, RootConfig, ShapeConfig, fig7_config,
+                             fig8_config, halfway_config)
 from phongfx.golden.reference import specular
 
 LSB = 2.0 ** -10
@@ -101,3 +102,55 @@ def test_halfway_conventions_agree_on_x():
     raw = mean.vectors(count=400, seed=12)
     # measured 2.75: the mean convention's D has half the resolution, seen at n up to 8000
     assert _levels(mean, raw, total, raw) < 4
+
+
+def _halfway_difference(n_const=0):
+    return DifferenceConfig(vec="S2.10", n="15.0", n_max=32000, n_const=n_const)
+
+
+@pytest.mark.parametrize("name, unit, port, value", [
+    ("fig7", dict(difference=DifferenceConfig(n_const=16)), "n", 16),
+    ("fig7", dict(difference=DifferenceConfig(n_const=8000)), "n", 8000),
+    ("fig8", dict(root=RootConfig(m_const=4)), "m", 4),
+    ("fig8", dict(root=RootConfig(m_const=1)), "m", 1),
+    # the halfway unit's difference block multiplies by n·2^2: its n_const 64 is n = 16
+    ("halfway_datapath", dict(difference=_halfway_difference(64)), "n", 16),
+])
+def test_constant_shininess_gives_the_codes_of_the_port(name, unit, port, value):
+    fixed, fed = get_block(name, **unit), get_block(name)
+    assert fixed.config.shininess is None and fixed.config.shininess_const == value
+    assert fed.config.shininess[0] == port and fed.config.shininess_const == 0
+    assert set(fed.config.inputs) - set(fixed.config.inputs) == {port}
+    raw = fixed.vectors(count=300, seed=6)
+    assert port not in raw
+    a, b = fixed.golden(raw), fed.golden(dict(raw, **{port: np.full(len(raw["a"]), value)}))
+    assert a.keys() == b.keys()
+    for key in a:
+        assert np.array_equal(a[key], b[key]), key
+    assert len(np.unique(a["spec0"])) > 20  # compared on varied amounts, not on all 0
+
+
+def test_constant_shininess_keeps_the_latency():
+    assert get_block("fig7", difference=DifferenceConfig(n_const=16)).latency == get_block("fig7").latency
+    assert get_block("fig8", root=RootConfig(m_const=4)).latency == get_block("fig8").latency
+    for depth in range(4):
+        assert (get_block("difference", n_const=7, pipeline=depth).latency
+                == get_block("difference", pipeline=depth).latency)
+        assert (get_block("root", m_const=7, pipeline=depth).latency
+                == get_block("root", pipeline=depth).latency)
+
+
+def test_halfway_constant_must_be_a_multiple_of_the_scale():
+    with pytest.raises(ValueError, match=r"^difference\.n_const must be a multiple of 4 "
+                                         r"\(it is n·2\^2\), not 66$"):
+        halfway_config(difference=_halfway_difference(66))
+    # H = V + L takes n unscaled: any constant
+    from phongfx.config import HalfwayConfig
+    total = halfway_config(difference=_halfway_difference(66), halfway=HalfwayConfig(h="sum"))
+    assert total.shininess_const == 66 and total.shininess is None
+
+
+def test_constant_of_the_other_unit_is_ignored():
+    # Figure 8 has no difference block, Figure 7 no root unit: their constants change nothing
+    assert fig8_config(difference=DifferenceConfig(n_const=16)).shininess[0] == "m"
+    assert fig7_config(root=RootConfig(m_const=4)).shininess[0] == "n"

@@ -119,7 +119,7 @@ def test_zero_from_threshold_on(k):
     # where the datapath's own x/2^k (c·Σq²) reaches 1, or any integer part is set
     d = np.clip(raw["r"] - raw["l"], -2048, 2047)
     big, v = fraction_codes(config, raw["m"], d)
-    past = big | (v >= 1 << 18)
+    past = big | (v >= 1 << 2 * config.fmt("frac").frac_bits)
     assert not np.any(spec[past])
     assert np.any(past & ~big)  # the vectors reach the sum's threshold, not only the flag's
     # exact x: zero from x/2^k >= 1 + Δ on (truncation lowers x by less than Δ)
@@ -131,7 +131,7 @@ def test_threshold_vectors_straddle_both_comparators():
     config = RootConfig()
     raw = get_block("root").vectors(count=0)
     big, v = fraction_codes(config, raw["m"], np.clip(raw["r"] - raw["l"], -2048, 2047))
-    past = big | (v >= 1 << 18)
+    past = big | (v >= 1 << 2 * config.fmt("frac").frac_bits)
     # the directed part holds pairs just below and at each threshold
     assert np.count_nonzero(past[:-1] != past[1:]) > 200
     assert np.count_nonzero(~big & (v >= 1 << 18)) > 10
@@ -214,3 +214,49 @@ def test_config_errors_name_the_field():
     with pytest.raises(ValueError, match=r"^rounding must be one of truncate, round_half_up, "
                                          r"round_half_even, not 'nearest'$"):
         RootConfig(rounding="nearest")
+
+
+@pytest.mark.parametrize("m", [1, 4, 7, 63])
+def test_constant_m_gives_the_codes_of_m_on_the_port(m):
+    raw = get_block("root").vectors(count=300, seed=5)
+    config = RootConfig(m_const=m)
+    r, l = Fixed(raw["r"], config.vec), Fixed(raw["l"], config.vec)
+    fixed = root(config, r, l)["spec"]
+    fed = root(RootConfig(), r, l, Fixed(np.full(len(r), m), config.m))["spec"]
+    assert fixed.fmt == fed.fmt
+    assert np.array_equal(fixed.raw, fed.raw)
+    assert np.count_nonzero(fixed.raw) > 50 and np.count_nonzero(fixed.raw == 0) > 50
+
+
+def test_constant_m_has_no_port_and_refuses_one():
+    assert set(RootConfig(m_const=4).inputs) == {"r", "l"}
+    assert set(RootConfig().inputs) == {"r", "l", "m"}
+    r = Fixed.from_float([[1.0, 0, 0]], "S1.10")
+    with pytest.raises(ValueError, match=r"^m must not be given: m_const = 4 fixes it$"):
+        root(RootConfig(m_const=4), r, r, Fixed([4], "6.0"))
+    with pytest.raises(ValueError, match=r"^m must be given: m_const = 0 makes it an input$"):
+        root(RootConfig(), r, r)
+
+
+@pytest.mark.parametrize("changes, message", [
+    (dict(m_const=-1), r"^m_const must be an integer in 0\.\.63, not -1$"),
+    (dict(m_const=64), r"^m_const must be an integer in 0\.\.63, not 64$"),
+    (dict(m_max=10, m_const=11), r"^m_const must be an integer in 0\.\.10, not 11$"),
+    (dict(m_const="4"), r"^m_const must be an integer in 0\.\.63, not '4'$"),
+])
+def test_m_const_errors_name_the_field(changes, message):
+    with pytest.raises(ValueError, match=message):
+        RootConfig(**changes)
+
+
+@pytest.mark.parametrize("m", [1, 4, 63])
+def test_constant_m_vectors_keep_the_comparator_edges(m):
+    # the vectors of a constant m hold its comparator edges: cases on both sides of the
+    # flag-or-threshold (x/2^k = 1) at that m, and no m port
+    config = RootConfig(m_const=m)
+    raw = get_block("root", m_const=m).vectors(count=50, seed=2)
+    assert set(raw) == {"r", "l"}
+    d = np.clip(raw["r"] - raw["l"], -2048, 2047)
+    big, v = fraction_codes(config, np.full(len(d), m), d)
+    past = big | (v >= 1 << 2 * config.fmt("frac").frac_bits)
+    assert np.count_nonzero(past) > 10 and np.count_nonzero(~past) > 10

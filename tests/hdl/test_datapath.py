@@ -2,7 +2,7 @@ import pytest
 from amaranth.hdl import Fragment
 
 from phongfx.blocks import get_block
-from phongfx.config import DatapathConfig, NormalizeConfig, ShapeConfig, fig8_config
+from phongfx.config import DatapathConfig, DifferenceConfig, NormalizeConfig, RootConfig, ShapeConfig, fig8_config
 from phongfx.hdl.datapath import Datapath
 from phongfx.sim.harness import check
 
@@ -57,3 +57,32 @@ def test_harness_local_and_other_configs(backend, changes):
 
 def test_harness_fig8_local_viewer():
     check(get_block("fig8", local_viewer=True, lights=1), bubbles=0.0, count=80, seed=4).raise_on_mismatch()
+
+
+#: the constant-shininess checks run on the simulator and the fast Verilator back end
+FAST = ["amaranth", pytest.param("verilator-fast", marks=pytest.mark.verilator)]
+
+
+@pytest.mark.parametrize("backend", FAST)
+@pytest.mark.parametrize("name, changes", [
+    ("fig7", dict(difference=DifferenceConfig(n_const=16))),
+    ("fig8", dict(root=RootConfig(m_const=4))),
+    # the halfway unit's difference block multiplies by n·2^2: n_const 64 is n = 16
+    ("halfway_datapath", dict(difference=DifferenceConfig(vec="S2.10", n="15.0", n_max=32000,
+                                                          n_const=64))),
+])
+def test_harness_constant_shininess(backend, name, changes):
+    block = get_block(name, **changes)
+    assert block.config.shininess is None and block.latency == get_block(name).latency
+    count = 100 if backend == "amaranth" else 1000
+    check(block, backend=backend, bubbles=0.2, count=count, seed=13).raise_on_mismatch()
+
+
+def test_constant_shininess_drops_only_the_port():
+    for name, changes, width in (("fig7", dict(difference=DifferenceConfig(n_const=16)), 13),
+                                 ("fig8", dict(root=RootConfig(m_const=4)), 6)):
+        fixed, fed = Datapath(get_block(name, **changes).config), Datapath(get_block(name).config)
+        assert len(fed.i.payload.as_value()) - len(fixed.i.payload.as_value()) == width
+        assert fixed.latency == fed.latency
+        # the same sub-blocks: the constant lives inside the unit
+        assert _instances(fixed.config) == _instances(fed.config)
