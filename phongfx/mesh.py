@@ -114,7 +114,9 @@ def rotation(frame, frames=200):
 @dataclass(frozen=True)
 class Spans:
     """One row per span (a triangle's run of pixels on one scanline), sorted by (y, x0);
-    per-pixel arrays are in pixel order: spans in row order, pixels left to right."""
+    per-pixel arrays are in pixel order: spans in row order, pixels left to right.
+    ``pa``/``pb`` (optional) are the eye-space surface points at the span's first and
+    last pixel centres, for local lights and a local viewer (Lyon's "local viewer")."""
     width: int
     height: int
     y: np.ndarray
@@ -124,6 +126,8 @@ class Spans:
     nb: np.ndarray
     face: np.ndarray
     visible: np.ndarray
+    pa: np.ndarray = None
+    pb: np.ndarray = None
 
     def pixel_span(self):
         """(P,) index of each pixel's span."""
@@ -148,6 +152,14 @@ class Spans:
         """(P, 3) ``na + t·(nb - na)``, not normalized (Phong normalizes it per pixel)."""
         span, t = self.pixel_span(), self.pixel_t()[:, None]
         return self.na[span] + t * (self.nb[span] - self.na[span])
+
+    def interpolated_positions(self):
+        """(P, 3) ``pa + t·(pb - pa)``: exact surface points, since the projection is
+        orthographic and each span lies on one plane."""
+        if self.pa is None:
+            raise ValueError("spans carry no positions; rasterize_screen(..., positions=...) adds them")
+        span, t = self.pixel_span(), self.pixel_t()[:, None]
+        return self.pa[span] + t * (self.pb[span] - self.pa[span])
 
 
 def _check_size(width, height):
@@ -181,7 +193,7 @@ def rasterize(mesh, rotation, width, height):
     tri = eye[mesh.faces]
     facing = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])[:, 2] > 0
     faces = np.flatnonzero(facing)
-    return rasterize_screen(screen, normals, mesh.faces[faces], width, height, faces)
+    return rasterize_screen(screen, normals, mesh.faces[faces], width, height, faces, eye)
 
 
 def _edge(top, bottom, yc):
@@ -192,18 +204,21 @@ def _edge(top, bottom, yc):
     return top + f[:, None] * (bottom - top)
 
 
-def rasterize_screen(screen, normals, faces, width, height, face_ids=None):
+def rasterize_screen(screen, normals, faces, width, height, face_ids=None, positions=None):
     """Scan-convert triangles given in screen coordinates (module docstring).
 
     ``screen`` (V, 3) is ``(x, y, z)`` with larger ``z`` nearer, ``normals`` (V, 3) the
     vertex normals, ``faces`` (F, 3); every face is drawn whatever its winding.
     ``face_ids`` (F,) names the faces in :attr:`Spans.face` (default ``0..F-1``).
+    ``positions`` (V, 3), optional: per-vertex points interpolated like the normals into
+    :attr:`Spans.pa` and :attr:`Spans.pb` (not normalized).
     """
     width, height = _check_size(width, height)
     faces = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
     face_ids = np.arange(len(faces)) if face_ids is None else np.asarray(face_ids, np.int64)
     # per vertex: x, y, z, nx, ny, nz, sorted by y within each triangle
-    attrs = np.concatenate([screen, normals], axis=1)[faces]
+    extra = [] if positions is None else [np.asarray(positions, dtype=np.float64)]
+    attrs = np.concatenate([screen, normals] + extra, axis=1)[faces]
     attrs = np.take_along_axis(attrs, np.argsort(attrs[:, :, 1], axis=1, kind="stable")[:, :, None], 1)
     # rows whose centre lies in [y_top, y_bottom): top edges in, bottom edges out
     first = np.clip(np.ceil(attrs[:, 0, 1] - 0.5), 0, height).astype(np.int64)
@@ -233,7 +248,8 @@ def rasterize_screen(screen, normals, faces, width, height, face_ids=None):
     a, b = at(x0), at(x0 + length - 1)
     order = np.lexsort((x0, y))
     tri, y, x0, length, a, b = tri[order], y[order], x0[order], length[order], a[order], b[order]
-    na, nb = _unit(a[:, 3:]), _unit(b[:, 3:])
+    na, nb = _unit(a[:, 3:6]), _unit(b[:, 3:6])
+    pa, pb = (None, None) if positions is None else (a[:, 6:9], b[:, 6:9])
     # z-buffer: per pixel the nearest span wins (ties: the first in pixel order)
     starts = np.cumsum(length) - length
     step = np.arange(int(length.sum())) - np.repeat(starts, length)
@@ -246,7 +262,7 @@ def rasterize_screen(screen, normals, faces, width, height, face_ids=None):
         head = np.ones(len(ranked), dtype=bool)
         head[1:] = pixel[ranked[1:]] != pixel[ranked[:-1]]
         visible[ranked[head]] = True
-    return Spans(width, height, y, x0, length, na, nb, face_ids[tri], visible)
+    return Spans(width, height, y, x0, length, na, nb, face_ids[tri], visible, pa, pb)
 
 
 def image(spans, values, background=0.0):
