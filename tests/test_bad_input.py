@@ -223,8 +223,13 @@ def test_fuzz_tables_names(args, capsys, tmp_path_factory):
      r"phongfx: error: --set lirp: lirp is a LirpConfig; set one of its fields instead: lirp\.vec, .*\n"),
     # accepted by LirpConfig, but 1.0 (a unit span end) does not fit S0.10: the golden model raises
     (["sim", "lirp", "--set", "out=S0.10", "--vectors", "10"],
-     r"phongfx: error: overflow: lirp N': \d+ value\(s\) overflow format S0\.10 \(range -1\.0\.\.0\.9990234375\); "
-     r"first offending value 1\.0 \(raw 1024\); widen that format\n"),
+     r"phongfx: error: --set out=S0\.10: lirp N': \d+ value\(s\) overflow format S0\.10 \(range "
+     r"-1\.0\.\.0\.9990234375\); first offending value 1\.0 \(raw 1024\); widen that format\n"),
+    # valid fields whose intermediates outgrow int64: named by the setting, not the intermediate
+    (["sim", "fig8", "--set", "normalize.z=1.40", "--vectors", "1"],
+     r"phongfx: error: --set normalize\.z=1\.40: format S3\.80 is 84 bits wide; .*\n"),
+    (["verilog", "fig8", "--set", "root.t=1.62", "-o", "OUT"],
+     r"phongfx: error: --set root\.t=1\.62: format 2\.124 is 126 bits wide; .*\n"),
     (["sim", "shape", "--seed", "-1"], r"phongfx: error: --seed must be a non-negative integer, not -1\n"),
     (["sim", "shape", "--set", "t=S-1.3"],
      r"phongfx: error: t: format must look like 'n\.m' \(unsigned\) or 'Sn\.m' \(signed\), not 'S-1\.3'\n"),
