@@ -2,7 +2,8 @@
 
 ``phongfx blocks`` lists the datapath blocks; ``phongfx verilog NAME -o FILE`` emits
 one as Verilog; ``phongfx sim NAME`` checks it cycle by cycle against its golden
-model; ``phongfx render`` is ``make sim``: Lyon's scene through Figure 7, golden and
+model; ``phongfx compile SCENE.toml -o DIR`` compiles a scene to its cheapest datapath;
+``phongfx render`` is ``make sim``: Lyon's scene through Figure 7, golden and
 RTL.  ``--set field=value`` (repeatable; ``shape.k=1`` inside a composite) changes
 the block's configuration.  Errors go to stderr with exit code 2 (bad input) or 1
 (a mismatch).
@@ -72,7 +73,20 @@ def _block(args):
     block = get_block(args.name)
     if args.set:
         block = get_block(args.name, config=apply_settings(block.config, args.set))
+        _dry_run(block, args.set)
     return block
+
+
+def _dry_run(block, settings):
+    """Run the golden model once on the block's directed vectors, so that a setting which
+    makes an intermediate format too wide for int64, or a declared-safe quantize overflow,
+    is reported against the ``--set`` that caused it rather than the intermediate's name."""
+    try:
+        block.golden(block.vectors(count=0, seed=0))
+    except ValueError as error:
+        raise ValueError(f"--set {' '.join(settings)}: {error}") from None
+    except OverflowError as error:
+        raise ValueError(f"--set {' '.join(settings)}: {error}; widen that format") from None
 
 
 def _cmd_blocks(args):
@@ -233,6 +247,50 @@ def _cmd_figure9(args):
 
 
 
+def _levels(value):
+    return f"{value:.3f} levels" if isinstance(value, float) else f"{value} levels"
+
+
+def _cmd_compile(args):
+    from tqdm import tqdm
+
+    from .compile import check_methods, compile_scene
+    from .compile_emit import emit
+    from .scene_file import load_scene
+    methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
+    spec = load_scene(args.scene)
+    with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
+              bar_format="{desc}: {n} steps {elapsed}") as bar:
+        def progress(step):
+            bar.set_description(f"compile {spec.name}: {step}")
+            bar.update(1)
+        compiled = compile_scene(spec, methods=methods, synth=args.synth, progress=progress)
+        data = emit(compiled, args.output, check=not args.no_check, progress=progress)
+    for name, reason in data["rejected"].items():
+        print(f"  {name:12s} rejected: {reason}")
+    for name, r in data["methods"].items():
+        default = f"defaults: max {_levels(r['default']['max'])}, LUT-eq {r['default']['cost'].get('lut_eq')}"
+        if r["feasible"]:
+            print(f"  {name:12s} max {_levels(r['max'])} LUT-eq {r['cost']['lut_eq']} at {r['params']} "
+                  f"({default})")
+        else:
+            print(f"  {name:12s} infeasible: max {_levels(r['max'])} even at {r['params']} ({default})")
+    print(f"cost model: {data['cost_model']}; wrote {args.output}/manifest.json")
+    if data["chosen"] is None:
+        print(f"phongfx: no method meets max_error_levels = {spec.requirement.max_error_levels} "
+              f"against {spec.requirement.against} on {spec.name}; see {args.output}/manifest.json",
+              file=sys.stderr)
+        return 1
+    check = data["rtl_check"]
+    print(f"chosen {data['chosen']} ({data['module']}): max {data['error']['max']:.3f} levels, "
+          f"mean {data['error']['mean']:.4f}, LUT-eq {data['cost']['lut_eq']}, latency {data['latency']}")
+    if check is None:
+        return 0
+    print(f"RTL check frame {check['frame']}: {check['pixels']} pixels, {check['cycles']} cycles, "
+          f"{check['mismatches']} mismatches, {check['seconds']:.2f} s")
+    return _exit_on_mismatch(check["mismatches"], f"; see {args.output}/manifest.json")
+
+
 def _cmd_tables(args):
     module = table_module(args.table)
     result = module.run_table(args.table, out_dir=args.out or f"build/{args.table}")
@@ -346,6 +404,15 @@ def _parser():
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=_cmd_tables)
+    p = sub.add_parser("compile", help="the cheapest datapath meeting a scene's pixel error "
+                                       "requirement: Verilog, manifest, frames, RTL check (issue 7)")
+    p.add_argument("scene", help="scene file (TOML), e.g. scenes/torus.toml")
+    p.add_argument("-o", "--output", required=True, help="output folder")
+    p.add_argument("--synth", action="store_true", help="cost by ECP5 synthesis (yowasp) instead of the proxy")
+    p.add_argument("--methods", help="comma-separated methods to consider (default all)")
+    p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=_cmd_compile)
     return parser
 
 

@@ -125,9 +125,12 @@ def _lyon_frame(spec):
     params = spec.objects[0].params
     px = pixels(Scene(params["radius"], params["shininess"], span=params["span"]))
     centre = np.stack([px.sphere, np.zeros(len(px)), np.zeros(len(px))], -1)
-    # a new span starts exactly where a = 0 (one pixel per span for exact normals)
+    a = px.a[:, None]
+    # a new span starts exactly where a = 0 (one pixel per span for exact normals); Phong's
+    # normal is the interpolated one, normalized (with spans it is not the sphere's own)
     return dict(row=px.row.astype(np.int64), col=px.col.astype(np.int64),
-                span=np.cumsum(px.a == 0) - 1, a=px.a, n0=px.n0, n1=px.n1, normal=px.normal,
+                span=np.cumsum(px.a == 0) - 1, a=px.a, n0=px.n0, n1=px.n1,
+                normal=_unit((1 - a) * px.n0 + a * px.n1),
                 position=px.normal + centre, ends=(px.n0 + centre, px.n1 + centre),
                 obj=np.zeros(len(px), dtype=np.int64), spans=None, n=px.n.astype(np.float64))
 

@@ -67,7 +67,7 @@ def test_example_scene_contents():
     assert [light.vector for light in lyon.lights] == [
         pytest.approx(tuple(x / math.sqrt(3) for x in v)) for v in ((1, 1, -1), (1, -1, 1))]
     local = load_scene(os.path.join(SCENES, "local-mesh.toml"))
-    assert local.local_lights and local.local_viewer and local.shininess == (8, 32)
+    assert local.local_lights and local.local_viewer and local.shininess == (16, 32)
     assert 300 <= local.objects[0].params["mesh"].polygons <= 800
 
 

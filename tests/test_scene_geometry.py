@@ -115,6 +115,11 @@ def test_lyon_spheres_follow_phongfx_scene():
     starts = np.flatnonzero(np.diff(g.span)) + 1
     assert np.all(g.a[starts] == 0) and np.all(np.diff(g.span) >= 0)
     assert np.allclose(g.light[1], np.array([1, -1, 1]) / np.sqrt(3))
+    # Phong's normal: the span's interpolated normal, normalized; not the sphere's inside a span
+    lerp = (1 - g.a[:, None]) * px.n0 + g.a[:, None] * px.n1
+    assert np.allclose(g.normal, lerp / np.linalg.norm(lerp, axis=1, keepdims=True))
+    inside = (g.a > 0) & (g.a < 1)
+    assert np.abs(g.normal[inside] - px.normal[inside]).max() > 1e-3
 
 
 def test_point_light_on_the_surface_is_refused():
