@@ -10,10 +10,12 @@ drives), and what diffuse and specular amounts per light do its raw outputs stan
 * Lyon's datapaths (``fig7``, ``fig8``, ``halfway``) take everything a scene has: span
   ends of N, of L and V when local (:func:`phongfx.sim.vectors.datapath.encode`), any
   number of lights, ``n`` per pixel or fixed in the hardware (``n_const``/``m_const``).
-* ``conventional`` and ``spherical`` compute Blinn's ``(N·H)^n'`` with one ``H`` per
-  light and frame: they need directional lights and the camera at infinity along +z,
-  and take one copy of the unit per light (their streams are checked one after the
-  other, :func:`copies`); they are
+* ``conventional`` and ``spherical`` compute Blinn's ``(N·H)^n'`` and take one copy of
+  the unit per light (their streams are checked one after the other, :func:`copies`).
+  ``conventional`` is fed per pixel the interpolated ``N`` and the exact unit ``L`` and
+  ``H = (L+V)/|L+V|`` of that pixel, so it takes point lights and a local viewer too (the
+  hardware that would compute those per-pixel vectors is not in its cost);
+  ``spherical`` needs directional lights and the camera at infinity along +z.  They are
   fed ``n' = 4n`` (Lyon's appendix: ``(N·H)^(4n)`` stands for ``(R·L)^n``), so their
   ``"phong"`` error includes that approximation and ``"self"`` is float ``(N̂·H)^(4n)``
   (spherical: Szirmay-Kalos's ``A^n'·cos²``).  ``spherical`` also needs mesh spans and
@@ -31,7 +33,7 @@ from .golden.reference import specular
 from .mesh_render import shade as mesh_shade
 from .methods import METHODS
 from .sim.vectors.datapath import encode
-from .span_inputs import VIEWER, conventional_inputs, decode, spherical_inputs
+from .span_inputs import VIEWER, conventional_codes, decode, spherical_inputs
 
 __all__ = ["DATAPATHS", "EXTRA", "K_MAX", "rejection", "build", "frame_inputs", "frame_terms", "own_specular",
            "block_name", "copies"]
@@ -69,7 +71,7 @@ def rejection(method, spec, analysis, geometries):
                 f"spans" if ks > 0 else f"diffuse-only scenes are not compiled for the {method} unit")
     if method == "spherical" and any(g.spans is None for g in geometries):
         return "needs mesh spans (its setup is per span); the scene has Lyon's spheres"
-    if method in _BLINN:
+    if method == "spherical":
         if analysis.local_lights:
             return "needs directional lights (one H per light and frame)"
         if analysis.local_viewer or not np.allclose(spec.camera.vector, VIEWER):
@@ -122,13 +124,6 @@ def _shininess_const(config):
     return getattr(config, "shininess_const", 0)
 
 
-def _full(geometry, values, fill):
-    """Per-pixel ``values`` of the visible pixels spread over every span pixel."""
-    out = np.full(int(geometry.spans.length.sum()), fill, dtype=values.dtype)
-    out[geometry.spans.visible] = values
-    return out
-
-
 def _blinn_spans(geometry):
     """The frame's spans, or one-pixel stand-ins holding the interpolated normals (Lyon)."""
     if geometry.spans is not None:
@@ -154,16 +149,18 @@ def frame_inputs(method, config, geometry, n):
         if const:
             raw.pop(plain.shininess[0])
         return raw
-    spans = _blinn_spans(geometry)
-    lo = int(4 * n.min())
-    streams = []
-    for light in geometry.light[:, 0]:  # one copy of the unit per light: their streams in a row
-        if method == "conventional":
-            raw = conventional_inputs(spans, light, lo, config)
-            raw["n"] = _full(SimpleNamespace(spans=spans), (4 * n).astype(np.int64), lo)
-        else:
-            raw = spherical_inputs(spans, light, lo, config)
-        streams.append(raw)
+    if method == "conventional":  # visible pixels only, each with its own L and H
+        a = np.asarray(geometry.a)[:, None]
+        normals = (1 - a) * geometry.n0 + a * geometry.n1
+        halves = [light + geometry.viewer for light in geometry.light]
+        streams = [conventional_codes(normals, light, half / np.linalg.norm(half, axis=-1, keepdims=True),
+                                      (4 * n).astype(np.int64), config)
+                   for light, half in zip(geometry.light, halves)]
+    else:
+        spans = _blinn_spans(geometry)
+        lo = int(4 * n.min())
+        # one copy of the unit per light: their streams in a row
+        streams = [spherical_inputs(spans, light, lo, config) for light in geometry.light[:, 0]]
     return {name: np.concatenate([raw[name] for raw in streams]) for name in streams[0]}
 
 
@@ -174,7 +171,8 @@ def frame_terms(method, config, outputs, geometry):
         lights = range(config.lights)
         return tuple(np.stack([outputs[f"{part}{i}"] * ports[f"{part}{i}"][0].lsb for i in lights])
                      for part in ("diff", "spec"))
-    visible, lights = _blinn_spans(geometry).visible, len(geometry.light)
+    lights = len(geometry.light)
+    visible = slice(None) if method == "conventional" else _blinn_spans(geometry).visible
     diff = decode(method, outputs, config, "diff")
     diff = diff[:, 0] if diff.ndim > 1 else diff
     spec = decode(method, outputs, config, "spec")

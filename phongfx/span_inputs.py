@@ -27,7 +27,7 @@ from .golden import euler_setup, spherical_setup
 from .golden.fixed import Fixed
 
 __all__ = ["VIEWER", "UNITS", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",
-           "spherical_inputs", "schlick_inputs", "conventional_inputs", "inputs", "decode"]
+           "spherical_inputs", "schlick_inputs", "conventional_inputs", "conventional_codes", "inputs", "decode"]
 
 #: Viewer direction in eye space (orthographic view along -z, viewer at infinity).
 VIEWER = np.array([0.0, 0.0, 1.0])
@@ -167,15 +167,20 @@ def conventional_inputs(spans, light, n, config=ConventionalConfig()):
     Returns ``{normal, light, half, n}``."""
     if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or not 1 <= n <= config.n_max:
         raise ValueError(f"n must be an integer in 1..{config.n_max}, not {n!r}")
-    first, count = first_pixels(spans)
-    light = _unit("light", light)
+    _, count = first_pixels(spans)
+    light = np.broadcast_to(_unit("light", light), (count, 3))
+    return conventional_codes(spans.interpolated_normals(), light, np.broadcast_to(halfway(light[0]), (count, 3)),
+                              np.full(count, int(n), dtype=np.int64), config)
 
+
+def conventional_codes(normals, lights, halves, n, config=ConventionalConfig()):
+    """:func:`conventional_inputs` from per-pixel (P, 3) ``normals`` (as interpolated),
+    unit ``lights`` and ``halves`` (a local light or viewer: one of each per pixel) and
+    integer ``n`` (P,)."""
     def codes(vectors):
         return Fixed.from_float(vectors, config.vec, "round_half_up", "saturate").raw.astype(np.int64)
-    return {"normal": codes(spans.interpolated_normals()),
-            "light": codes(np.broadcast_to(light, (count, 3))),
-            "half": codes(np.broadcast_to(halfway(light), (count, 3))),
-            "n": np.full(count, int(n), dtype=np.int64)}
+    return {"normal": codes(normals), "light": codes(lights), "half": codes(halves),
+            "n": np.asarray(n, dtype=np.int64)}
 
 
 def inputs(unit, spans, light, *, n=32, config=None):

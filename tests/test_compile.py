@@ -128,11 +128,17 @@ def test_a_local_light_and_viewer_compile_with_their_interpolators():
     assert {"v0", "v1", "l0_0", "l0_1"} <= set(config.inputs)
 
 
+def test_the_conventional_baseline_takes_a_local_light_per_pixel():
+    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["conventional"])
+    assert "conventional" not in compiled.rejected
+    # fed the exact L and H of each pixel, it is within a level of its own float (N·H)^(4n)
+    assert compiled.chosen == "conventional" and 0 < compiled.best["max"] <= 1.0
+
+
 def test_single_n_is_a_hardware_constant_and_a_range_a_port():
     single = compile_scene(_torus(), methods=["fig7"])
     config = build("fig7", single.best["params"], single.analysis)
-    if hasattr(config.difference, "n_const"):
-        assert config.difference.n_const == 16 and "n" not in config.inputs
+    assert config.difference.n_const == 16 and "n" not in config.inputs
     ranged = compile_scene(parse_scene(LOCAL, name="local"), methods=["fig7"])
     config = build("fig7", ranged.best["params"], ranged.analysis)
     assert config.inputs["n"][0].int_bits == 6 and config.difference.n_max == 32
@@ -210,13 +216,14 @@ def test_unknown_method_and_missing_scene_exit_2(tmp_path, capsys):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["lyon-balls", "torus"])
+@pytest.mark.parametrize("name", ["lyon-balls", "torus", "local-mesh"])
 def test_example_scenes_compile_and_verify(tmp_path, name):
     out = tmp_path / name
     assert main(["compile", os.path.join(SCENES, f"{name}.toml"), "-o", str(out), "--quiet"]) == 0
     data = json.loads((out / "manifest.json").read_text())
     assert data["error"]["max"] <= data["requirement"]["max_error_levels"]
-    assert data["rtl_check"]["mismatches"] == 0 and data["block_counts"]["lirp"] == 1
+    local = name == "local-mesh"  # a point light and a local viewer: L and V interpolated too
+    assert data["rtl_check"]["mismatches"] == 0 and data["block_counts"]["lirp"] == (3 if local else 1)
 
 
 def _fake_synth(name, *, config=None, **options):
