@@ -16,6 +16,7 @@ import os
 import sys
 
 from .blocks import block_names, get_block
+from .synth import SynthError
 from .sim.harness import BACKENDS
 from .tables import TABLES, table_module
 
@@ -456,6 +457,12 @@ def main(argv=None):
     except MemoryError as error:
         print(f"phongfx: error: out of memory ({error}); ask for a smaller problem", file=sys.stderr)
         return 2
+    except SynthError as error:  # the tools failed (or the design does not fit): not bad input
+        first, _, tail = str(error).partition("\n")
+        print(f"phongfx: error: synthesis failed: {first}", file=sys.stderr)
+        if tail:
+            print(tail, file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

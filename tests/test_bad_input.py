@@ -295,3 +295,14 @@ def test_unwritable_output_folder_is_refused_naming_the_target(capsys, tmp_path)
 def test_help_returns_0_instead_of_raising(capsys):
     assert main(["--help"]) == 0
     assert capsys.readouterr().out.startswith("usage: phongfx")
+
+
+def test_a_failed_synthesis_is_one_error_and_exit_1(monkeypatch, capsys):
+    def failing(name, **options):
+        raise synth_module.SynthError("design does not fit on LFE5U-25F: needs MULT18X18D 39/28; "
+                                      "log /x/nextpnr.log:\nlast line")
+    monkeypatch.setattr(synth_module, "synth", failing)
+    assert main(["synth", "fig7", "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert err == ("phongfx: error: synthesis failed: design does not fit on LFE5U-25F: needs "
+                   "MULT18X18D 39/28; log /x/nextpnr.log:\nlast line\n")
