@@ -66,6 +66,8 @@ class Frames:
     count: int = 1
     axis: tuple = (0.0, 1.0, 0.0)
     degrees: float = 0.0
+    #: the local camera's position in each frame (empty: ``camera.position`` throughout)
+    camera_path: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -294,10 +296,18 @@ def parse_scene(source, name=None, base_dir=".", path=None):
         r.fail(f"objects must be an array of 1..64 tables ([[objects]]), not {objects!r}")
     objects = tuple(_object(r, obj, f"objects[{i}]", materials, base_dir)
                     for i, obj in enumerate(objects))
-    frames = r.table(data.get("frames", {}), "frames", ("count", "axis", "degrees"))
-    frames = Frames(r.integer(frames.get("count", 1), "frames.count", 1, 1000),
-                    r.unit(frames.get("axis", [0, 1, 0]), "frames.axis"),
-                    r.number(frames.get("degrees", 0.0), "frames.degrees", -3600, 3600))
+    frames = r.table(data.get("frames", {}), "frames", ("count", "axis", "degrees", "camera_path"))
+    count = r.integer(frames.get("count", 1), "frames.count", 1, 1000)
+    camera_path = frames.get("camera_path", [])
+    if camera_path and camera.kind != "point":
+        r.fail("frames.camera_path moves a local camera: give camera.position, not a camera at infinity")
+    if not isinstance(camera_path, list) or (camera_path and len(camera_path) != count):
+        r.fail(f"frames.camera_path must be an array of frames.count = {count} positions, "
+               f"not {camera_path!r}")
+    frames = Frames(count, r.unit(frames.get("axis", [0, 1, 0]), "frames.axis"),
+                    r.number(frames.get("degrees", 0.0), "frames.degrees", -3600, 3600),
+                    tuple(r.vector(v, f"frames.camera_path[{i}]", nonzero=False)
+                          for i, v in enumerate(camera_path)))
     output = r.table(data.get("output", {}), "output", ("width", "height", "bits"))
     size = {}
     if any(obj.kind == "lyon_spheres" for obj in objects):

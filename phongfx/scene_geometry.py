@@ -154,8 +154,9 @@ def frames(spec):
         lights = [_toward(light.kind, light.vector, points, f"lights[{i}].position", frame)
                   for i, light in enumerate(spec.lights)]
         l0, l1, lit = (np.stack([v[k] for v in lights]) for k in range(3))
-        v0, v1, viewer = _toward(spec.camera.kind, spec.camera.vector, points, "camera.position",
-                                 frame)
+        path = spec.frames.camera_path
+        v0, v1, viewer = _toward(spec.camera.kind, path[frame] if path else spec.camera.vector, points,
+                                 f"frames.camera_path[{frame}]" if path else "camera.position", frame)
         out.append(FrameGeometry(
             spec.output.width, spec.output.height, g["row"], g["col"], g["span"], g["a"],
             g["n0"], g["n1"], g["normal"], g["position"], l0, l1, lit,

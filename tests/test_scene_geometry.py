@@ -7,7 +7,7 @@ import pytest
 
 from phongfx.mesh import fit_scale, rasterize, torus
 from phongfx.scene import Scene, pixels
-from phongfx.scene_file import load_scene, parse_scene
+from phongfx.scene_file import SceneError, load_scene, parse_scene
 from phongfx.scene_geometry import error_levels, frames, levels, rotation, scene_mesh, shade
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "scenes")
@@ -141,3 +141,26 @@ def test_shade_levels_and_errors():
     with pytest.raises(ValueError, match=r"^diff and spec must have shape \(lights, pixels\) = "
                                          rf"\(2, {p}\), not \(1, {p}\) and \(2, {p}\)$"):
         shade(g, diff[:1], spec)
+
+
+def test_a_camera_path_moves_the_local_viewer_frame_by_frame():
+    path = [[0, 0, 4], [3, 0, 3]]
+    moving = frames(_spec(camera={"position": [0, 0, 4]}, frames_={"count": 2, "camera_path": path}))
+    still = frames(_spec(camera={"position": [0, 0, 4]}, frames_={"count": 2}))
+    for g, position in zip(moving, path):
+        assert np.allclose(g.viewer, _unit(np.asarray(position, float) - g.position))
+    assert np.allclose(moving[0].viewer, still[0].viewer)
+    assert not np.allclose(moving[1].viewer, still[1].viewer)
+
+
+@pytest.mark.parametrize("camera, frames_, message", [
+    (None, {"count": 1, "camera_path": [[0, 0, 4]]},
+     r"^t: frames\.camera_path moves a local camera: give camera\.position, not a camera at infinity$"),
+    ({"position": [0, 0, 4]}, {"count": 2, "camera_path": [[0, 0, 4]]},
+     r"^t: frames\.camera_path must be an array of frames\.count = 2 positions, not \[\[0, 0, 4\]\]$"),
+    ({"position": [0, 0, 4]}, {"count": 1, "camera_path": [[0, 4]]},
+     r"^t: frames\.camera_path\[0\] must be 3 numbers, not \[0, 4\]$"),
+])
+def test_bad_camera_paths(camera, frames_, message):
+    with pytest.raises(SceneError, match=message):
+        _spec(camera=camera, frames_=frames_)
