@@ -83,9 +83,14 @@ CHUNK = 1 << 16
 def chunked(block, raw, chunk=CHUNK):
     """``block.golden`` on ``chunk`` pixels at a time (a datapath without state), concatenated."""
     count = len(next(iter(raw.values())))
-    parts = [block.golden({key: value[start:start + chunk] for key, value in raw.items()})
-             for start in range(0, count, chunk)]
-    return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
+    out = None
+    for start in range(0, count, chunk):
+        part = block.golden({key: value[start:start + chunk] for key, value in raw.items()})
+        if out is None:  # written in place: no second copy of every output to join at the end
+            out = {key: np.empty((count, *value.shape[1:]), value.dtype) for key, value in part.items()}
+        for key, value in part.items():
+            out[key][start:start + len(value)] = value
+    return out
 
 
 _MODELS = {"golden": lambda block, raw: block.golden(raw),
