@@ -25,6 +25,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .mesh import unit
+
 __all__ = ["Analysis", "analyse", "span_ends_angle", "shortest_normal", "highlight_in_span"]
 
 
@@ -59,15 +61,11 @@ class Analysis:
         return out
 
 
-def _unit(v):
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
-
-
 def span_ends_angle(geometry):
     """Largest angle (degrees) between the end normals ``n0``, ``n1`` of any span of a frame."""
     if not len(geometry.n0):
         return 0.0
-    cos = np.sum(_unit(geometry.n0) * _unit(geometry.n1), axis=-1)
+    cos = np.sum(unit(geometry.n0) * unit(geometry.n1), axis=-1)
     return float(np.degrees(np.arccos(np.clip(cos.min(), -1.0, 1.0))))
 
 
@@ -75,8 +73,7 @@ def shortest_normal(geometry):
     """Smallest ``|(1-a)·n0 + a·n1|`` over the pixels of a frame (1.0 for none)."""
     if not len(geometry.a):
         return 1.0
-    a = np.asarray(geometry.a, dtype=np.float64)[:, None]
-    return float(np.linalg.norm((1 - a) * geometry.n0 + a * geometry.n1, axis=-1).min())
+    return float(np.linalg.norm(geometry.interpolated, axis=-1).min())
 
 
 def _normalizer_errors(length):

@@ -24,13 +24,12 @@ drives), and what diffuse and specular amounts per light do its raw outputs stan
   interpolate ``N·L``, Hast et al.): rejected for scenes that need the missing term.
 """
 
-from types import SimpleNamespace
-
 import numpy as np
 
 from .blocks import get_block
 from .golden.reference import specular
 from .mesh_render import shade as mesh_shade
+from .mesh import unit
 from .methods import METHODS
 from .sim.vectors.datapath import encode
 from .span_inputs import VIEWER, conventional_codes, decode, spherical_inputs
@@ -109,58 +108,29 @@ def build(method, params, analysis):
     if method == "fig8":
         m = int(np.ceil(np.sqrt(analysis.n_hi)))
         root = config.root.replace(m=f"{m.bit_length()}.0", m_max=m)
-        if const and hasattr(root, "m_const"):
+        if const:
             root = root.replace(m_const=min(max(round(np.sqrt(const)), 1), m))
         return config.replace(root=root)
     shift = config.halfway_shift if method == "halfway" else 0
     top = analysis.n_hi << shift
     difference = config.difference.replace(n=f"{top.bit_length()}.0", n_max=top)
-    if const and hasattr(difference, "n_const"):
+    if const:
         difference = difference.replace(n_const=const << shift)
     return config.replace(difference=difference)
-
-
-def _shininess_const(config):
-    return getattr(config, "shininess_const", 0)
-
-
-def _blinn_spans(geometry):
-    """The frame's spans, or one-pixel stand-ins holding the interpolated normals (Lyon)."""
-    if geometry.spans is not None:
-        return geometry.spans
-    a = np.asarray(geometry.a)[:, None]
-    normals = (1 - a) * geometry.n0 + a * geometry.n1
-    return SimpleNamespace(length=np.ones(len(a), dtype=np.int64), visible=np.ones(len(a), bool),
-                           interpolated_normals=lambda: normals)
 
 
 def frame_inputs(method, config, geometry, n):
     """Raw input codes of one frame with per-pixel shininess ``n`` (visible pixels; every
     span pixel for the units fed per span)."""
-    if method in DATAPATHS:
-        const = _shininess_const(config)
-        plain = config
-        if const:  # the port is gone; the codes are those of feeding n_const on it
-            plain = config.replace(root=config.root.replace(m_const=0),
-                                   difference=config.difference.replace(n_const=0))
-            n = np.full(len(n), const * const if method == "fig8" else const)
-        raw = encode(plain, geometry.n0, geometry.n1, geometry.a, n, geometry.v0, geometry.v1,
-                     list(geometry.l0), list(geometry.l1))
-        if const:
-            raw.pop(plain.shininess[0])
-        return raw
+    if method in DATAPATHS:  # a shininess fixed in the hardware has no port: encode drops it
+        return encode(config, geometry.n0, geometry.n1, geometry.a, n, geometry.v0, geometry.v1,
+                      list(geometry.l0), list(geometry.l1))
     if method == "conventional":  # visible pixels only, each with its own L and H
-        a = np.asarray(geometry.a)[:, None]
-        normals = (1 - a) * geometry.n0 + a * geometry.n1
-        halves = [light + geometry.viewer for light in geometry.light]
-        streams = [conventional_codes(normals, light, half / np.linalg.norm(half, axis=-1, keepdims=True),
-                                      (4 * n).astype(np.int64), config)
-                   for light, half in zip(geometry.light, halves)]
-    else:
-        spans = _blinn_spans(geometry)
+        streams = [conventional_codes(geometry.interpolated, light, unit(light + geometry.viewer),
+                                      (4 * n).astype(np.int64), config) for light in geometry.light]
+    else:  # one copy of the unit per light: their streams in a row
         lo = int(4 * n.min())
-        # one copy of the unit per light: their streams in a row
-        streams = [spherical_inputs(spans, light, lo, config) for light in geometry.light[:, 0]]
+        streams = [spherical_inputs(geometry.spans, light, lo, config) for light in geometry.light[:, 0]]
     return {name: np.concatenate([raw[name] for raw in streams]) for name in streams[0]}
 
 
@@ -172,7 +142,7 @@ def frame_terms(method, config, outputs, geometry):
         return tuple(np.stack([outputs[f"{part}{i}"] * ports[f"{part}{i}"][0].lsb for i in lights])
                      for part in ("diff", "spec"))
     lights = len(geometry.light)
-    visible = slice(None) if method == "conventional" else _blinn_spans(geometry).visible
+    visible = slice(None) if method == "conventional" else geometry.spans.visible
     diff = decode(method, outputs, config, "diff")
     diff = diff[:, 0] if diff.ndim > 1 else diff
     spec = decode(method, outputs, config, "spec")
@@ -192,8 +162,7 @@ def own_specular(method, config, params, geometry, n):
     else:
         form = f"lyon-k{params.get('k', METHODS[method].params['k'])}"
     if method == "fig8":
-        const = _shininess_const(config)
-        m = const or np.clip(np.round(np.sqrt(n)), 1, config.root.m_max)
+        m = config.shininess_const or np.clip(np.round(np.sqrt(n)), 1, config.root.m_max)
         n = np.broadcast_to(m * m, n.shape).astype(np.float64)
     normal = geometry.normal
     return np.stack([specular(form, normal, light, geometry.viewer, n) for light in lights])

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Mesh", "uv_sphere", "torus", "rotation", "Spans", "fit_scale", "project",
+__all__ = ["unit", "Mesh", "uv_sphere", "torus", "rotation", "Spans", "fit_scale", "project",
            "rasterize", "rasterize_screen", "image", "FILL"]
 
 FILL = 0.95  # the object's bounding sphere spans this fraction of min(width, height)
@@ -40,8 +40,9 @@ class Mesh:
     polygons: int
 
 
-def _unit(v):
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+def unit(v):
+    """Each row of ``v`` scaled to length 1 (a zero row stays 0)."""
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-300)
 
 
 def _quads(index, rows, cols, wrap_rows):
@@ -248,7 +249,7 @@ def rasterize_screen(screen, normals, faces, width, height, face_ids=None, posit
     a, b = at(x0), at(x0 + length - 1)
     order = np.lexsort((x0, y))
     tri, y, x0, length, a, b = tri[order], y[order], x0[order], length[order], a[order], b[order]
-    na, nb = _unit(a[:, 3:6]), _unit(b[:, 3:6])
+    na, nb = unit(a[:, 3:6]), unit(b[:, 3:6])
     pa, pb = (None, None) if positions is None else (a[:, 6:9], b[:, 6:9])
     # z-buffer: per pixel the nearest span wins (ties: the first in pixel order)
     starts = np.cumsum(length) - length

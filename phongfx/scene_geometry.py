@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .mesh import Mesh, rasterize
+from .mesh import Mesh, rasterize, unit
 from .scene import Scene, pixels
 
 __all__ = ["FrameGeometry", "frames", "rotation", "scene_mesh", "shade", "levels", "error_levels"]
@@ -63,6 +63,12 @@ class FrameGeometry:
     def index(self):
         return self.frame
 
+    @property
+    def interpolated(self):
+        """(P, 3) ``(1-a)·n0 + a·n1``: the normal as the LIRP gives it, not normalized."""
+        a = np.asarray(self.a, dtype=np.float64)[:, None]
+        return (1 - a) * self.n0 + a * self.n1
+
     def __len__(self):
         return len(self.row)
 
@@ -90,10 +96,6 @@ def scene_mesh(spec):
                  sum(polygons)), np.concatenate(owner))
 
 
-def _unit(v):
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
-
-
 def _toward(kind, vector, points, what, frame):
     """(3 arrays (P, 3)) unit vectors toward a light or viewer from each of ``points``."""
     if kind in ("directional", "infinity"):
@@ -103,7 +105,7 @@ def _toward(kind, vector, points, what, frame):
         d = np.asarray(vector) - p
         if len(d) and np.min(np.linalg.norm(d, axis=-1)) < 1e-9:
             raise ValueError(f"{what} lies on the surface in frame {frame}, not in front of it")
-        out.append(_unit(d))
+        out.append(unit(d))
     return out
 
 
@@ -116,7 +118,7 @@ def _mesh_frame(spec, mesh, owner, frame):
     obj = owner[spans.face[span]]
     return dict(row=xy[:, 1], col=xy[:, 0], span=span, a=spans.pixel_t()[visible],
                 n0=spans.na[span], n1=spans.nb[span],
-                normal=_unit(spans.interpolated_normals()[visible]),
+                normal=unit(spans.interpolated_normals()[visible]),
                 position=spans.interpolated_positions()[visible],
                 ends=(spans.pa[span], spans.pb[span]), obj=obj, spans=spans)
 
@@ -130,7 +132,7 @@ def _lyon_frame(spec):
     # normal is the interpolated one, normalized (with spans it is not the sphere's own)
     return dict(row=px.row.astype(np.int64), col=px.col.astype(np.int64),
                 span=np.cumsum(px.a == 0) - 1, a=px.a, n0=px.n0, n1=px.n1,
-                normal=_unit((1 - a) * px.n0 + a * px.n1),
+                normal=unit((1 - a) * px.n0 + a * px.n1),
                 position=px.normal + centre, ends=(px.n0 + centre, px.n1 + centre),
                 obj=np.zeros(len(px), dtype=np.int64), spans=None, n=px.n.astype(np.float64))
 

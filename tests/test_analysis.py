@@ -58,8 +58,9 @@ def test_span_angle_and_shortest_normal_of_a_torus_frame():
 def _frame(n0, n1, a, span, n=64.0, light=(0.0, 0.0, 1.0)):
     count = len(a)
     n0, n1, a = np.asarray(n0, float), np.asarray(n1, float), np.asarray(a, float)
-    normal = (1 - a[:, None]) * n0 + a[:, None] * n1
-    return SimpleNamespace(n0=n0, n1=n1, a=a, normal=normal / np.linalg.norm(normal, axis=1, keepdims=True),
+    lerp = (1 - a[:, None]) * n0 + a[:, None] * n1
+    return SimpleNamespace(n0=n0, n1=n1, a=a, interpolated=lerp,
+                           normal=lerp / np.linalg.norm(lerp, axis=1, keepdims=True),
                            span=np.asarray(span), n=np.full(count, n),
                            viewer=np.broadcast_to([0.0, 0, 1], (count, 3)),
                            light=np.broadcast_to(light, (1, count, 3)))
