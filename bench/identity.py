@@ -1,0 +1,184 @@
+"""Behaviour identity check: the outputs of two versions of phongfx, compared.
+
+A restructuring must not change what the tool computes.  This script captures, through
+the command line only (so it runs against any version that has these commands):
+
+* the Verilog of every block ``phongfx blocks`` lists (``phongfx verilog``);
+* the compiled designs of the example scenes (``phongfx compile --no-check``): every
+  Verilog file and the manifest;
+* ``make sim``'s outputs (``phongfx render``): both PNGs and the summary;
+* ``phongfx figure9``: its PNGs and JSON;
+* ``phongfx tables NAME --json`` for the tables that need no synthesis (``--synth-tables``
+  adds ``cost`` and ``pipeline``, which synthesize dozens of designs).
+
+Verilog is compared with its ``src`` attributes stripped (they name source files and
+lines, which a move changes); JSON with timing fields removed (``seconds``, ``*_per_second``
+and the like); PNGs byte for byte.
+
+    python -m bench.identity capture DIR             # this checkout's outputs into DIR
+    python -m bench.identity capture DIR --ref REV   # a git revision's, installed aside
+    python -m bench.identity compare DIR_A DIR_B     # exit 1 on any difference
+    python -m bench.identity check --ref REV         # capture both, then compare
+"""
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+__all__ = ["capture", "compare", "normalize_verilog", "normalize_json"]
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENES = ("lyon-balls", "torus", "local-mesh")
+TABLES = ("lyon", "szirmay", "schlick", "hast")
+SYNTH_TABLES = ("cost", "pipeline")
+
+#: JSON keys whose values are measurements of time, not results
+TIMING = re.compile(r"(seconds|elapsed|per_second|_time$|^time$|wall|duration|speed|mpx_s)")
+SRC = re.compile(r"\(\* src = \"[^\"]*\" \*\)\s*")
+
+
+def normalize_verilog(text):
+    """Verilog without ``src`` attributes (source paths and line numbers)."""
+    return "\n".join(line.rstrip() for line in SRC.sub("", text).splitlines() if line.strip())
+
+
+def normalize_json(value):
+    """``value`` with every timing field dropped, recursively."""
+    if isinstance(value, dict):
+        return {k: normalize_json(v) for k, v in value.items() if not TIMING.search(str(k))}
+    if isinstance(value, list):
+        return [normalize_json(v) for v in value]
+    return value
+
+
+def _run(python, env, cwd, args, log):
+    print(f"  phongfx {' '.join(args)}", file=sys.stderr, flush=True)
+    with open(log, "a") as out:
+        out.write(f"$ phongfx {' '.join(args)}\n")
+        out.flush()
+        done = subprocess.run([python, "-m", "phongfx.cli", *args], cwd=cwd, env=env,
+                              stdout=subprocess.PIPE, stderr=out, text=True)
+    if done.returncode not in (0,):
+        raise SystemExit(f"phongfx {' '.join(args)} exited {done.returncode}; see {log}")
+    return done.stdout
+
+
+def _install(ref, where):
+    """``ref`` of this repository installed (not editable) into ``where``/site."""
+    tree, site = os.path.join(where, "tree"), os.path.join(where, "site")
+    if os.path.isdir(site):
+        return tree, site
+    if os.path.isdir(tree):
+        subprocess.run(["git", "worktree", "remove", "--force", tree], cwd=ROOT, check=False)
+    subprocess.run(["git", "worktree", "add", "--detach", tree, ref], cwd=ROOT, check=True)
+    subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--no-deps",
+                    "--target", site, tree], check=True)
+    return tree, site
+
+
+def capture(out, ref=None, synth_tables=False):
+    """Write this checkout's (or ``ref``'s) outputs into the folder ``out``."""
+    out = os.path.abspath(out)
+    os.makedirs(out, exist_ok=True)
+    env = dict(os.environ)
+    source = ROOT
+    if ref is not None:
+        source, site = _install(ref, os.path.join(out, "install"))
+        env["PYTHONPATH"] = site
+    work = os.path.join(out, "work")  # the commands' cwd: no source folder shadows the install
+    os.makedirs(work, exist_ok=True)
+    log = os.path.join(out, "commands.log")
+    python = sys.executable
+    run = lambda *args: _run(python, env, work, list(args), log)  # noqa: E731
+
+    names = [line.split()[0] for line in run("blocks").splitlines() if line.strip()]
+    os.makedirs(os.path.join(out, "verilog"), exist_ok=True)
+    for name in names:
+        run("verilog", name, "-o", os.path.join(out, "verilog", f"{name}.v"))
+    for scene in SCENES:
+        run("compile", os.path.join(source, "scenes", f"{scene}.toml"), "-o", f"compile/{scene}",
+            "--no-check", "--quiet")
+    run("render", "--out", "sim", "--quiet")
+    run("figure9", "--out", "figure9", "--quiet")
+    tables = TABLES + (SYNTH_TABLES if synth_tables else ())
+    os.makedirs(os.path.join(out, "tables"), exist_ok=True)
+    for table in tables:
+        text = run("tables", table, "--json", "--out", f"tables/{table}")
+        with open(os.path.join(out, "tables", f"{table}.json"), "w") as f:
+            f.write(text)
+    return out
+
+
+def _files(root):
+    found = {}
+    for base in ("verilog", "tables", os.path.join("work", "compile"), os.path.join("work", "sim"),
+                 os.path.join("work", "figure9")):
+        top = os.path.join(root, base)
+        for folder, _, files in os.walk(top):
+            for name in files:
+                path = os.path.join(folder, name)
+                found[os.path.relpath(path, root)] = path
+    return found
+
+
+def _same(a, b):
+    if a.endswith(".v"):
+        return normalize_verilog(open(a).read()) == normalize_verilog(open(b).read())
+    if a.endswith(".json"):
+        return normalize_json(json.load(open(a))) == normalize_json(json.load(open(b)))
+    with open(a, "rb") as fa, open(b, "rb") as fb:
+        return fa.read() == fb.read()
+
+
+def compare(a, b):
+    """(files compared, [differences]) between two captures."""
+    fa, fb = _files(a), _files(b)
+    differences = [f"only in {a}: {p}" for p in sorted(set(fa) - set(fb))]
+    differences += [f"only in {b}: {p}" for p in sorted(set(fb) - set(fa))]
+    common = sorted(set(fa) & set(fb))
+    differences += [f"differs: {p}" for p in common if not _same(fa[p], fb[p])]
+    return len(common), differences
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m bench.identity", description=__doc__.split("\n\n")[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("capture")
+    p.add_argument("out")
+    p.add_argument("--ref", help="git revision to install aside and capture (default: this checkout)")
+    p.add_argument("--synth-tables", action="store_true", help="also tables cost and pipeline (slow)")
+    p = sub.add_parser("compare")
+    p.add_argument("a")
+    p.add_argument("b")
+    p = sub.add_parser("check")
+    p.add_argument("--ref", required=True, help="git revision to compare this checkout with")
+    p.add_argument("--out", default="build/identity", help="folder for both captures")
+    p.add_argument("--synth-tables", action="store_true")
+    args = parser.parse_args(argv)
+    if args.command == "capture":
+        capture(args.out, args.ref, args.synth_tables)
+        return 0
+    if args.command == "check":
+        base = os.path.join(args.out, "ref")
+        if os.path.isdir(base) and not os.path.isfile(os.path.join(base, "done")):
+            shutil.rmtree(base)
+        if not os.path.isdir(base):
+            capture(base, args.ref, args.synth_tables)
+            open(os.path.join(base, "done"), "w").close()
+        here = os.path.join(args.out, "head")
+        shutil.rmtree(here, ignore_errors=True)
+        capture(here, None, args.synth_tables)
+        args.a, args.b = base, here
+    count, differences = compare(args.a, args.b)
+    for line in differences:
+        print(line)
+    print(f"{count} file(s) compared, {len(differences)} difference(s)")
+    return 1 if differences else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
