@@ -1,1 +1,1 @@
-"""Benchmarks of issue 6 (run by ``make bench``, not part of ``make test``)."""
+"""Benchmarks: how fast the golden models and the RTL checks run (run by ``make bench``, not part of ``make test``)."""

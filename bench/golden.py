@@ -1,4 +1,4 @@
-"""Golden model throughput (issue 6, §1): pixels per second of our numpy golden models.
+"""Golden model throughput: pixels per second of our numpy golden models.
 
 Run ``python -m bench.golden`` (``--help`` for sizes).  In one run it measures the whole
 Figure 7 datapath (Lyon 1993, Figures 6–7: LIRP, g2 normalizer, reflect, ``D·D``, ``2x``,
@@ -30,8 +30,8 @@ import time
 
 import numpy as np
 
-from phongfx.blocks import get_block
-from phongfx.render import atomic_write
+from phongfx.core.registry import get_block
+from phongfx.core.files import atomic_write
 
 from .golden_models import fig7_apytypes, fig7_loop
 
@@ -49,7 +49,7 @@ def inputs(name, pixels, seed=1):
     a longer run of spans; cutting it at ``pixels`` only shortens the last one.
     """
     block = get_block(name)
-    base = block.vectors(count=min(pixels, _BASE if name != "euler" else _BASE // 4), seed=seed)
+    base = block.stimulus(count=min(pixels, _BASE if name != "euler" else _BASE // 4), seed=seed)
     count = len(next(iter(base.values())))
     reps = -(-pixels // count)
     return {key: np.tile(np.asarray(value), (reps,) + (1,) * (np.ndim(value) - 1))[:pixels]

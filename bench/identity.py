@@ -80,8 +80,11 @@ def _install(ref, where):
     return tree, site
 
 
-def capture(out, ref=None, synth_tables=False):
-    """Write this checkout's (or ``ref``'s) outputs into the folder ``out``."""
+PARTS = ("verilog", "compile", "sim", "figure9", "tables")
+
+
+def capture(out, ref=None, synth_tables=False, parts=PARTS):
+    """Write this checkout's (or ``ref``'s) outputs into the folder ``out`` (only ``parts``)."""
     out = os.path.abspath(out)
     os.makedirs(out, exist_ok=True)
     env = dict(os.environ)
@@ -95,16 +98,22 @@ def capture(out, ref=None, synth_tables=False):
     python = sys.executable
     run = lambda *args: _run(python, env, work, list(args), log)  # noqa: E731
 
-    names = [line.split()[0] for line in run("blocks").splitlines() if line.strip()]
-    os.makedirs(os.path.join(out, "verilog"), exist_ok=True)
-    for name in names:
-        run("verilog", name, "-o", os.path.join(out, "verilog", f"{name}.v"))
-    for scene in SCENES:
+    unknown = sorted(set(parts) - set(PARTS))
+    if unknown:
+        raise SystemExit(f"unknown part {unknown[0]!r}; parts: {', '.join(PARTS)}")
+    if "verilog" in parts:
+        names = [line.split()[0] for line in run("blocks").splitlines() if line.strip()]
+        os.makedirs(os.path.join(out, "verilog"), exist_ok=True)
+        for name in names:
+            run("verilog", name, "-o", os.path.join(out, "verilog", f"{name}.v"))
+    for scene in SCENES if "compile" in parts else ():
         run("compile", os.path.join(source, "scenes", f"{scene}.toml"), "-o", f"compile/{scene}",
             "--no-check", "--quiet")
-    run("render", "--out", "sim", "--quiet")
-    run("figure9", "--out", "figure9", "--quiet")
-    tables = TABLES + (SYNTH_TABLES if synth_tables else ())
+    if "sim" in parts:
+        run("render", "--out", "sim", "--quiet")
+    if "figure9" in parts:
+        run("figure9", "--out", "figure9", "--quiet")
+    tables = (TABLES + (SYNTH_TABLES if synth_tables else ())) if "tables" in parts else ()
     os.makedirs(os.path.join(out, "tables"), exist_ok=True)
     for table in tables:
         text = run("tables", table, "--json", "--out", f"tables/{table}")
@@ -134,9 +143,14 @@ def _same(a, b):
         return fa.read() == fb.read()
 
 
-def compare(a, b):
-    """(files compared, [differences]) between two captures."""
-    fa, fb = _files(a), _files(b)
+def compare(a, b, common_only=False, ignore=()):
+    """(files compared, [differences]) between two captures (``common_only``: files that
+    only one of them has are not differences, for a capture of some parts only; paths
+    starting with one of ``ignore`` are skipped)."""
+    fa, fb = ({k: v for k, v in _files(x).items() if not k.startswith(tuple(ignore))} for x in (a, b))
+    if common_only:
+        fa = {k: v for k, v in fa.items() if k in fb}
+        fb = {k: v for k, v in fb.items() if k in fa}
     differences = [f"only in {a}: {p}" for p in sorted(set(fa) - set(fb))]
     differences += [f"only in {b}: {p}" for p in sorted(set(fb) - set(fa))]
     common = sorted(set(fa) & set(fb))
@@ -151,29 +165,36 @@ def main(argv=None):
     p.add_argument("out")
     p.add_argument("--ref", help="git revision to install aside and capture (default: this checkout)")
     p.add_argument("--synth-tables", action="store_true", help="also tables cost and pipeline (slow)")
+    p.add_argument("--parts", nargs="+", default=PARTS, choices=PARTS, help="what to capture (default all)")
     p = sub.add_parser("compare")
     p.add_argument("a")
     p.add_argument("b")
+    p.add_argument("--common-only", action="store_true", help="compare only the files both captures have")
     p = sub.add_parser("check")
     p.add_argument("--ref", required=True, help="git revision to compare this checkout with")
     p.add_argument("--out", default="build/identity", help="folder for both captures")
     p.add_argument("--synth-tables", action="store_true")
+    p.add_argument("--head", default="head", help="subfolder of --out for this checkout's capture")
+    p.add_argument("--parts", nargs="+", default=PARTS, choices=PARTS,
+                   help="what to capture of this checkout (default all); only those are compared")
     args = parser.parse_args(argv)
     if args.command == "capture":
-        capture(args.out, args.ref, args.synth_tables)
+        capture(args.out, args.ref, args.synth_tables, args.parts)
         return 0
     if args.command == "check":
         base = os.path.join(args.out, "ref")
         if os.path.isdir(base) and not os.path.isfile(os.path.join(base, "done")):
-            shutil.rmtree(base)
+            raise SystemExit(f"{base} holds an unfinished capture (no 'done' file): wait for it, "
+                             f"or remove the folder to capture {args.ref} again")
         if not os.path.isdir(base):
             capture(base, args.ref, args.synth_tables)
             open(os.path.join(base, "done"), "w").close()
-        here = os.path.join(args.out, "head")
+        here = os.path.join(args.out, args.head)
         shutil.rmtree(here, ignore_errors=True)
-        capture(here, None, args.synth_tables)
-        args.a, args.b = base, here
-    count, differences = compare(args.a, args.b)
+        capture(here, None, args.synth_tables, args.parts)
+        args.a, args.b, args.common_only = base, here, tuple(args.parts) != PARTS
+        args.ignore = () if args.synth_tables else tuple(f"tables/{t}" for t in SYNTH_TABLES)
+    count, differences = compare(args.a, args.b, args.common_only, getattr(args, "ignore", ()))
     for line in differences:
         print(line)
     print(f"{count} file(s) compared, {len(differences)} difference(s)")

@@ -1,4 +1,4 @@
-"""RTL verification throughput (issue 6, §1): the Figure 7 datapath on every back end.
+"""RTL verification throughput: the Figure 7 datapath on every back end.
 
 Run ``python -m bench.rtl`` (``--help`` for sizes).  It measures, in one run:
 
@@ -21,9 +21,10 @@ import platform
 import tempfile
 import time
 
-from phongfx.blocks import get_block
-from phongfx.render import atomic_write
-from phongfx.sim import fast_backend, verilator_backend
+from phongfx.core.registry import get_block
+from phongfx.core.files import atomic_write
+from phongfx.sim import fast_backend
+from phongfx.sim import verilator_backend
 from phongfx.sim.harness import check
 
 __all__ = ["FRAME", "TARGET_SECONDS", "measure", "table", "main"]
@@ -34,7 +35,7 @@ TARGET_SECONDS = 10.0
 
 def _stimulus(block, count, seed):
     # vectors() adds its directed cases to the random ones: cut to exactly ``count``
-    raw = block.vectors(count=count, seed=seed)
+    raw = block.stimulus(count=count, seed=seed)
     return {name: value[:count] for name, value in raw.items()}
 
 

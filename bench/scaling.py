@@ -1,4 +1,4 @@
-"""Scaling (issue 6, §1): how checking time grows with frame size and datapath size.
+"""Scaling: how checking time grows with frame size and datapath size.
 
 Run ``python -m bench.scaling``.  For each datapath (:data:`BLOCKS`: the Figure 7 and
 Figure 8 datapaths and the corrected Euler unit) and each frame size (:data:`SIZES`,
@@ -15,8 +15,8 @@ import json
 import os
 import time
 
-from phongfx.blocks import get_block
-from phongfx.render import atomic_write
+from phongfx.core.registry import get_block
+from phongfx.core.files import atomic_write
 from phongfx.sim import fast_backend
 
 __all__ = ["BLOCKS", "SIZES", "measure", "plot", "main"]
@@ -33,7 +33,7 @@ def measure(blocks=BLOCKS, sizes=SIZES, seed=0):
         start = time.perf_counter()
         fast_backend.build(block.component())  # cached after the first run
         build = time.perf_counter() - start
-        stimulus = block.vectors(count=max(sizes), seed=seed)
+        stimulus = block.stimulus(count=max(sizes), seed=seed)
         for pixels in sizes:
             raw = {port: value[:pixels] for port, value in stimulus.items()}
             result, times = fast_backend.check_timed(block, raw, bubbles=0.0, seed=seed)

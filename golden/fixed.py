@@ -1,7 +1,7 @@
 """Raw fixed-point arrays for the golden models.
 
 A :class:`Fixed` is a numpy ``int64`` array of raw codes paired with its
-:class:`~phongfx.format.Format`.  Arithmetic is exact and the result format grows
+:class:`~phongfx.core.format.Format`.  Arithmetic is exact and the result format grows
 as the hardware's would (:meth:`Format.add`, :meth:`Format.mul`, ...); the only
 narrowing operation is :meth:`Fixed.quantize`, which names its rounding and its
 overflow policy.  :mod:`phongfx.hdl.fixed` implements the same ``quantize`` for
@@ -13,7 +13,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from ..format import Format, check_overflow, check_rounding
+from phongfx.core.format import Format, check_overflow, check_rounding
 
 __all__ = ["Fixed", "FixedOverflowError", "quantize_raw", "check_range"]
 

@@ -22,7 +22,7 @@ every ``t`` code of ``1.15`` for n = 1, 2, 6, 16, 64, 8000: max 0.99999 LSB (tru
 floor and rounding are monotone, so the output never falls as ``t`` rises.
 """
 
-from ..format import Format
+from phongfx.core.format import Format
 from .fixed import Fixed, check_range
 
 __all__ = ["schlick", "divisor"]

@@ -23,7 +23,7 @@ Measured (round half up, every code): 0, 0.50, 1.42, 6.62, 12.45 LSB for k = 0..
 Rounding and squaring are monotone, so the output never rises with ``x``.
 """
 
-from ..format import Format
+from phongfx.core.format import Format
 from .fixed import Fixed
 
 __all__ = ["shape"]

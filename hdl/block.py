@@ -25,11 +25,11 @@ from amaranth.hdl import Const, Module
 from amaranth.lib import data, wiring
 from amaranth.lib.wiring import In, Out
 
-from ..config import BlockConfig
-from ..format import Format
+from phongfx.config import BlockConfig
+from phongfx.core.format import Format
 from .fixed import FixedValue, FixedVector, align, delay, overflow_flags, report_overflow
 
-__all__ = ["OVERFLOW", "checked_outputs", "payload_layout", "stream_signature", "PipelinedBlock"]
+__all__ = ["OVERFLOW", "checked_outputs", "payload_layout", "stream_signature", "unbuilt", "PipelinedBlock"]
 
 #: The output field that flags an undeclared overflow in the RTL (see the module docstring).
 OVERFLOW = "overflow"
@@ -40,6 +40,18 @@ def checked_outputs(config):
     if OVERFLOW in config.outputs:
         raise ValueError(f"an output may not be named {OVERFLOW!r}: the overflow flag uses it")
     return {**config.outputs, OVERFLOW: (Format(1, 0), 1)}
+
+
+def unbuilt(elaboratable):
+    """``elaboratable``, marked as not meant to be elaborated by its creator, and returned.
+
+    Amaranth warns about every elaboratable that is created but never elaborated.  Some
+    are made only to be asked a number (a latency) or are owned by a composite block
+    that builds its own; only the composite, if it is itself left unused, should warn.
+    Amaranth 0.5 has no public switch for this: the flag below is its private one.
+    """
+    elaboratable._MustUse__silence = True
+    return elaboratable
 
 
 def payload_layout(ports):

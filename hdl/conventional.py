@@ -4,9 +4,9 @@ tables (what Lyon 1993, "Background", says direct designs need)."""
 from amaranth.hdl import Const, Mux
 from amaranth.lib.memory import Memory
 
-from ..config import ConventionalConfig
-from ..format import Format
-from ..golden.conventional import exp2_tables, log2_tables, rsqrt_table
+from phongfx.config import ConventionalConfig
+from phongfx.core.format import Format
+from phongfx.golden.conventional import exp2_tables, log2_tables, rsqrt_table
 from .block import PipelinedBlock
 from .fixed import FixedValue, delay, stage
 

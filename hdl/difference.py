@@ -2,9 +2,9 @@
 
 from functools import cached_property
 
-from ..config import DifferenceConfig
+from phongfx.config import DifferenceConfig
 from .block import PipelinedBlock
-from ..format import Format
+from phongfx.core.format import Format
 from .fixed import cut, quantize_cut, split_product, stage
 
 __all__ = ["Difference", "const_product", "signed_digits"]

@@ -2,7 +2,7 @@
 
 from functools import cached_property
 
-from ..config import DiffuseConfig
+from phongfx.config import DiffuseConfig
 from .block import PipelinedBlock
 from .fixed import FixedValue, cut, quantize_cut, stage
 

@@ -42,7 +42,7 @@ def write_verilog(component, name, path, *, emit_src=True):
     The text goes to a temporary file in the same directory, then replaces
     ``path`` in one step, so a reader (or a crash) never sees half a module.
     """
-    from ..files import atomic_write
+    from phongfx.core.files import atomic_write
 
     path = Path(path)
     text = verilog(component, name, emit_src=emit_src)

@@ -2,7 +2,7 @@
 
 from amaranth.hdl import Signal
 
-from ..config import EulerConfig
+from phongfx.config import EulerConfig
 from .block import PipelinedBlock
 from .fixed import FixedValue, stage
 

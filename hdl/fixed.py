@@ -1,6 +1,6 @@
 """Fixed-point values for Amaranth: the hardware twin of :mod:`phongfx.golden.fixed`.
 
-:class:`FixedValue` pairs an Amaranth value with its :class:`~phongfx.format.Format`;
+:class:`FixedValue` pairs an Amaranth value with its :class:`~phongfx.core.format.Format`;
 :class:`FixedVector` is three of them (X, Y, Z datapaths).  Operators build the
 same exact expressions as the golden model, with result formats taken from the
 same :class:`Format` methods, and :meth:`FixedValue.quantize` implements the same
@@ -35,7 +35,7 @@ import contextvars
 
 from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
-from ..format import Format, check_overflow, check_rounding
+from phongfx.core.format import Format, check_overflow, check_rounding
 
 __all__ = ["FixedValue", "FixedVector", "quantize", "overflowed", "overflow_checks", "overflow_flags",
            "report_overflow", "stage", "delay", "cut", "align", "quantize_cut",

@@ -2,7 +2,7 @@
 
 from functools import cached_property
 
-from ..config import HalfwayConfig
+from phongfx.config import HalfwayConfig
 from .block import PipelinedBlock
 from .fixed import cut, delay, quantize_cut, stage
 from .normalize import Normalize

@@ -2,7 +2,7 @@
 
 from functools import cached_property
 
-from ..config import LirpConfig
+from phongfx.config import LirpConfig
 from .block import PipelinedBlock
 from .fixed import FixedValue, cut, stage
 

@@ -2,7 +2,7 @@
 
 from functools import cached_property
 
-from ..config import NormalizeConfig
+from phongfx.config import NormalizeConfig
 from .block import PipelinedBlock
 from .fixed import FixedValue, cut, quantize_cut, stage
 

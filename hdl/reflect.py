@@ -2,7 +2,7 @@
 
 from functools import cached_property
 
-from ..config import ReflectConfig
+from phongfx.config import ReflectConfig
 from .block import PipelinedBlock
 from .fixed import cut, quantize_cut, stage
 

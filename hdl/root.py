@@ -4,8 +4,8 @@ from functools import cached_property
 
 from amaranth.hdl import Cat
 
-from ..config import RootConfig
-from ..format import Format
+from phongfx.config import RootConfig
+from phongfx.core.format import Format
 from .block import PipelinedBlock
 from .difference import const_product
 from .fixed import FixedValue, FixedVector, cut, delay, stage

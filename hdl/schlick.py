@@ -2,8 +2,8 @@
 
 from amaranth.hdl import Cat, Const, Mux
 
-from ..config import SchlickConfig
-from ..format import Format
+from phongfx.config import SchlickConfig
+from phongfx.core.format import Format
 from .block import PipelinedBlock
 from .fixed import FixedValue, stage
 

@@ -2,8 +2,8 @@
 
 from functools import cached_property
 
-from ..config import ShapeConfig
-from ..format import Format
+from phongfx.config import ShapeConfig
+from phongfx.core.format import Format
 from .block import PipelinedBlock
 from .fixed import FixedValue, cut, stage
 

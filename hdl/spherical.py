@@ -3,8 +3,8 @@
 from amaranth.hdl import Signal
 from amaranth.lib.memory import Memory
 
-from ..config import SphericalConfig
-from ..golden.spherical import rom_contents
+from phongfx.config import SphericalConfig
+from phongfx.golden.spherical import rom_contents
 from .block import PipelinedBlock
 from .fixed import FixedValue, FixedVector, stage
 

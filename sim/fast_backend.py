@@ -25,9 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..hdl.emit import payload_widths
+from phongfx.hdl.emit import payload_widths
 from . import verilator_backend as vb
-from ..hdl.block import checked_outputs
+from phongfx.hdl.block import checked_outputs
 from .harness import (Mismatch, Result, _fields, _row, checked_expected, columns, payload_mismatch,
                       schedule)
 
@@ -216,7 +216,7 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
     times = {}
     start = time.perf_counter()
     if inputs is None:
-        inputs = block.vectors(count=count, seed=seed)
+        inputs = block.stimulus(count=count, seed=seed)
     times["vectors"] = time.perf_counter() - start
     start = time.perf_counter()
     if expected is None:

@@ -1,6 +1,6 @@
 """One harness for every block: drive vectors clock by clock, compare every cycle.
 
-Given a :class:`~phongfx.blocks.Block` and raw input codes, :func:`check` builds a
+Given a :class:`~phongfx.core.registry.Block` and raw input codes, :func:`check` builds a
 per-cycle schedule (back to back, or with seeded random ``valid`` bubbles whose
 payload is random junk), runs the component on a back end, and compares every
 output cycle with the golden model: ``o.valid`` must rise exactly ``latency``
@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..hdl.block import OVERFLOW, checked_outputs
+from phongfx.hdl.block import OVERFLOW, checked_outputs
 
 __all__ = ["BACKENDS", "Mismatch", "Result", "HarnessMismatch", "columns", "pack", "unpack", "schedule",
            "checked_expected", "payload_mismatch", "check", "run_backend"]
@@ -198,9 +198,9 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
 
     Parameters
     ----------
-    block : phongfx.blocks.Block
+    block : phongfx.core.registry.Block
     inputs : dict of raw code arrays, optional
-        Defaults to ``block.vectors(count, seed)``.
+        Defaults to ``block.stimulus(count, seed)``.
     expected : dict of raw code arrays, optional
         The golden outputs of ``inputs`` when the caller has them already.
     backend : {"amaranth", "verilator", "verilator-fast"}
@@ -216,7 +216,7 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
                           count=count, max_report=max_report, **options)
     config = block.config
     if inputs is None:
-        inputs = block.vectors(count=count, seed=seed)
+        inputs = block.stimulus(count=count, seed=seed)
     if expected is None:
         expected = block.golden(inputs)
     packed_in = pack(config.inputs, inputs)

@@ -39,7 +39,7 @@ from pathlib import Path
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator, get_runner
 
-from ..hdl.emit import payload_widths, verilog
+from phongfx.hdl.emit import payload_widths, verilog
 
 __all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "cached_build", "run"]
 

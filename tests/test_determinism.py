@@ -1,4 +1,4 @@
-"""Determinism (GitHub issue 6, §2): the same inputs give byte-identical Verilog, golden
+"""Determinism (a design must be reproducible to be reviewed): the same inputs give byte-identical Verilog, golden
 outputs, images and tables across runs — in this process and in fresh interpreters with
 different hash seeds (set and dict orders keyed by strings change with them) — and the
 same cycle-by-cycle results on the Amaranth and Verilator back ends."""
@@ -11,10 +11,11 @@ import sys
 import numpy as np
 import pytest
 
-from phongfx import schlick_table, szirmay_tables
-from phongfx.blocks import block_names, get_block
+from phongfx.papers import schlick as schlick_table
+from phongfx.papers import szirmay as szirmay_tables
+from phongfx.core.registry import block_names, get_block
 from phongfx.hdl.emit import verilog
-from phongfx.mesh_render import run
+from phongfx.render.mesh import run
 from phongfx.sim.harness import pack, run_backend, schedule
 
 VERILOG_BLOCKS = ("fig7", "spherical", "conventional")
@@ -26,7 +27,7 @@ def _verilog_digest(name):
 
 def _golden_digest(name, count=200):
     block = get_block(name)
-    outputs = block.golden(block.vectors(count=count, seed=7))
+    outputs = block.golden(block.stimulus(count=count, seed=7))
     digest = hashlib.sha256()
     for port in sorted(outputs):
         digest.update(port.encode() + np.ascontiguousarray(outputs[port], dtype="<i8").tobytes())
@@ -67,7 +68,7 @@ def test_golden_outputs_identical_across_runs():
 def test_golden_vectors_depend_on_the_seed():
     """The digests above can differ: another seed gives other vectors and outputs."""
     block = get_block("lirp")
-    assert not np.array_equal(block.vectors(count=50, seed=1)["n0"], block.vectors(count=50, seed=2)["n0"])
+    assert not np.array_equal(block.stimulus(count=50, seed=1)["n0"], block.stimulus(count=50, seed=2)["n0"])
 
 
 @pytest.mark.parametrize("method", ["phong", "spherical", "conventional", "euler-unit"])
@@ -92,7 +93,7 @@ def test_table_json_identical_twice(tmp_path, module, name):
 def _stream(name, count=300, seed=5):
     """The raw per-cycle output of ``name`` on one back end's input: valid and payload."""
     block = get_block(name)
-    packed = pack(block.config.inputs, block.vectors(count=count, seed=seed))
+    packed = pack(block.config.inputs, block.stimulus(count=count, seed=seed))
     slots = schedule(len(packed), 0.25, seed)
     component = block.component()
     cycles = len(slots) + component.latency

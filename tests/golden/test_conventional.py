@@ -3,14 +3,14 @@ import math
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import ConventionalConfig
-from phongfx.format import Format
+from phongfx.core.format import Format
 from phongfx.golden.conventional import (conventional, even_shift, exp2_tables, log2_t,
                                          log2_tables, pow2, reciprocal_sqrt, rsqrt_table)
 from phongfx.golden.fixed import Fixed
-from phongfx.sim.vectors import at_angle, codes, rng, unit_vectors
-from phongfx.sim.vectors.conventional import directed, edge_n
+from phongfx.sim.stimulus import at_angle, codes, rng, unit_vectors
+from phongfx.sim.stimulus.conventional import directed, edge_n
 
 CONFIG = ConventionalConfig()
 VEC = CONFIG.fmt("vec")
@@ -209,7 +209,7 @@ def test_config_errors_name_the_field():
 
 
 def test_vectors_start_with_the_directed_set():
-    raw = get_block("conventional").vectors(count=40, seed=0)
+    raw = get_block("conventional").stimulus(count=40, seed=0)
     d = directed(CONFIG)
     for name in d:
         np.testing.assert_array_equal(raw[name][:len(d[name])], d[name])

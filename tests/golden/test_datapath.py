@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import (DatapathConfig, DifferenceConfig, RootConfig, ShapeConfig, fig7_config,
                              fig8_config, halfway_config)
 from phongfx.golden.reference import specular
@@ -13,7 +13,7 @@ def test_matches_float_lyon_k2_on_physical_vectors():
     # exact normals (a = 0): the datapath computes Lyon's k = 2 shape, so against the
     # float form it differs only by quantization; 10-bit vectors and n up to 8000
     block = get_block("fig7")
-    raw = block.vectors(count=2000, seed=5)
+    raw = block.stimulus(count=2000, seed=5)
     keep = raw["a"] == 0
     raw = {name: value[keep] for name, value in raw.items()}
     out = block.golden(raw)
@@ -32,14 +32,14 @@ def test_matches_float_lyon_k2_on_physical_vectors():
 def test_mirror_direction_gives_full_specular():
     # N halfway between L and V reflects V onto L: x = 0 up to 10-bit rounding
     block = get_block("fig7")
-    raw = block.vectors(count=0, seed=0)
+    raw = block.stimulus(count=0, seed=0)
     out = block.golden(raw)
     assert out["spec0"][0] >= 0.99 * 2 ** 15 and out["spec1"][1] >= 0.99 * 2 ** 15
 
 
 def test_k_changes_the_shape():
     block = get_block("fig7", shape=ShapeConfig(k=1))
-    raw = block.vectors(count=200, seed=1)
+    raw = block.stimulus(count=200, seed=1)
     assert not np.array_equal(block.golden(raw)["spec0"], get_block("fig7").golden(raw)["spec0"])
 
 
@@ -62,7 +62,7 @@ def test_local_light_held_constant_matches_the_light_at_infinity():
     # one 10-bit rounding, so the specular amounts agree to a fraction of a level
     infinite = get_block("fig7", lights=1)
     local = get_block("fig7", lights=1, local_lights=True, local_viewer=True)
-    raw = infinite.vectors(count=400, seed=8)
+    raw = infinite.stimulus(count=400, seed=8)
     raw_local = dict(raw, l0_0=raw["l0"], l0_1=raw["l0"], v0=raw["v"], v1=raw["v"])
     del raw_local["l0"], raw_local["v"]
     assert _levels(infinite, raw, local, raw_local) < 0.5  # measured 0.023
@@ -71,7 +71,7 @@ def test_local_light_held_constant_matches_the_light_at_infinity():
 def test_figure8_follows_figure7_k1_at_equal_shininess():
     fig7 = get_block("fig7", shape=ShapeConfig(k=1), lights=1)
     fig8 = get_block("fig8", lights=1)
-    raw = fig7.vectors(count=600, seed=9)
+    raw = fig7.stimulus(count=600, seed=9)
     m = np.clip(np.round(np.sqrt(raw["n"])), 1, 63).astype(np.int64)
     raw7 = dict(raw, n=m * m)
     raw8 = dict(raw, m=m)
@@ -82,7 +82,7 @@ def test_figure8_follows_figure7_k1_at_equal_shininess():
 
 def test_halfway_datapath_follows_lyon_row_8():
     block = get_block("halfway_datapath", lights=1)
-    raw = block.vectors(count=600, seed=10)
+    raw = block.stimulus(count=600, seed=10)
     keep = raw["a"] == 0
     raw = {k: v[keep] for k, v in raw.items()}
     N = raw["n0"] * LSB
@@ -99,7 +99,7 @@ def test_halfway_conventions_agree_on_x():
     mean = get_block("halfway_datapath", lights=1, halfway=HalfwayConfig(variant="d3"))
     total = get_block("halfway_datapath", lights=1, halfway=HalfwayConfig(variant="d3", h="sum"))
     assert (mean.config.shininess[2], total.config.shininess[2]) == (8000, 32000)
-    raw = mean.vectors(count=400, seed=12)
+    raw = mean.stimulus(count=400, seed=12)
     # measured 2.75: the mean convention's D has half the resolution, seen at n up to 8000
     assert _levels(mean, raw, total, raw) < 4
 
@@ -121,7 +121,7 @@ def test_constant_shininess_gives_the_codes_of_the_port(name, unit, port, value)
     assert fixed.config.shininess is None and fixed.config.shininess_const == value
     assert fed.config.shininess[0] == port and fed.config.shininess_const == 0
     assert set(fed.config.inputs) - set(fixed.config.inputs) == {port}
-    raw = fixed.vectors(count=300, seed=6)
+    raw = fixed.stimulus(count=300, seed=6)
     assert port not in raw
     a, b = fixed.golden(raw), fed.golden(dict(raw, **{port: np.full(len(raw["a"]), value)}))
     assert a.keys() == b.keys()

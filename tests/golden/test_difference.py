@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import DifferenceConfig
 from phongfx.golden.difference import difference
 from phongfx.golden.fixed import Fixed
@@ -35,7 +35,7 @@ def test_opposite_vectors_saturate():
 
 def test_matches_float_within_half_lsb():
     block = get_block("difference")
-    raw = block.vectors(count=500, seed=3)
+    raw = block.stimulus(count=500, seed=3)
     x2 = block.golden(raw)["x2"] * 2.0 ** -12
     d = (raw["r"] - raw["l"]) * 2.0 ** -10
     exact = raw["n"] * np.sum(d * d, axis=-1)  # n·|R-L|² = 2x
@@ -74,7 +74,7 @@ def test_config_errors_name_the_field():
 
 @pytest.mark.parametrize("n", [1, 16, 77, 8000])
 def test_constant_n_gives_the_codes_of_n_on_the_port(n):
-    raw = get_block("difference").vectors(count=300, seed=5)
+    raw = get_block("difference").stimulus(count=300, seed=5)
     config = DifferenceConfig(n_const=n)
     r, l = Fixed(raw["r"], config.vec), Fixed(raw["l"], config.vec)
     fixed = difference(config, r, l)["x2"]
@@ -108,7 +108,7 @@ def test_n_const_errors_name_the_field(changes, message):
 
 
 def test_constant_n_vectors_have_no_port_and_reach_the_peak_edge():
-    raw = get_block("difference", n_const=16).vectors(count=200, seed=1)
+    raw = get_block("difference", n_const=16).stimulus(count=200, seed=1)
     assert set(raw) == {"r", "l"}
     x2 = get_block("difference", n_const=16).golden(raw)["x2"] * 2.0 ** -12
     # the grazing approach puts x = 2x/2 on 0..32 for this n: both sides of x = 2^k, k <= 4

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import DiffuseConfig
 from phongfx.golden.diffuse import diffuse
 from phongfx.golden.fixed import Fixed
@@ -43,7 +43,7 @@ def test_matches_float_within_bound(rounding, bound):
     # the only inexact step is one rounding of the exact N·L (20 fraction bits, so
     # truncation loses at most 1 - 2^-10 LSB); full-range codes saturate at the top
     block = get_block("diffuse", rounding=rounding)
-    raw = block.vectors(count=2000, seed=3)
+    raw = block.stimulus(count=2000, seed=3)
     dot = np.sum(raw["n"] * raw["l"], axis=-1) * LSB * LSB
     want = np.clip(dot, 0, 2 - LSB)
     err = np.abs(block.golden(raw)["diff"] * LSB - want)
@@ -52,7 +52,7 @@ def test_matches_float_within_bound(rounding, bound):
 
 def test_every_backside_light_gives_zero():
     block = get_block("diffuse")
-    raw = block.vectors(count=2000, seed=4)
+    raw = block.stimulus(count=2000, seed=4)
     back = np.sum(raw["n"] * raw["l"], axis=-1) < 0
     assert np.count_nonzero(back) > 1000
     np.testing.assert_equal(block.golden(raw)["diff"][back], 0)

@@ -1,12 +1,12 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import EulerConfig
 from phongfx.golden.euler import euler
 from phongfx.golden.euler_setup import quantize_setup, span_setup
 from phongfx.golden.fixed import Fixed
-from phongfx.sim.vectors.euler import span
+from phongfx.sim.stimulus.euler import span
 
 
 def wrap(value, fmt):
@@ -42,7 +42,7 @@ def run(config, raw):
 ])
 def test_golden_matches_python_loop(changes):
     block = get_block("euler", **changes)
-    raw = block.vectors(count=600, seed=3)
+    raw = block.stimulus(count=600, seed=3)
     # pixels before any init keep the reset state: p = t = ds = 0
     raw = {name: np.concatenate([value[5:9], value]) for name, value in raw.items()}
     raw["init"][:4] = 0

@@ -7,7 +7,7 @@ from phongfx.golden.euler_setup import (
     curves_at, duff_curve, euler_curve, gouraud_curve, min_frac_bits, normalized_curve, quantize_setup,
     random_spans, span_setup, span_setups, stability)
 from phongfx.golden.fixed import Fixed, FixedOverflowError
-from phongfx.sim.vectors.euler import span
+from phongfx.sim.stimulus.euler import span
 
 LENGTHS = (2, 3, 16, 257, 2048)
 

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from phongfx.format import OVERFLOWS, ROUNDINGS, Format
+from phongfx.core.format import OVERFLOWS, ROUNDINGS, Format
 from phongfx.golden.fixed import Fixed, FixedOverflowError, check_range, quantize_raw
 
 SETTINGS = settings(deadline=None, derandomize=True, max_examples=150)

@@ -1,12 +1,12 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import GouraudConfig
 from phongfx.golden.euler_setup import gouraud_curve, quantize_gouraud, span_setup
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.gouraud import gouraud
-from phongfx.sim.vectors.gouraud import span
+from phongfx.sim.stimulus.gouraud import span
 
 
 def loop(config, raw):
@@ -27,7 +27,7 @@ def loop(config, raw):
 @pytest.mark.parametrize("changes", [{}, dict(p="S1.20", dp="S3.12"), dict(p="S1.6", dp="S3.4")])
 def test_golden_matches_python_loop(changes):
     block = get_block("gouraud", **changes)
-    raw = block.vectors(count=600, seed=3)
+    raw = block.stimulus(count=600, seed=3)
     raw = {name: np.concatenate([value[5:9], value]) for name, value in raw.items()}
     raw["init"][:4] = 0
     out = block.golden(raw)

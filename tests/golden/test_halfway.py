@@ -1,13 +1,13 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import HALFWAY_VARIANTS, HalfwayConfig, NormalizeConfig
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.halfway import halfway
 from phongfx.golden.reference import specular
-from phongfx.sim.vectors import AXES, codes, rng, unit_vectors
-from phongfx.sim.vectors.halfway import GRAZING_DEGREES, grazing
+from phongfx.sim.stimulus import AXES, codes, rng, unit_vectors
+from phongfx.sim.stimulus.halfway import GRAZING_DEGREES, grazing
 
 LSB = 2.0 ** -10
 VEC = HalfwayConfig().fmt("vec")
@@ -79,7 +79,7 @@ def f_k(x, k):
 @pytest.mark.parametrize("rounding", ["round_half_up", "truncate"])
 def test_unit_inputs_match_float_within_stated_lsbs(variant, h, rounding):
     cfg = config(variant, h, rounding)
-    raw = unit_part(get_block("halfway", config=cfg).vectors(count=3000, seed=3))
+    raw = unit_part(get_block("halfway", config=cfg).stimulus(count=3000, seed=3))
     assert len(raw["n"]) > 3500
     out = halfway(cfg, *(Fixed(raw[name], cfg.vec) for name in "nlv"))
     p, q = exact(raw, cfg)
@@ -135,7 +135,7 @@ def test_d1_and_d2_have_equal_lengths(h):
     # a few LSB for N's codes, which the float gap of the same codes holds; beyond it
     # only the roundings of p and q, per component 3/4 ("sum") or 5/8 + 1/2 ("mean")
     block = get_block("halfway", variant="d1", h=h)
-    raw = unit_part(block.vectors(count=3000, seed=8))
+    raw = unit_part(block.stimulus(count=3000, seed=8))
     lengths = []
     for variant in ("d1", "d2"):
         cfg = config(variant, h)
@@ -158,7 +158,7 @@ def test_mean_with_4n_reproduces_appendix_rows(variant, method, k):
     # codes (row 9 is row 8's D with k = 1).  A |D| error δ moves f_k by at most
     # 2√2·δ·√n·max √x|f_k'(x)| = C_k·δ·√n (C_2 = 1.35, C_1 = 1.54), δ <= 2 LSB (asserted above)
     cfg = config(variant)
-    raw = unit_part(get_block("halfway", config=cfg).vectors(count=3000, seed=5))
+    raw = unit_part(get_block("halfway", config=cfg).stimulus(count=3000, seed=5))
     out = halfway(cfg, *(Fixed(raw[name], cfg.vec) for name in "nlv"))
     d = out["p"].to_float() - out["q"].to_float()
     normal, l, v = (raw[name] * LSB for name in "nlv")
@@ -219,7 +219,7 @@ def test_junk_codes_saturate_instead_of_wrapping(variant):
 
 def test_vectors_are_seeded_and_start_with_axis_triples():
     block = get_block("halfway")
-    a, b, c = (block.vectors(count=50, seed=s) for s in (1, 1, 2))
+    a, b, c = (block.stimulus(count=50, seed=s) for s in (1, 1, 2))
     for name in "nlv":
         np.testing.assert_equal(a[name], b[name])
     assert not np.array_equal(a["n"], c["n"])

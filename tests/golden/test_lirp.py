@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.lirp import lirp
@@ -33,7 +33,7 @@ def test_rounds_half_up_once():
 
 def test_matches_float_within_half_lsb():
     block = get_block("lirp")
-    raw = block.vectors(count=500, seed=3)
+    raw = block.stimulus(count=500, seed=3)
     out = block.golden(raw)["n"] * 2.0 ** -10
     n0, n1 = raw["n0"] * 2.0 ** -10, raw["n1"] * 2.0 ** -10
     a = raw["a"][:, None] * 2.0 ** -10

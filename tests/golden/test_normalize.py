@@ -1,11 +1,11 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import NormalizeConfig
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.normalize import normalize
-from phongfx.sim.vectors import rng, unit_vectors
+from phongfx.sim.stimulus import rng, unit_vectors
 
 ROUNDINGS = ["truncate", "round_half_up", "round_half_even"]
 
@@ -68,7 +68,7 @@ def test_matches_float_g_within_stated_lsbs(order, rounding):
     # Each rounding (z, y², g) errs by half a 1.12 LSB (a whole one truncating); through
     # |dg/dy|·|N'| <= 0.71 and |N'| <= 1 that is <= 0.28 output LSB, plus N's own rounding
     block = get_block("normalize", order=order, rounding=rounding)
-    raw = block.vectors(count=1000, seed=3)
+    raw = block.stimulus(count=1000, seed=3)
     n = raw["n"] * 2.0 ** -10
     out = block.golden(raw)["n"] * 2.0 ** -10
     z = np.sum(n * n, axis=-1)
@@ -92,7 +92,7 @@ def test_y2_overflow_is_declared_only_where_impossible():
 
 def test_vectors_are_seeded_and_start_with_extremes():
     block = get_block("normalize")
-    a, b, c = (block.vectors(count=50, seed=s)["n"] for s in (1, 1, 2))
+    a, b, c = (block.stimulus(count=50, seed=s)["n"] for s in (1, 1, 2))
     np.testing.assert_equal(a, b)
     assert not np.array_equal(a, c)
     np.testing.assert_equal(a[:7], np.concatenate([np.eye(3), -np.eye(3), np.zeros((1, 3))]) * 1024)

@@ -1,11 +1,11 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import ReflectConfig
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.reflect import reflect
-from phongfx.sim.vectors import codes, rng, unit_vectors
+from phongfx.sim.stimulus import codes, rng, unit_vectors
 
 LSB = 2.0 ** -10
 AXES = np.concatenate([np.eye(3), -np.eye(3)])
@@ -48,7 +48,7 @@ def test_unit_inputs_match_float_within_bound(rounding, bound):
     # N·V rounded to S1.12 costs at most 2·|N_i|·(dot error) = 1/4 LSB (1/2 truncated),
     # the final rounding 1/2 LSB (1 truncated)
     block = get_block("reflect", rounding=rounding)
-    raw = block.vectors(count=2000, seed=3)
+    raw = block.stimulus(count=2000, seed=3)
     unit = slice(0, len(raw["n"]) - 2000)  # the full-range codes come last
     raw = {name: column[unit] for name, column in raw.items()}
     err = np.abs(block.golden(raw)["r"] * LSB - exact(raw, block.config))
@@ -58,7 +58,7 @@ def test_unit_inputs_match_float_within_bound(rounding, bound):
 def test_full_range_codes_match_float_where_unsaturated():
     # |N_i| up to 2 doubles the cost of the dot rounding: 1/2 + 1/2 LSB
     block = get_block("reflect")
-    raw = block.vectors(count=2000, seed=4)
+    raw = block.stimulus(count=2000, seed=4)
     want = exact(raw, block.config)
     dot = np.sum(raw["n"] * raw["v"], axis=-1) * LSB * LSB
     fine = (np.abs(dot) < 1.99)[:, None] & (np.abs(want) < 1.99)

@@ -1,14 +1,14 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import DifferenceConfig, RootConfig, ShapeConfig
 from phongfx.golden.difference import difference
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.root import root
 from phongfx.golden.shape import shape
-from phongfx.sim.vectors import codes, rng, unit_vectors
-from phongfx.sim.vectors.root import fraction_codes, pairs
+from phongfx.sim.stimulus import codes, rng, unit_vectors
+from phongfx.sim.stimulus.root import fraction_codes, pairs
 
 
 def run(raw, config=RootConfig()):
@@ -74,7 +74,7 @@ def test_peak_is_exactly_one(k):
 @pytest.mark.parametrize("k", range(5))
 def test_matches_float_within_bound(k):
     config = RootConfig(k=k)
-    for raw in (sweep(config), get_block("root", k=k).vectors(count=2000, seed=k)):
+    for raw in (sweep(config), get_block("root", k=k).stimulus(count=2000, seed=k)):
         x, delta, clean = exact(config, raw)
         error = (run(raw, config).to_float() - f_k(x, k)) * 2 ** 15
         assert np.count_nonzero(clean & (x < 2 ** k)) > 500
@@ -101,7 +101,7 @@ def test_measured_error():
 def test_matches_integer_model(k):
     # the flag zeroes exactly where an integer part is set; elsewhere Figure 7d on Σq²
     config = RootConfig(k=k)
-    raw = get_block("root", k=k).vectors(count=2000, seed=k)
+    raw = get_block("root", k=k).stimulus(count=2000, seed=k)
     big, q2 = integer_model(config, raw)
     alone = shape(config.shape, Fixed(q2, "2.18") << 2 * config.shift)["spec"].raw
     spec = run(raw, config).raw
@@ -114,7 +114,7 @@ def test_matches_integer_model(k):
 @pytest.mark.parametrize("k", range(5))
 def test_zero_from_threshold_on(k):
     config = RootConfig(k=k)
-    raw = get_block("root", k=k).vectors(count=2000, seed=k)
+    raw = get_block("root", k=k).stimulus(count=2000, seed=k)
     spec = run(raw, config).raw
     # where the datapath's own x/2^k (c·Σq²) reaches 1, or any integer part is set
     d = np.clip(raw["r"] - raw["l"], -2048, 2047)
@@ -129,7 +129,7 @@ def test_zero_from_threshold_on(k):
 
 def test_threshold_vectors_straddle_both_comparators():
     config = RootConfig()
-    raw = get_block("root").vectors(count=0)
+    raw = get_block("root").stimulus(count=0)
     big, v = fraction_codes(config, raw["m"], np.clip(raw["r"] - raw["l"], -2048, 2047))
     past = big | (v >= 1 << 2 * config.fmt("frac").frac_bits)
     # the directed part holds pairs just below and at each threshold
@@ -218,7 +218,7 @@ def test_config_errors_name_the_field():
 
 @pytest.mark.parametrize("m", [1, 4, 7, 63])
 def test_constant_m_gives_the_codes_of_m_on_the_port(m):
-    raw = get_block("root").vectors(count=300, seed=5)
+    raw = get_block("root").stimulus(count=300, seed=5)
     config = RootConfig(m_const=m)
     r, l = Fixed(raw["r"], config.vec), Fixed(raw["l"], config.vec)
     fixed = root(config, r, l)["spec"]
@@ -254,7 +254,7 @@ def test_constant_m_vectors_keep_the_comparator_edges(m):
     # the vectors of a constant m hold its comparator edges: cases on both sides of the
     # flag-or-threshold (x/2^k = 1) at that m, and no m port
     config = RootConfig(m_const=m)
-    raw = get_block("root", m_const=m).vectors(count=50, seed=2)
+    raw = get_block("root", m_const=m).stimulus(count=50, seed=2)
     assert set(raw) == {"r", "l"}
     d = np.clip(raw["r"] - raw["l"], -2048, 2047)
     big, v = fraction_codes(config, np.full(len(d), m), d)

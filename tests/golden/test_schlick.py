@@ -3,13 +3,13 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import SchlickConfig
-from phongfx.format import Format
+from phongfx.core.format import Format
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.schlick import divisor, schlick
-from phongfx.schlick_table import FIGURE1_N, schlick_table
-from phongfx.sim.vectors.schlick import directed, sweep_n
+from phongfx.papers.schlick import FIGURE1_N, schlick_table
+from phongfx.sim.stimulus.schlick import directed, sweep_n
 
 EVERY_T = np.arange((1 << 15) + 1)  # every code of 1.15 in 0..1
 
@@ -46,7 +46,7 @@ def test_round_half_up_is_within_half_an_lsb(n):
 
 def test_equals_the_floor_of_the_exact_rational():
     config = SchlickConfig(t="1.10", n="6.0", n_max=63, out="1.12")
-    raw = get_block("schlick", config=config).vectors(count=300, seed=3)
+    raw = get_block("schlick", config=config).stimulus(count=300, seed=3)
     spec = run(raw["t"], raw["n"], config).raw
     assert np.array_equal(spec, np.floor(exact_lsb(raw["t"], raw["n"], config)).astype(np.int64))
 
@@ -114,7 +114,7 @@ def test_config_errors_name_the_field():
 
 def test_vectors_hold_the_directed_set_and_every_t():
     config = SchlickConfig()
-    raw = get_block("schlick").vectors(count=10, seed=0)
+    raw = get_block("schlick").stimulus(count=10, seed=0)
     d = directed(config)
     assert np.array_equal(raw["t"][:len(d["t"])], d["t"]) and np.array_equal(raw["n"][:len(d["n"])], d["n"])
     assert set(d["n"].tolist()) >= {1, 2, 7999, 8000, 4095, 1}

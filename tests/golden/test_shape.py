@@ -1,12 +1,12 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import DifferenceConfig, ShapeConfig
 from phongfx.golden.difference import difference
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.shape import shape
-from phongfx.sim.vectors.shape import nonzero_codes, threshold
+from phongfx.sim.stimulus.shape import nonzero_codes, threshold
 
 
 def run(raw, config=ShapeConfig()):
@@ -66,7 +66,7 @@ def test_zero_from_threshold_on(k):
 @pytest.mark.parametrize("k", range(5))
 def test_monotone_over_exhaustive_sweep(k):
     config = ShapeConfig(k=k)
-    spec = run(get_block("shape", k=k).vectors(count=0)["x2"][:len(nonzero_codes(config))], config)
+    spec = run(get_block("shape", k=k).stimulus(count=0)["x2"][:len(nonzero_codes(config))], config)
     assert np.all(np.diff(spec.raw) <= 0)
     assert spec.raw[0] == 1 << 15
 
@@ -82,7 +82,7 @@ def test_difference_then_shape_follows_the_float_chain():
     # same codes; 2x is within 2^-13, so x within 2^-14, which moves f_2 by at most
     # max |f_2'|·2^-14 = 2^-14, 2 LSB of 1.15: the 12 fraction bits of 2x cost more than t
     block = get_block("difference")
-    raw = block.vectors(count=500, seed=5)
+    raw = block.stimulus(count=500, seed=5)
     x2 = block.golden(raw)["x2"]
     d = (raw["r"] - raw["l"]) * 2.0 ** -10
     x = raw["n"] / 2 * np.sum(d * d, axis=-1)

@@ -3,13 +3,13 @@ import math
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import SphericalConfig
-from phongfx.format import Format
+from phongfx.core.format import Format
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.spherical import interpolate, rom_angles, rom_bound, rom_contents, spherical
 from phongfx.golden.spherical_setup import quantize_setup, solve_a, span_setup
-from phongfx.szirmay_tables import PAPER_TABLE1
+from phongfx.papers.szirmay import PAPER_TABLE1
 
 
 def loop(config, raw):
@@ -39,7 +39,7 @@ def loop(config, raw):
 
 def with_leading_steps(block, count, seed):
     # pixels before any init: the golden model must keep the reset state (θ = 0, C = 0)
-    raw = block.vectors(count=count, seed=seed)
+    raw = block.stimulus(count=count, seed=seed)
     lead = {name: value[-5:] for name, value in raw.items()}
     lead["init"] = np.zeros(5, dtype=np.int64)
     return {name: np.concatenate([lead[name], raw[name]]) for name in raw}
@@ -172,7 +172,7 @@ def test_config_errors_name_the_field():
 def test_golden_refuses_nothing_it_should_ignore():
     # junk on non-init pixels is ignored: changing it changes nothing
     block = get_block("spherical")
-    raw = block.vectors(count=100, seed=4)
+    raw = block.stimulus(count=100, seed=4)
     other = {name: value.copy() for name, value in raw.items()}
     steps = raw["init"] == 0
     for name in ("b", "s", "bd", "sd"):

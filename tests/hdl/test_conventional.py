@@ -1,10 +1,10 @@
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import ConventionalConfig
 from phongfx.hdl.conventional import LATENCY, Conventional
 from phongfx.sim.harness import check
-from phongfx.sim.vectors.conventional import vectors
+from phongfx.sim.stimulus.conventional import vectors
 
 SMALL = dict(vec="S1.10", n="6.0", n_max=63, m="0.12", rsqrt_addr=6, y="1.12", nr="3.14",
              dot="S2.12", t="1.10", log_addr=5, log="0.14", exp_addr=6, exp="2.13", out="1.12")

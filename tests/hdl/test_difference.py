@@ -1,7 +1,7 @@
 import pytest
 from amaranth.back import rtlil
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import DifferenceConfig
 from phongfx.hdl.difference import Difference, signed_digits
 from phongfx.sim.harness import check

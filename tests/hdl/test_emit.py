@@ -10,7 +10,7 @@ import subprocess
 
 import pytest
 
-from phongfx.blocks import block_names, get_block
+from phongfx.core.registry import block_names, get_block
 from phongfx.hdl.emit import verilog, write_verilog
 from phongfx.sim.verilator_backend import tool_environment
 

@@ -13,7 +13,7 @@ import pytest
 from amaranth.hdl import Module, Signal
 from amaranth.sim import Simulator
 
-from phongfx.format import OVERFLOWS, ROUNDINGS, Format
+from phongfx.core.format import OVERFLOWS, ROUNDINGS, Format
 from phongfx.golden.fixed import Fixed, quantize_raw
 from phongfx.hdl.fixed import FixedValue, FixedVector, quantize
 

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import GouraudConfig
 from phongfx.hdl.gouraud import Gouraud
 from phongfx.sim.harness import check
@@ -26,7 +26,7 @@ def test_harness(backend, bubbles):
 
 def test_harness_steps_before_init():
     block = get_block("gouraud")
-    raw = block.vectors(count=50, seed=2)
+    raw = block.stimulus(count=50, seed=2)
     raw = {name: np.concatenate([value[1:4], value]) for name, value in raw.items()}
     raw["init"][:3] = 0
     check(block, raw, bubbles=0.3, seed=2).raise_on_mismatch()

@@ -1,6 +1,6 @@
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import HALFWAY_VARIANTS, HalfwayConfig, NormalizeConfig, ReflectConfig
 from phongfx.hdl.halfway import Halfway
 from phongfx.sim.harness import check

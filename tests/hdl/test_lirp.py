@@ -1,6 +1,6 @@
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig
 from phongfx.hdl.lirp import Lirp
 from phongfx.sim.harness import check

@@ -1,6 +1,6 @@
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig, NormalizeConfig
 from phongfx.hdl.normalize import Normalize
 from phongfx.sim.harness import check

@@ -5,11 +5,11 @@ import pytest
 from amaranth.hdl import Fragment, Module, Signal
 from amaranth.sim import Simulator
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.cli import apply_settings
 from phongfx.config import (DatapathConfig, HalfwayConfig, LirpConfig, NormalizeConfig, RootConfig,
                             ShapeConfig, fig7_config, fig8_config)
-from phongfx.format import Format
+from phongfx.core.format import Format
 from phongfx.golden.fixed import quantize_raw
 from phongfx.hdl.fixed import FixedValue, align, quantize_cut, split_product, stage
 from phongfx.hdl.lirp import Lirp
@@ -34,7 +34,7 @@ DEPTHS = [0, 1, 2, 3]
 
 def _sample(block, rows, seed):
     """``rows`` seeded rows of the block's own vectors (directed, swept and random)."""
-    inputs = block.vectors(count=rows, seed=seed)
+    inputs = block.stimulus(count=rows, seed=seed)
     total = len(next(iter(inputs.values())))
     pick = np.random.default_rng(seed).choice(total, size=min(rows, total), replace=False)
     return {name: np.asarray(column)[pick] for name, column in inputs.items()}

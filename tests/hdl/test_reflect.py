@@ -1,6 +1,6 @@
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import ReflectConfig
 from phongfx.hdl.reflect import Reflect
 from phongfx.sim.harness import check

@@ -1,7 +1,7 @@
 import pytest
 from amaranth.back import rtlil
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import RootConfig
 from phongfx.hdl.root import Root
 from phongfx.hdl.shape import Shape

@@ -1,10 +1,10 @@
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import SchlickConfig
 from phongfx.hdl.schlick import Schlick
 from phongfx.sim.harness import check
-from phongfx.sim.vectors.schlick import vectors
+from phongfx.sim.stimulus.schlick import vectors
 
 
 @pytest.mark.parametrize("changes, latency, widths", [

@@ -1,10 +1,10 @@
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import ShapeConfig
 from phongfx.hdl.shape import Shape
 from phongfx.sim.harness import check
-from phongfx.sim.vectors.shape import vectors
+from phongfx.sim.stimulus.shape import vectors
 
 
 @pytest.mark.parametrize("k", range(5))

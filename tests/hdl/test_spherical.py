@@ -1,11 +1,11 @@
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import SphericalConfig
 from phongfx.hdl.spherical import Spherical
 from phongfx.sim.harness import check
-from phongfx.sim.vectors.spherical import span
+from phongfx.sim.stimulus.spherical import span
 
 
 def test_latency_and_ports():
@@ -31,7 +31,7 @@ def test_harness(backend, bubbles):
 def test_harness_steps_before_init():
     # from reset, pixels before any init read θ = 0 and C = 0
     block = get_block("spherical")
-    raw = block.vectors(count=50, seed=2)
+    raw = block.stimulus(count=50, seed=2)
     raw = {name: np.concatenate([value[1:4], value]) for name, value in raw.items()}
     raw["init"][:3] = 0
     check(block, raw, bubbles=0.3, seed=2).raise_on_mismatch()

@@ -10,9 +10,10 @@ import re
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
-from phongfx.format import Format
-from phongfx.sim import fast_backend, verilator_backend
+from phongfx.core.registry import get_block
+from phongfx.core.format import Format
+from phongfx.sim import fast_backend
+from phongfx.sim import verilator_backend
 from phongfx.sim.harness import check, pack, run_backend, schedule
 
 pytestmark = pytest.mark.verilator
@@ -55,7 +56,7 @@ def test_blocks_pass_with_and_without_bubbles(name, bubbles):
 
 
 def _corrupt(block, count, seed, field, indices, bit=0):
-    inputs = block.vectors(count=count, seed=seed)
+    inputs = block.stimulus(count=count, seed=seed)
     golden = block.golden(inputs)
     expected = {name: value.copy() for name, value in golden.items()}
     expected[field][indices] ^= 1 << bit

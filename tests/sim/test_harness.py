@@ -17,8 +17,8 @@ from amaranth.hdl import Module, Signal
 from amaranth.lib import data, wiring
 from amaranth.lib.wiring import In, Out
 
-from phongfx.blocks import get_block
-from phongfx.format import Format
+from phongfx.core.registry import get_block
+from phongfx.core.format import Format
 from phongfx.hdl.block import payload_layout
 from phongfx.hdl.fixed import FixedValue, stage
 from phongfx.hdl.lirp import Lirp
@@ -161,7 +161,7 @@ LIRP = get_block("lirp")
 
 def _inputs(count=150, seed=3):
     """A seeded sample of the LIRP's test vectors (directed and random)."""
-    every = LIRP.vectors(count=200, seed=seed)
+    every = LIRP.stimulus(count=200, seed=seed)
     pick = np.sort(np.random.default_rng(seed).choice(len(every["a"]), count, replace=False))
     return {name: value[pick] for name, value in every.items()}
 

@@ -7,9 +7,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-from phongfx.blocks import get_block
+from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig
-from phongfx.format import Format
+from phongfx.core.format import Format
 from phongfx.hdl.block import OVERFLOW, checked_outputs
 from phongfx.hdl.fixed import FixedValue, overflow_checks
 from phongfx.hdl.lirp import Lirp

@@ -1,0 +1,274 @@
+"""The scene compiler: the cheapest datapath whose error a scene's viewer cannot see.
+
+:func:`compile_scene` analyses the scene (:mod:`phongfx.explore.compile.analysis`), then for every
+method of :data:`phongfx.explore.methods.METHODS` either records why it cannot represent the
+scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
+
+1. start from the method's default widths; if they miss the requirement, from every
+   width at its range maximum; if that misses too the method is infeasible (its
+   measured error is kept);
+2. greedily lower each width (binary search, then verified) while every frame, rendered
+   through the golden model and shaded (:func:`phongfx.scene.geometry.shade`), stays
+   within ``requirement.max_error_levels``; passes repeat until no single width can drop;
+3. the **proof** of local minimality: for each width, the config with that width one
+   lower and its measured max error (above the requirement), or "at range minimum".
+
+Widths are the method's :class:`~phongfx.explore.methods.MethodSpec` parameters except ``n``,
+``k`` and ``lights``, plus, for Lyon's datapaths, the normalizers' ``order`` (2 = g2,
+1 = g1: g1 vs g2 is measured like a width) and, against true Phong, the shape
+function's ``k`` (fewer squarings is cheaper; ``2^k = n`` makes ``f_k`` Phong's power).
+
+Evaluation: each frame once per shininess *variant*: one when every material has a
+single ``n``, else three, with each range material at its ``n_lo``, its rounded
+geometric mean and its ``n_hi``.  The error of a pixel is ``|I - I_ref|·(2^bits - 1)``
+(:func:`phongfx.scene.geometry.error_levels`), ``I_ref`` from true Phong (``"phong"``:
+``(R·L)^n`` and ``N·L`` at Phong's normal (``FrameGeometry.normal``), and the exact light and
+viewer of the pixel) or from the
+method's own float form (``"self"``); max and mean over all visible pixels of all
+renders.
+
+Cost (to choose among methods): synthesized LUT-eq (``LUT4 + 958·DSP``,
+:func:`phongfx.explore.synth.synth`, ECP5 defaults, cached) with ``synth=True``, else the
+tool-free :func:`phongfx.explore.cost_proxy.proxy_cost`.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import run as runs
+from .analysis import analyse
+from phongfx.core.registry import get_block
+from phongfx.golden.reference import specular
+from phongfx.explore.methods import METHODS
+from phongfx.scene.geometry import error_levels, frames, shade
+from phongfx.explore.synth import SynthError
+
+__all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "search_widths", "cost"]
+
+_FIXED = ("n", "k", "lights")
+
+
+@dataclass
+class Compiled:
+    """What :func:`compile_scene` found; :mod:`phongfx.explore.compile.emit` writes it out."""
+
+    spec: object
+    analysis: object
+    scene: object                       # SceneEval
+    cost_model: str
+    chosen: str = None                  # method name, None if nothing met the requirement
+    results: dict = field(default_factory=dict)   # method -> search result dict
+    rejected: dict = field(default_factory=dict)  # method -> reason
+
+    @property
+    def best(self):
+        return self.results.get(self.chosen)
+
+
+def width_params(method, against="phong"):
+    """``{name: (default, (lo, hi))}`` of the widths the search lowers; against ``"phong"``
+    Lyon's datapaths add the shape function's ``k`` (up to :data:`~phongfx.explore.compile.run.K_MAX`;
+    against ``"self"`` it stays at the default, as it defines the reference)."""
+    spec = METHODS[method]
+    out = {k: (v, spec.ranges[k]) for k, v in spec.params.items() if k not in _FIXED}
+    out.update(runs.EXTRA.get(method, {}))
+    if against == "phong" and method in runs.DATAPATHS:
+        out["k"] = (spec.params["k"], (spec.ranges["k"][0], runs.K_MAX))
+    return out
+
+
+def _diffuse(g):
+    """(lights, P) exact ``max(N·L, 0)`` at Phong's normal: every method's diffuse reference."""
+    normal = g.normal
+    return np.stack([np.maximum(np.sum(normal * light, -1), 0.0) for light in g.light])
+
+
+class SceneEval:
+    """The scene's renders (frames × shininess variants) and their Phong references."""
+
+    def __init__(self, spec, geometries=None):
+        self.spec = spec
+        self.geometries = frames(spec) if geometries is None else geometries
+        if not any(len(g) for g in self.geometries):
+            raise ValueError(f"{spec.name}: no object covers a pixel in any frame; nothing to compile")
+        self.analysis = analyse(spec, self.geometries)
+        self.bits = spec.output.bits
+        #: per render of a frame, the n of each range material (empty: every n single)
+        self.shininess_variants = []
+        variants = self._variants()
+        self.renders = [(g, n) for g in self.geometries for n in variants(g)]
+        self.reference = [self._phong(g, n) for g, n in self.renders]
+        self.cache = {}
+
+    def _variants(self):
+        """Per frame, the per-pixel n arrays of the shininess variants (module docstring)."""
+        materials = list(self.spec.materials.values())
+        ranged = [i for i, m in enumerate(materials) if m.n_lo is not None and m.n_lo != m.n_hi]
+
+        names = list(self.spec.materials)
+        picks = (lambda m: m.n_lo, lambda m: round(np.sqrt(m.n_lo * m.n_hi)), lambda m: m.n_hi)
+
+        def variants(g):
+            if not ranged:
+                return [np.round(g.n).astype(np.int64)]
+            out = []
+            self.shininess_variants = [{names[i]: pick(materials[i]) for i in ranged} for pick in picks]
+            for pick in picks:
+                n = np.round(g.n).astype(np.int64)
+                for i in ranged:
+                    n[g.material == i] = pick(materials[i])
+                out.append(n)
+            return out
+        return variants
+
+    def _phong(self, g, n):
+        normal = g.normal
+        spec = np.stack([specular("phong", normal, light, g.viewer, n) for light in g.light])
+        return shade(g, _diffuse(g), spec)
+
+    def render(self, method, config, params, index):
+        """``(I, I_ref, raw inputs, raw outputs)`` of render ``index``."""
+        g, n = self.renders[index]
+        raw = runs.frame_inputs(method, config, g, n)
+        out = get_block(runs.block_name(method), config=config).golden(raw)
+        diff, spec = runs.frame_terms(method, config, out, g)
+        value = shade(g, diff, spec)
+        if self.spec.requirement.against == "self":
+            return value, shade(g, _diffuse(g), runs.own_specular(method, config, params, g, n)), raw, out
+        return value, self.reference[index], raw, out
+
+    def error(self, method, params):
+        """``{"max", "mean"}`` error in levels of ``method`` at ``params`` (cached); a config
+        that cannot be built or overflows has ``max = inf`` and says why in ``"why"``."""
+        key = (method, tuple(sorted(params.items())))
+        if key not in self.cache:
+            self.cache[key] = self._error(method, params)
+        return self.cache[key]
+
+    def _error(self, method, params):
+        try:
+            config = runs.build(method, params, self.analysis)
+            errors = [error_levels(*self.render(method, config, params, i)[:2], self.bits)
+                      for i in range(len(self.renders))]
+        except (ValueError, OverflowError) as error:
+            return {"max": float("inf"), "mean": float("inf"), "why": str(error)}
+        e = np.concatenate(errors)
+        return {"max": float(e.max(initial=0.0)), "mean": float(e.mean()) if e.size else 0.0}
+
+
+def _passes(scene, method, params):
+    return scene.error(method, params)["max"] <= scene.spec.requirement.max_error_levels
+
+
+def _lowest(scene, method, params, name, lo):
+    """Lowest value of ``name`` in ``lo..params[name]`` that passes (binary search)."""
+    good, bad = params[name], lo - 1
+    while good - bad > 1:
+        mid = (good + bad) // 2
+        if _passes(scene, method, {**params, name: mid}):
+            good = mid
+        else:
+            bad = mid
+    return good
+
+
+def search_widths(scene, method, progress=None):
+    """The width search of the module docstring; returns a result dict."""
+    widths = width_params(method, scene.spec.requirement.against)
+    default = {k: v for k, (v, _) in widths.items()}
+    start = default if _passes(scene, method, default) else {k: r[1] for k, (_, r) in widths.items()}
+    result = {"method": method, "default": {"params": default, **scene.error(method, default)}}
+    if not _passes(scene, method, start):
+        return {**result, "feasible": False, "params": start, **scene.error(method, start)}
+    params, changed = dict(start), True
+    while changed:
+        changed = False
+        for name, (_, (lo, _hi)) in widths.items():
+            value = _lowest(scene, method, params, name, lo)
+            if value < params[name]:
+                params[name], changed = value, True
+            if progress:
+                progress(f"{method} {name}={params[name]}")
+        if not changed:  # the proof pass: one lower must fail for every width
+            proof = {}
+            for name, (_, (lo, _hi)) in widths.items():
+                if params[name] <= lo:
+                    proof[name] = {"value": params[name], "lower": None, "why": "at range minimum"}
+                    continue
+                lower = {**params, name: params[name] - 1}
+                measured = scene.error(method, lower)
+                if measured["max"] <= scene.spec.requirement.max_error_levels:
+                    params, changed = lower, True
+                    break
+                proof[name] = {"value": params[name], "lower": params[name] - 1,
+                               **{k: measured[k] for k in ("max", "why") if k in measured}}
+                proof[name]["max_error"] = proof[name].pop("max")
+    return {**result, "feasible": True, "params": params, **scene.error(method, params), "proof": proof}
+
+
+def cost(method, config, synth=False, copies=1):
+    """``{"lut_eq", "copies", ...}`` of ``copies`` of ``method``'s block at ``config``: ECP5
+    synthesis or the proxy; ``lut_eq`` covers every copy, the other keys are per copy."""
+    block = get_block(runs.block_name(method), config=config)
+    if not synth:
+        from phongfx.explore.cost_proxy import proxy_cost
+        unit = proxy_cost(block)
+    else:
+        from phongfx.explore.synth import synth as run_synth
+        result = run_synth(block.name, config=config)
+        keys = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "latency")
+        unit = {"lut_eq": result["lut4"] + 958 * result["dsp"], **{k: result[k] for k in keys}}
+    return {**unit, "lut_eq": copies * unit["lut_eq"], "copies": copies}
+
+
+def check_methods(methods):
+    """``methods`` as a list (all of :data:`~phongfx.explore.methods.METHODS` for None), each checked."""
+    names = list(METHODS) if methods is None else list(methods)
+    for name in names:
+        if name not in METHODS:
+            raise ValueError(f"method must be one of {', '.join(METHODS)}, not {name!r}")
+    return names
+
+
+def compile_scene(spec, *, methods=None, synth=False, progress=None, geometries=None):
+    """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
+
+    Parameters
+    ----------
+    methods : sequence of str, optional
+        Keys of :data:`~phongfx.explore.methods.METHODS` to consider (default all).
+    synth : bool
+        Cost by ECP5 synthesis instead of the proxy.
+    progress : callable, optional
+        Called with a short description of each step.
+
+    Returns
+    -------
+    Compiled
+    """
+    names = check_methods(methods)
+    scene = SceneEval(spec, geometries)
+    out = Compiled(spec, scene.analysis, scene, "ecp5-synth" if synth else "proxy")
+    for name in names:
+        reason = runs.rejection(name, spec, scene.analysis, scene.geometries)
+        if reason:
+            out.rejected[name] = reason
+            continue
+        result = search_widths(scene, name, progress)
+        # the default widths are costed always (the manifest's "saved against the defaults"),
+        # the searched ones only when they meet the requirement
+        for where in (result["default"], result) if result["feasible"] else (result["default"],):
+            try:
+                where["cost"] = cost(name, runs.build(name, where["params"], scene.analysis), synth,
+                                     runs.copies(name, scene.analysis))
+            except (ValueError, SynthError) as error:  # a tool failure costs that design only
+                where["cost"] = {"lut_eq": None, "why": str(error).splitlines()[0]}
+        out.results[name] = result
+        if progress:
+            progress(f"{name} done")
+    feasible = [r for r in out.results.values() if r["feasible"]]
+    if feasible:  # an uncosted design (its synthesis failed) is chosen only if nothing else meets it
+        out.chosen = min(feasible, key=lambda r: (r["cost"]["lut_eq"] is None,
+                                                  r["cost"]["lut_eq"] or 0))["method"]
+    return out

@@ -1,0 +1,116 @@
+"""A tool-free cost estimate of a block in LUT-equivalents, read from its RTLIL.
+
+When synthesis is not asked for (``phongfx compile`` without ``--synth``) the compiler
+still has to rank designs.  :func:`proxy_cost` elaborates the block's Amaranth
+component to RTLIL (no external tool) and prices each cell the way Yosys' ECP5 flow
+maps it, in the unit of :mod:`phongfx.explore.cost_table` (LUT-eq = LUT4 + 958·DSP):
+
+* ``$mul`` with two variable operands: one MULT18 tile (958) per pair of 18-bit operand
+  slices, a slice narrower than 2 bits left to logic as Yosys' ``mul2dsp`` does;
+  by a constant: one adder of the other operand's width per extra set bit of the
+  constant (a shift-and-add; a power of two is wiring);
+* adders, subtracters, comparators: carry chains (ECP5 ``CCU2C``), which LUT-eq does not
+  price: counted in ``carry_bits``, priced 0;
+* multiplexers: one LUT per bit; shifts by a constant: wiring; by a variable amount:
+  one mux per output bit per bit of the amount;
+* bitwise logic: one per output bit; reductions one per 4 input bits;
+* ROMs (``$memrd``): ``ceil(words/16)`` LUT4s per data bit (a LUT4 holds 16 bits);
+* registers are counted (``ff_bits``) but priced 0, as LUT-eq prices them.
+
+Checked against ECP5 synthesis of the defaults: the DSP counts of Figure 7 (39),
+the spherical unit (4) match; the conventional baseline's 26 against 20 synthesized;
+LUTs run high (Yosys folds much of the rounding and saturation logic).
+
+Identical cells (same inputs) count once, as Yosys merges them.  It is a ranking
+device, not a synthesis result: the manifest says
+``"cost_model": "proxy"`` and the ``--synth`` result replaces it.
+"""
+
+import math
+import re
+
+__all__ = ["DSP_LUT_EQ", "proxy_cost", "rtlil_cost"]
+
+DSP_LUT_EQ = 958
+_CONST = re.compile(r"^\d+'[01xz-]+$")
+_ADD = {"$add", "$sub", "$neg", "$lt", "$le", "$gt", "$ge", "$eq", "$ne", "$alu"}
+_LOGIC = {"$and", "$or", "$xor", "$xnor", "$not", "$logic_and", "$logic_or", "$logic_not"}
+_SHIFT = {"$shl", "$shr", "$sshl", "$sshr", "$shift", "$shiftx"}
+
+
+def _cells(text):
+    """(type, parameters, connections) of every distinct cell of every module: cells of
+    one module with the same type, parameters and inputs count once (Yosys' ``opt_merge``)."""
+    cell, module, seen = None, None, set()
+    for line in text.splitlines():
+        words = line.strip().split(None, 2)
+        if not words:
+            continue
+        if words[0] == "module":
+            module = words[1]
+        elif words[0] == "cell":
+            cell = (words[1], {}, {})
+        elif cell is not None and words[0] == "parameter" and len(words) == 3:
+            cell[1][words[1].lstrip("\\")] = words[2]
+        elif cell is not None and words[0] == "connect" and len(words) == 3:
+            cell[2][words[1].lstrip("\\")] = words[2]
+        elif cell is not None and words[0] == "end":
+            inputs = tuple(sorted((k, v) for k, v in cell[2].items() if k not in ("Y", "Q")))
+            key = (module, cell[0], tuple(sorted(cell[1].items())), inputs)
+            if key not in seen:
+                seen.add(key)
+                yield cell
+            cell = None
+
+
+def _int(params, name, default=0):
+    value = params.get(name)
+    return int(value) if value is not None and value.lstrip("-").isdigit() else default
+
+
+def _ones(literal):
+    return literal.split("'", 1)[1].count("1")
+
+
+def _tiles(width):
+    """18-bit slices of an operand that go to a DSP: Yosys' ``mul2dsp`` leaves a slice
+    narrower than 2 bits (``DSP_A_MINWIDTH``) to logic."""
+    return width // 18 + (width % 18 >= 2)
+
+
+def rtlil_cost(text):
+    """``{lut_eq, lut, dsp, carry_bits, ff_bits}`` of RTLIL ``text`` (module docstring)."""
+    lut = dsp = carry = ff = 0
+    for kind, params, conns in _cells(text):
+        a, b, y = _int(params, "A_WIDTH"), _int(params, "B_WIDTH"), _int(params, "Y_WIDTH")
+        const_a, const_b = (bool(_CONST.match(conns.get(p, ""))) for p in ("A", "B"))
+        if kind == "$mul":
+            if const_a or const_b:
+                literal, other = (conns["A"], b) if const_a else (conns["B"], a)
+                carry += max(_ones(literal) - 1, 0) * other
+            else:
+                dsp += _tiles(a) * _tiles(b)
+        elif kind in _ADD:
+            carry += y if kind in ("$add", "$sub", "$neg") else max(a, b, 1)
+        elif kind in ("$mux", "$bmux"):
+            lut += _int(params, "WIDTH")
+        elif kind == "$pmux":
+            lut += _int(params, "WIDTH") * _int(params, "S_WIDTH", 1)
+        elif kind in _SHIFT:
+            lut += 0 if const_b else y * min(b, max(y, 2).bit_length())
+        elif kind in _LOGIC:
+            lut += y
+        elif kind.startswith("$reduce"):
+            lut += math.ceil(a / 4)
+        elif kind in ("$memrd_v2", "$memrd"):
+            lut += _int(params, "WIDTH") * math.ceil(2 ** _int(params, "ABITS") / 16)
+        elif kind.endswith("dff") or kind.endswith("dffe"):
+            ff += _int(params, "WIDTH")
+    return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff}
+
+
+def proxy_cost(block):
+    """:func:`rtlil_cost` of ``block``'s component (a :class:`~phongfx.core.registry.Block`)."""
+    from amaranth.back import rtlil
+
+    return rtlil_cost(rtlil.convert(block.component(), name="top"))

@@ -1,0 +1,182 @@
+"""``phongfx tables cost``: Lyon's Figure 8 against Figure 7c in LUTs, DSPs and MHz.
+
+Lyon (Apple TR #43, 1993, "Hardware Rearrangements for Bit Reductions") says of the
+root-shininess unit (``m = √n``) of Figure 8: "the six 7×11 and 9×9 multipliers are likely
+to be smaller and faster than the three 12×12 and one 14×22 required for similar accuracy
+in the arrangement of Figure 7".  This table synthesizes, places and routes
+(:func:`phongfx.explore.synth.synth`, ECP5, 150 MHz constraint) the parts and the wholes:
+
+* ``difference`` — Figure 7c (``D = R - L``, ``D·D``, ``2x = n·D·D``), the part the claim is about;
+* ``shape`` — Figure 7d (``f_k``, ``k = 2``), which Figure 7 needs after 7c;
+* ``root`` — Figure 8 (``|D|·m``, fraction-only dot product, augmented comparator and
+  its own shape ``f_1``), so it compares with ``difference`` + ``shape`` (a derived row);
+* ``fig7``, ``fig8`` — the whole datapaths (two lights), and ``conventional`` Phong.
+
+Cost in LUT-equivalents uses :data:`phongfx.explore.report.DSP_LUT_WEIGHT` per DSP.  The
+multiplier sizes of our formats are derived from the configs (:func:`multipliers`);
+accuracy at equal ``n`` (:data:`N`) comes from :func:`phongfx.explore.evaluate.evaluate` on the
+torus scene (max error in 8-bit levels against Phong and against the method's own float form).
+"""
+
+import json
+import sys
+
+from phongfx.config import DifferenceConfig, RootConfig
+from .report import DSP_LUT_WEIGHT, lut_equivalent
+from .synth import SynthError, synth
+
+__all__ = ["TABLES", "BLOCKS", "CLAIM", "N", "multipliers", "cost_table", "run_table", "markdown",
+           "to_json"]
+
+TABLES = ("cost",)
+BLOCKS = ("difference", "shape", "root", "fig7", "fig8", "conventional")
+#: Lyon's words, from the end of "Hardware Rearrangements for Bit Reductions".
+CLAIM = ("Figure 8: \"the six 7×11 and 9×9 multipliers are likely to be smaller and faster than "
+         "the three 12×12 and one 14×22 required for similar accuracy in the arrangement of Figure 7\" "
+         "(Figure 7c).")
+#: Shininess at which Figure 7 (n) and Figure 8 (m = √n = 4) are compared for accuracy.
+N = 16
+_WHAT = {"difference": "Figure 7c: D, D·D, n·D·D", "shape": "Figure 7d: f_2",
+         "root": "Figure 8: m·abs(D), Σu², comparator, f_1", "fig7": "Figure 7 datapath, 2 lights",
+         "fig8": "Figure 8 datapath, 2 lights", "conventional": "conventional Phong (rsqrt, table)"}
+_KEYS = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "latency", "met", "cached")
+
+
+def multipliers(difference=None, root=None):
+    """Multiplier sizes (a × b bits) of Figure 7c and Figure 8 in our formats.
+
+    Figure 7c: three ``d × d`` squares and ``dd × n``; Figure 8: three ``m × |d|``
+    (``|d|`` is ``d`` without its sign bit) and three ``frac × frac`` squares.
+    """
+    difference = difference or DifferenceConfig()
+    root = root or RootConfig()
+    d, dd, n = (difference.fmt(k).width for k in ("d", "dd", "n"))
+    m, rd, frac = root.fmt("m").width, root.fmt("d").width - 1, root.fmt("frac").width
+    return {"fig7c": [(d, d)] * 3 + [(n, dd)], "fig8": [(m, rd)] * 3 + [(frac, frac)] * 3}
+
+
+def _synthesize(block, target, freq, workdir):
+    print(f"cost: synthesizing {block} ({target}, {freq:g} MHz; cached runs are instant)", file=sys.stderr)
+    try:
+        result = synth(block, target=target, freq=freq, workdir=workdir)
+    except SynthError as error:
+        return {"block": block, "what": _WHAT.get(block, block), "error": str(error).splitlines()[0]}
+    row = {"block": block, "what": _WHAT.get(block, block), **{k: result[k] for k in _KEYS}}
+    row["mpixels_per_s"] = result["pixels_per_second"] / 1e6
+    row["lut_eq"] = lut_equivalent(row)
+    return row
+
+
+def _combined(a, b, name, what):
+    """Two blocks in series: resources add, latency adds, the slower clock rules."""
+    row = {"block": name, "what": what, "met": a["met"] and b["met"], "cached": a["cached"] and b["cached"]}
+    row.update({k: a[k] + b[k] for k in ("lut4", "ff", "carry", "dsp", "bram_bits", "latency")})
+    row["fmax_mhz"] = min(a["fmax_mhz"], b["fmax_mhz"])
+    row["mpixels_per_s"] = row["fmax_mhz"]
+    row["lut_eq"] = lut_equivalent(row)
+    return row
+
+
+def _accuracy(methods, n):
+    try:
+        from .evaluate import evaluate
+    except ImportError:
+        return None
+    result = {}
+    for method in methods:
+        metrics = evaluate(method, {"n": n}, scenes=("torus",))["metrics"]
+        result[method] = {"phong": metrics["torus.phong.max"], "self": metrics["torus.self.max"]}
+    return result
+
+
+def cost_table(blocks=BLOCKS, *, target="ecp5", freq=150, n=N, workdir="build/synth"):
+    """Rows of synthesis results for ``blocks`` plus ``difference+shape``; accuracy of fig7/fig8.
+
+    A block whose synthesis fails gets a row with ``error`` instead of numbers.
+    """
+    unknown = [b for b in blocks if b not in BLOCKS]
+    if unknown:
+        raise ValueError(f"blocks must be among {', '.join(BLOCKS)}, not {unknown[0]!r}")
+    rows = {b: _synthesize(b, target, freq, workdir) for b in blocks}
+    if all(b in rows and "error" not in rows[b] for b in ("difference", "shape")):
+        rows["difference+shape"] = _combined(rows["difference"], rows["shape"], "difference+shape",
+                                             "Figure 7c + 7d in series")
+    order = [b for b in ("difference", "shape", "difference+shape", "root", "fig7", "fig8", "conventional")
+             if b in rows]
+    accuracy = _accuracy([m for m in ("fig7", "fig8") if m in blocks], n)
+    return {"table": "cost", "claim": CLAIM, "target": target, "freq": freq, "n": n,
+            "dsp_weight": DSP_LUT_WEIGHT, "multipliers": multipliers(),
+            "rows": [rows[b] for b in order], "accuracy": accuracy}
+
+
+def run_table(name, out_dir=None, blocks=BLOCKS, **options):
+    """The table called ``name`` (``"cost"``); nothing is written to ``out_dir``."""
+    if name not in TABLES:
+        raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
+    return cost_table(blocks, **options)
+
+
+def _sizes(pairs):
+    counts = {}
+    for a, b in pairs:
+        counts[f"{a}×{b}"] = counts.get(f"{a}×{b}", 0) + 1
+    return " + ".join(f"{c} × {size}" for size, c in counts.items())
+
+
+def _compare(a, b, smaller, larger, tolerance=0.02):
+    """``smaller`` / ``larger`` / "about the same" for ``a`` against ``b`` (within ``tolerance``)."""
+    if abs(a - b) <= tolerance * max(abs(a), abs(b)):
+        return f"about the same (±{tolerance:.0%})"
+    return smaller if a < b else larger
+
+
+def _verdict(rows):
+    by = {r["block"]: r for r in rows if "error" not in r}
+    lines = []
+    for ours, theirs in (("root", "difference"), ("root", "difference+shape"), ("fig8", "fig7")):
+        if ours in by and theirs in by:
+            a, b = by[ours], by[theirs]
+            lines.append(f"* {ours} vs {theirs}: LUT-eq {a['lut_eq']:.0f} vs {b['lut_eq']:.0f} "
+                         f"({_compare(a['lut_eq'], b['lut_eq'], 'smaller', '**larger**')}), "
+                         f"DSP {a['dsp']} vs {b['dsp']}, Fmax {a['fmax_mhz']:.1f} vs {b['fmax_mhz']:.1f} MHz "
+                         f"({_compare(-a['fmax_mhz'], -b['fmax_mhz'], 'faster', '**slower**')}).")
+    if lines:
+        lines.append("* Every multiplier up to 18×18 takes one MULT18X18D whatever its size, so "
+                     "narrower multipliers save DSPs only where they avoid a split (a 13×22 takes two).")
+    return lines
+
+
+def markdown(result):
+    """The claim, the multiplier sizes, the side-by-side table, the accuracy and a verdict."""
+    sizes = result["multipliers"]
+    lines = [f"# Figure 8 vs Figure 7c, synthesized ({result['target']}, {result['freq']:g} MHz constraint)",
+             "", f"Lyon's claim — {result['claim']}", "",
+             f"Our formats: Figure 7c has {_sizes(sizes['fig7c'])} multipliers; Figure 8 has "
+             f"{_sizes(sizes['fig8'])} (plus the k = 1 shape's one squaring in `root`).", "",
+             f"| block | what | LUT4 | FF | carry | DSP | BRAM bits | LUT-eq (+{result['dsp_weight']}/DSP) | "
+             f"Fmax MHz | Mpixel/s | latency | ≥ {result['freq']:g} MHz |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+    for r in result["rows"]:
+        if "error" in r:
+            lines.append(f"| {r['block']} | {r['what']} | synthesis failed: {r['error']} |" + " |" * 9)
+            continue
+        lines.append(f"| {r['block']} | {r['what']} | {r['lut4']} | {r['ff']} | {r['carry']} | {r['dsp']} | "
+                     f"{r['bram_bits']} | {r['lut_eq']:.0f} | {r['fmax_mhz']:.1f} | {r['mpixels_per_s']:.1f} | "
+                     f"{r['latency']} | {'yes' if r['met'] else 'no'} |")
+    lines.append("")
+    if result["accuracy"] is None:
+        lines += ["Accuracy column left out: `phongfx.explore.evaluate` is not available.", ""]
+    elif result["accuracy"]:
+        lines += [f"Accuracy at equal shininess n = {result['n']} (Figure 8: m = √n), torus scene, "
+                  "max error in 8-bit levels:", "", "| datapath | vs Phong (R·L)^n | vs own float form |",
+                  "|---|---:|---:|"]
+        lines += [f"| {m} | {a['phong']:.2f} | {a['self']:.2f} |" for m, a in result["accuracy"].items()]
+        lines.append("")
+    verdict = _verdict(result["rows"])
+    if verdict:
+        lines += ["Measured against the claim:", "", *verdict, ""]
+    return "\n".join(lines)
+
+
+def to_json(result):
+    return json.dumps(result, indent=2, ensure_ascii=False)

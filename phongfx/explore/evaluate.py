@@ -1,0 +1,121 @@
+"""One point of a bit-width sweep: a method at given widths, its error and its cost.
+
+Every method runs on the same pixels: the :class:`~phongfx.scene.mesh.Spans` of a named
+reference scene (:data:`SCENES`: a 288-polygon torus in the spirit of Hast, Barrera &
+Bengtsson §5, and a coarse UV sphere as Szirmay-Kalos et al. §6), one directional light
+(:data:`phongfx.render.mesh.LIGHT`) and the viewer at infinity (``V = (0, 0, 1)``).
+
+* Per-pixel datapaths (Lyon 1993 Figures 7, 8 and the halfway unit of Figure 5) get the
+  span end normals ``N0``, ``N1`` and ``a = k/(length-1)``, as their LIRP needs; Schlick's
+  unit gets ``t = N̂·H`` and the conventional baseline the interpolated ``N``
+  (:mod:`phongfx.scene.span_inputs`); the scanline units (Hast's Euler and Gouraud units,
+  Szirmay-Kalos's spherical unit) get their per-span setup streams.
+* The quantity compared is the **specular** term, except for ``euler`` and ``gouraud``,
+  whose paper (Hast et al.) is about the **diffuse** ``N·L`` curve: theirs is ``N·L``.
+* References, on the same pixels with the interpolated normal renormalized exactly
+  (``N̂``): ``"phong"`` is per-pixel Phong of the same quantity — ``(R·L)^n`` for fig7 and
+  fig8 (Lyon's reflection form), ``(N̂·H)^(4n)`` for the halfway datapath (Lyon's Blinn row
+  5: the appendix scales its ``n`` by 4), ``(N̂·H)^n`` for spherical, schlick and
+  conventional, ``max(N̂·L, 0)`` for euler and gouraud.  ``"self"`` is the method's own
+  float form: Lyon's ``f_k`` rows (:mod:`phongfx.golden.reference`; Figure 8 at
+  ``n = m²``), ``A^n·cos²(a·x)`` (Szirmay-Kalos eq. 19, :mod:`phongfx.render.mesh`
+  ``cos2``), the float corrected Euler curve (Hast eqs. 16–17), the float chord, Schlick's
+  ``t/(n - n·t + t)`` on the float ``t``, and float Phong for the conventional baseline.
+
+Metrics are in 8-bit levels, ``e = 255·|fixed - float|`` over the visible pixels
+(:func:`error_metrics`).  The datapaths are evaluated with one light (the lights are
+independent copies), while :meth:`MethodSpec.config`, which synthesis sees, keeps the
+``lights`` parameter (registry default 2).
+"""
+
+import numpy as np
+
+from .methods import METHODS, SCENES, MethodSpec, Scene
+
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "COST_KEYS",
+           "error_metrics", "evaluate"]
+
+STATS = ("max", "mean", "psnr", "pct_over1")
+REFERENCES = ("phong", "self")
+COST_KEYS = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "mpixels_per_s", "latency")
+_SYNTH_OPTIONS = ("target", "freq", "device", "seed", "workdir")
+
+
+# --- metrics and the point ---------------------------------------------------------------
+
+def error_metrics(value, reference, visible=None):
+    """``{max, mean, psnr, pct_over1}`` of ``e = 255·|value - reference|`` (8-bit levels)
+    over the ``visible`` pixels (all when None): ``psnr = 10·log10(255² / mean(e²))`` dB
+    (``inf`` for no error), ``pct_over1`` the percentage of pixels with ``e > 1``."""
+    e = 255 * np.abs(np.asarray(value, dtype=np.float64) - np.asarray(reference, dtype=np.float64))
+    e = e if visible is None else e[np.asarray(visible, dtype=bool)]
+    if not e.size:
+        raise ValueError("visible must select at least one pixel, not 0")
+    mse = float(np.mean(e * e))
+    return {"max": float(e.max()), "mean": float(e.mean()),
+            "psnr": float(10 * np.log10(255.0 ** 2 / mse)) if mse > 0 else float("inf"),
+            "pct_over1": float(100 * np.mean(e > 1))}
+
+
+def _cost(block, config, options):
+    from . import synth as synth_module
+
+    if not isinstance(options, dict):
+        raise ValueError(f"synth must be a dict of options, not {type(options).__name__}")
+    unknown = sorted(set(options) - set(_SYNTH_OPTIONS))
+    if unknown:
+        raise ValueError(f"synth option {unknown[0]!r} is not one of {', '.join(_SYNTH_OPTIONS)}")
+    result = synth_module.synth(block, config=config, **options)
+    cost = {key: result[key] for key in COST_KEYS if key != "mpixels_per_s"}
+    cost["mpixels_per_s"] = result["pixels_per_second"] / 1e6
+    return {key: cost[key] for key in COST_KEYS}
+
+
+def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):
+    """Error (and, with ``synth``, cost) of ``method`` at ``params`` (module docstring).
+
+    Parameters
+    ----------
+    method : str
+        A key of :data:`METHODS`.
+    params : dict
+        Parameters of the method; missing ones take their defaults.
+    scenes : sequence of str
+        Keys of :data:`SCENES`.
+    synth : dict, optional
+        Options of :func:`phongfx.explore.synth.synth` (``target``, ``freq``, ``device``, ``seed``,
+        ``workdir``); None skips synthesis.
+
+    Returns
+    -------
+    dict
+        ``metrics``: ``{"<scene>.<ref>.<stat>": float}`` for ``ref`` in :data:`REFERENCES`
+        and ``stat`` in :data:`STATS`; ``cost``: ``{key: number}`` for :data:`COST_KEYS`
+        (``mpixels_per_s`` = Fmax at one pixel per clock), or None without ``synth``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown method, scene or synth option, or a parameter out of range.
+    phongfx.explore.synth.SynthError
+        When a synthesis tool fails.
+    """
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
+    if isinstance(scenes, str):
+        scenes = (scenes,)
+    for name in scenes:
+        if name not in SCENES:
+            raise ValueError(f"scene must be one of {', '.join(SCENES)}, not {name!r}")
+    spec = METHODS[method]
+    p = spec.resolve(params)
+    config = spec.build(p)
+    metrics = {}
+    for name in scenes:
+        scene = SCENES[name]
+        fixed, floats = spec.run(spec, config, p, scene)
+        for ref in REFERENCES:
+            for stat, value in error_metrics(fixed, floats[ref], scene.data["visible"]).items():
+                metrics[f"{name}.{ref}.{stat}"] = value
+    cost = None if synth is None else _cost(spec.block, config, synth)
+    return {"metrics": metrics, "cost": cost}

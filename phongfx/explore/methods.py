@@ -1,0 +1,268 @@
+"""The sweepable methods and the reference scenes of :mod:`phongfx.explore.evaluate`.
+
+A :class:`MethodSpec` names a method's block, its width parameters with defaults and
+ranges, how to build the block config from them, and how to run the golden model on a
+:class:`Scene` (the fixed-point result and its float references per pixel).  The
+quantities and references are described in :mod:`phongfx.explore.evaluate`.
+"""
+
+
+import functools
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from phongfx.scene import mesh as meshes
+from phongfx.core.registry import REGISTRY, get_block
+from phongfx.golden import euler_setup
+from phongfx.golden.reference import specular
+from phongfx.render.mesh import LIGHT, shade
+from phongfx.scene.span_inputs import (VIEWER, conventional_inputs, decode, euler_inputs, gouraud_inputs, halfway,
+                          schlick_inputs, spherical_inputs)
+from phongfx.sim.stimulus.datapath import encode
+
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES"]
+
+
+def _check_int(name, value, lo, hi):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not lo <= value <= hi:
+        raise ValueError(f"{name} must be an integer in {lo}..{hi}, not {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class MethodSpec:
+    """A sweepable method: its registry block, its parameters and how to build and run it.
+
+    ``params`` maps each parameter to its default, ``ranges`` to its ``(lo, hi)``
+    (inclusive; a builder may narrow a range from another parameter, e.g. Euler's
+    ``t_frac <= p_frac``).  The defaults build the registry's default config exactly.
+    """
+
+    name: str
+    block: str
+    params: dict
+    ranges: dict
+    build: object = field(repr=False, compare=False)
+    run: object = field(repr=False, compare=False)
+
+    def resolve(self, params):
+        """``params`` over the defaults, every value checked against its range."""
+        if not isinstance(params, dict):
+            raise ValueError(f"params must be a dict, not {type(params).__name__}")
+        unknown = sorted(set(params) - set(self.params))
+        if unknown:
+            raise ValueError(f"{unknown[0]} is not a parameter of {self.name}; "
+                             f"parameters: {', '.join(self.params)}")
+        merged = {**self.params, **params}
+        return {name: _check_int(name, merged[name], *self.ranges[name]) for name in self.params}
+
+    def config(self, params):
+        """The block config of ``params`` (missing ones at their defaults)."""
+        return self.build(self.resolve(params))
+
+
+# --- configs -----------------------------------------------------------------------------
+
+def _vec_formats(base, f, vec_int=1):
+    """Lyon's direction-vector formats at ``f`` fraction bits, guard bits kept as the
+    defaults have them (dot and normalizer ``+2``, ``D·D`` exact ``2f``)."""
+    vec, guard = f"S{vec_int}.{f}", f"1.{f + 2}"
+    return dict(lirp=base.lirp.replace(vec=vec, a=f"1.{f}", out=vec),
+                normalize=base.normalize.replace(vec=vec, out=vec, z=guard, y2=guard, g=guard),
+                diffuse=base.diffuse.replace(vec=vec))
+
+
+def _build_fig7(p):
+    base = REGISTRY["fig7"].default_config()
+    f, vec, x2 = p["vec_frac"], f"S1.{p['vec_frac']}", f"13.{p['x2_frac']}"
+    return base.replace(**_vec_formats(base, f), lights=p["lights"],
+                        reflect=base.reflect.replace(vec=vec, dot=f"S1.{f + 2}", out=vec),
+                        difference=base.difference.replace(vec=vec, d=vec, dd=f"2.{2 * f}", x2=x2),
+                        shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
+
+
+def _build_fig8(p):
+    base = REGISTRY["fig8"].default_config()
+    f, vec = p["vec_frac"], f"S1.{p['vec_frac']}"
+    return base.replace(**_vec_formats(base, f), lights=p["lights"],
+                        reflect=base.reflect.replace(vec=vec, dot=f"S1.{f + 2}", out=vec),
+                        root=base.root.replace(vec=vec, d=vec, frac=f"0.{p['root_frac']}",
+                                               t=f"1.{p['t_frac']}", k=p["k"]))
+
+
+def _build_halfway(p):
+    base = REGISTRY["halfway_datapath"].default_config()
+    f, x2 = p["vec_frac"], f"13.{p['x2_frac']}"
+    h, guard = f"S2.{f + 1}", f"1.{f + 2}"
+    unit = base.halfway.replace(vec=f"S1.{f}", hvec=h, dot=f"S2.{f + 2}", out=f"S2.{f}",
+                                normalize=base.halfway.normalize.replace(vec=h, out=h, z=guard,
+                                                                         y2=guard, g=guard))
+    return base.replace(**_vec_formats(base, f), lights=p["lights"], halfway=unit,
+                        difference=base.difference.replace(vec=f"S2.{f}", d=f"S1.{f}",
+                                                           dd=f"2.{2 * f}", x2=x2),
+                        shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
+
+
+def _build_spherical(p):
+    _check_int("addr_bits", p["addr_bits"], 2, min(p["theta_frac"] + 1, 16))
+    return REGISTRY["spherical"].default_config().replace(theta=f"S0.{p['theta_frac']}", addr_bits=p["addr_bits"],
+                                              rom=f"0.{p['rom_bits']}")
+
+
+def _build_euler(p):
+    _check_int("t_frac", p["t_frac"], 8, p["p_frac"])
+    _check_int("ds_frac", p["ds_frac"], 8, p["t_frac"])
+    return REGISTRY["euler"].default_config().replace(p=f"S1.{p['p_frac']}", t=f"S3.{p['t_frac']}",
+                                          ds=f"S3.{p['ds_frac']}")
+
+
+def _build_gouraud(p):
+    _check_int("dp_frac", p["dp_frac"], 8, p["p_frac"])
+    return REGISTRY["gouraud"].default_config().replace(p=f"S1.{p['p_frac']}", dp=f"S3.{p['dp_frac']}")
+
+
+def _build_schlick(p):
+    return REGISTRY["schlick"].default_config().replace(t=f"1.{p['t_frac']}", out=f"1.{p['out_frac']}")
+
+
+def _build_conventional(p):
+    return REGISTRY["conventional"].default_config().replace(vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"],
+                                                 log_addr=p["table_addr"], exp_addr=p["table_addr"])
+
+
+# --- scenes ------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Scene:
+    """A reference frame: ``mesh`` (``"torus"``: ``polygons`` quads; ``"sphere"``: ``stacks ×
+    slices``) at animation ``frame`` of 200 (:func:`phongfx.scene.mesh.rotation`), ``size``² pixels."""
+
+    mesh: str
+    frame: int
+    size: int = 96
+    polygons: int = 288
+    stacks: int = 16
+    slices: int = 32
+
+    @functools.cached_property
+    def data(self):
+        """Spans, unit light and halfway vector, ``N̂`` (P, 3) and the visible mask."""
+        shape = (meshes.torus(self.polygons) if self.mesh == "torus"
+                 else meshes.uv_sphere(self.stacks, self.slices))
+        spans = meshes.rasterize(shape, meshes.rotation(self.frame), self.size, self.size)
+        light = np.asarray(LIGHT, dtype=np.float64) / np.linalg.norm(LIGHT)
+        normals = spans.interpolated_normals()
+        unit = normals / np.maximum(np.linalg.norm(normals, axis=-1, keepdims=True), 1e-300)
+        return {"spans": spans, "light": light, "h": halfway(light), "normal": unit,
+                "visible": spans.visible}
+
+
+#: Frame 30 of the torus has part of the ring behind the rest (3516 of 3730 pixels visible).
+SCENES = {"torus": Scene("torus", frame=30), "sphere": Scene("sphere", frame=20)}
+
+
+# --- runs: (fixed, {"phong": float, "self": float}) per pixel ------------------------------
+
+def _power(c, n):
+    return np.where(c > 0, np.maximum(c, 0.0) ** n, 0.0)
+
+
+def _datapath(spec, config, p, scene, own, phong="phong", n_self=None):
+    """Figure 7 / 8 / halfway datapath on one light; floats by Lyon's ``specfuns.m`` rows."""
+    d = scene.data
+    spans, n = d["spans"], float(p["n"])
+    span = spans.pixel_span()
+    one = config.replace(lights=1)
+    count = len(span)
+    raw = encode(one, spans.na[span], spans.nb[span], spans.pixel_t(), np.full(count, n),
+                 VIEWER, VIEWER, [d["light"]], [d["light"]])
+    out = get_block(spec.block, config=one).golden(raw)
+    fixed = out["spec0"] * one.outputs["spec0"][0].lsb
+    args = (d["normal"], d["light"], VIEWER)
+    return fixed, {"phong": specular(phong, *args, n),
+                   "self": specular(own, *args, n if n_self is None else n_self)}
+
+
+def _run_fig7(spec, config, p, scene):
+    return _datapath(spec, config, p, scene, f"lyon-k{p['k']}")
+
+
+def _run_fig8(spec, config, p, scene):
+    m = min(max(round(np.sqrt(p["n"])), 1), config.root.m_max)  # what encode feeds
+    return _datapath(spec, config, p, scene, f"lyon-k{p['k']}", n_self=float(m * m))
+
+
+def _run_halfway(spec, config, p, scene):
+    return _datapath(spec, config, p, scene, f"halfway-g2proj-k{p['k']}", phong="blinn")
+
+
+def _nh_phong(scene, n):
+    return _power(scene.data["normal"] @ scene.data["h"], n)
+
+
+def _run_spherical(spec, config, p, scene):
+    d = scene.data
+    out = get_block("spherical", config=config).golden(spherical_inputs(d["spans"], d["light"], p["n"], config))
+    self_ = shade(d["spans"], "cos2", light=d["light"], n=p["n"])[1]
+    return decode("spherical", out, config, "spec"), {"phong": _nh_phong(scene, p["n"]), "self": self_}
+
+
+def _diffuse_curves(scene):
+    d = scene.data
+    spans = d["spans"]
+    setups = euler_setup.span_setups(spans.na, spans.nb, d["light"], spans.length)
+    curves = euler_setup.curves_at(setups, spans.pixel_span(), spans.pixel_step())
+    return {name: np.maximum(value, 0.0) for name, value in curves.items()}
+
+
+def _run_scanline(unit, feed, own):
+    def run(spec, config, p, scene):
+        d = scene.data
+        out = get_block(unit, config=config).golden(feed(d["spans"], d["light"], config))
+        curves = _diffuse_curves(scene)
+        return decode(unit, out, config), {"phong": curves["phong"], "self": curves[own]}
+    return run
+
+
+def _run_schlick(spec, config, p, scene):
+    d, n = scene.data, p["n"]
+    out = get_block("schlick", config=config).golden(schlick_inputs(d["spans"], d["light"], n, config))
+    t = np.clip(d["normal"] @ d["h"], 0.0, 1.0)
+    return decode("schlick", out, config), {"phong": _nh_phong(scene, n), "self": t / (n - n * t + t)}
+
+
+def _run_conventional(spec, config, p, scene):
+    d, n = scene.data, p["n"]
+    out = get_block("conventional", config=config).golden(conventional_inputs(d["spans"], d["light"], n, config))
+    phong = _nh_phong(scene, n)
+    return decode("conventional", out, config, "spec"), {"phong": phong, "self": phong}
+
+
+_VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)
+METHODS = {spec.name: spec for spec in (
+    MethodSpec("fig7", "fig7", {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
+               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (0, 2), "n": _N,
+                "lights": _LIGHTS}, _build_fig7, _run_fig7),
+    MethodSpec("fig8", "fig8", {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
+               {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": (0, 2), "n": (1, 63 * 63),
+                "lights": _LIGHTS}, _build_fig8, _run_fig8),
+    MethodSpec("halfway", "halfway_datapath",
+               {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
+               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, 2), "n": _N,
+                "lights": _LIGHTS}, _build_halfway, _run_halfway),
+    MethodSpec("spherical", "spherical", {"addr_bits": 6, "rom_bits": 6, "theta_frac": 11, "n": 16},
+               {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},
+               _build_spherical, _run_spherical),
+    MethodSpec("euler", "euler", {"p_frac": 30, "t_frac": 30, "ds_frac": 30, "n": 16},
+               {"p_frac": (8, 40), "t_frac": (8, 40), "ds_frac": (8, 40), "n": _N},
+               _build_euler, _run_scanline("euler", euler_inputs, "corrected")),
+    MethodSpec("gouraud", "gouraud", {"p_frac": 30, "dp_frac": 30, "n": 16},
+               {"p_frac": (8, 40), "dp_frac": (8, 40), "n": _N},
+               _build_gouraud, _run_scanline("gouraud", gouraud_inputs, "gouraud")),
+    MethodSpec("schlick", "schlick", {"t_frac": 15, "out_frac": 15, "n": 16},
+               {"t_frac": (2, 30), "out_frac": (2, 30), "n": _N}, _build_schlick, _run_schlick),
+    MethodSpec("conventional", "conventional", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
+               {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
+               _build_conventional, _run_conventional),
+)}

@@ -1,0 +1,128 @@
+"""``phongfx tables pipeline``: Fmax, size and latency against pipeline depth:
+what each register level buys in clock speed, and what it costs in flip-flops and latency.
+
+For each datapath of :data:`NAMES` (Lyon's Figure 7 and Figure 8) and each depth of
+:data:`DEPTHS`, :func:`phongfx.explore.synth.synth` synthesizes, places and routes the block
+with ``pipeline=depth`` (see :class:`phongfx.config.BlockConfig`) on an ECP5 at
+:data:`FREQ` MHz and reports LUT4s, flip-flops, DSP multipliers (MULT18X18D), latency
+in cycles, nextpnr's Fmax and its critical path.  The goal is one pixel per clock at
+:data:`FREQ` MHz or more; the Markdown says, per datapath, the first depth that meets
+it or what limits the deepest one.  A PNG plots Fmax against depth.
+
+Deterministic: synthesis runs with a fixed placement seed and is cached on disk.
+"""
+
+import json
+import os
+
+from phongfx.core.registry import get_block
+from phongfx.config import MAX_PIPELINE
+
+__all__ = ["TABLES", "NAMES", "DEPTHS", "FREQ", "pipeline_rows", "run_table", "markdown",
+           "to_json", "plot"]
+
+#: Tables this module knows.
+TABLES = ("pipeline",)
+
+#: Datapaths measured: Figure 7 and Figure 8, and the normalizer that limited both at depth 0.
+NAMES = ("fig7", "fig8", "normalize")
+
+#: Pipeline depths measured.
+DEPTHS = tuple(range(MAX_PIPELINE + 1))
+
+#: Target clock (MHz) given to nextpnr, and the goal.
+FREQ = 150
+
+_KEYS = ("fmax_mhz", "lut4", "ff", "dsp", "latency", "critical_path")
+
+
+def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", freq=FREQ, workdir="build/synth",
+                  progress=None):
+    """Rows ``{name, depth, fmax_mhz, lut4, ff, dsp, latency, critical_path, met}``, one per
+    (name, depth), from :func:`phongfx.explore.synth.synth`."""
+    from . import synth as synth_module
+
+    rows = []
+    for name in names:
+        for depth in depths:
+            if progress is not None:
+                progress(name, depth)
+            config = get_block(name, pipeline=depth).config
+            result = synth_module.synth(name, config=config, target=target, freq=freq, workdir=workdir)
+            row = {"name": name, "depth": depth, **{key: result[key] for key in _KEYS}}
+            row["met"] = bool(row["fmax_mhz"] >= freq)
+            rows.append(row)
+    return rows
+
+
+def run_table(name, out_dir=None):
+    """The table called ``name`` (:data:`TABLES`); writes ``pipeline_fmax.png`` into ``out_dir``
+    when given (its path is the result's ``plot``)."""
+    if name not in TABLES:
+        raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
+    result = {"source": "pipelining to a target frequency",
+              "target": "ecp5", "freq": FREQ, "rows": pipeline_rows(), "plot": None}
+    if out_dir is not None:
+        result["plot"] = plot(result, os.path.join(out_dir, "pipeline_fmax.png"))
+    return result
+
+
+def _verdict(rows, freq):
+    met = [row for row in rows if row["met"]]
+    if met:
+        return f"meets {freq} MHz from depth {met[0]['depth']} (latency {met[0]['latency']} cycles)"
+    deepest = rows[-1]
+    path = deepest["critical_path"] or {}
+    return (f"**falls short of {freq} MHz**: {deepest['fmax_mhz']:.1f} MHz at depth {deepest['depth']}; "
+            f"critical path {path.get('from', '?')} → {path.get('to', '?')}, {path.get('ns', 0):.2f} ns "
+            f"({path.get('logic_ns', 0):.2f} logic, {path.get('routing_ns', 0):.2f} routing)")
+
+
+def markdown(result):
+    """One row per (datapath, depth), then a verdict per datapath."""
+    freq = result["freq"]
+    lines = [f"# Fmax against pipeline depth ({result['target']}, {freq} MHz target)", "",
+             "| datapath | depth | Fmax MHz | LUT4 | FF | DSP | latency | critical path (ns: logic + routing) |",
+             "|---|---:|---:|---:|---:|---:|---:|---|"]
+    for row in result["rows"]:
+        path = row["critical_path"] or {}
+        where = (f"{path.get('from', '?')} → {path.get('to', '?')} "
+                 f"({path.get('logic_ns', 0):.2f} + {path.get('routing_ns', 0):.2f})")
+        lines.append(f"| {row['name']} | {row['depth']} | {row['fmax_mhz']:.1f}"
+                     f"{'' if row['met'] else ' ✗'} | {row['lut4']} | {row['ff']} | {row['dsp']} | "
+                     f"{row['latency']} | {where} |")
+    lines.append("")
+    for name in dict.fromkeys(row["name"] for row in result["rows"]):
+        rows = [row for row in result["rows"] if row["name"] == name]
+        lines.append(f"* {name}: {_verdict(rows, freq)}.")
+    if result.get("plot"):
+        lines += ["", f"![Fmax against depth]({os.path.basename(result['plot'])})"]
+    return "\n".join(lines) + "\n"
+
+
+def to_json(result):
+    return json.dumps(result, indent=2, ensure_ascii=False)
+
+
+def plot(result, path):
+    """PNG of Fmax against depth, one line per datapath, the target dashed; returns ``path``."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from phongfx.core.files import atomic_write
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for name in dict.fromkeys(row["name"] for row in result["rows"]):
+        rows = [row for row in result["rows"] if row["name"] == name]
+        ax.plot([r["depth"] for r in rows], [r["fmax_mhz"] for r in rows], "o-", label=name)
+    ax.axhline(result["freq"], color="gray", linestyle="--", label=f"target {result['freq']} MHz")
+    ax.set_xlabel("pipeline depth")
+    ax.set_ylabel("Fmax (MHz, nextpnr)")
+    ax.set_xticks(sorted({row["depth"] for row in result["rows"]}))
+    ax.set_title(f"Fmax against pipeline depth ({result['target']})")
+    ax.legend()
+    fig.tight_layout()
+    atomic_write(path, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
+    plt.close(fig)
+    return path

@@ -1,0 +1,349 @@
+"""Sweep results read back: Pareto fronts, plot, summary and ``build/report/index.md``.
+
+A sweep (:mod:`phongfx.explore.sweep`) writes one JSON record per point to ``points.jsonl``
+(``id, method, params, status, error, seconds, metrics, cost``).  This module answers the
+user's question from those records: for each method, the cheapest datapath whose max
+error is at most one 8-bit level, and which points are Pareto-optimal in error against
+cost.
+
+Cost is counted in **LUT-equivalents**: ``lut4 + W·dsp`` with ``W`` =
+:data:`DSP_LUT_WEIGHT`, the LUT4 count of an 18×18 signed multiplier (the size of one
+ECP5 ``MULT18X18D``) built from logic, measured with Yosys 0.70 ``synth_ecp5 -nodsp``
+after ``booth`` (958 LUT4 and 18 CCU2C; Yosys' default array mapping takes 1868 LUT4).
+Speed is ``cost["mpixels_per_s"]`` (one pixel per clock), where higher is better.
+"""
+
+import math
+import os
+
+__all__ = ["DSP_LUT_WEIGHT", "MAXIMIZE", "INVISIBLE", "load", "value", "lut_equivalent", "pareto",
+           "cheapest_invisible", "pareto_plot", "summary_markdown", "build_report"]
+
+#: LUT4s one MULT18X18D stands for (Booth 18×18 signed soft multiplier, Yosys 0.70, ECP5).
+DSP_LUT_WEIGHT = 958
+
+#: Cost keys where a larger value is better (the others are minimized).
+MAXIMIZE = frozenset({"mpixels_per_s", "fmax_mhz"})
+
+#: Largest max error, in 8-bit levels, that a display cannot show.
+INVISIBLE = 1.0
+
+_COST_LABEL = {"lut_eq": f"cost (LUT4 + {DSP_LUT_WEIGHT}·DSP LUT-equivalents)",
+               "mpixels_per_s": "Mpixel/s (nextpnr Fmax, 1 pixel/clock)"}
+
+
+def load(path):
+    """Records of ``points.jsonl`` at ``path`` (:func:`phongfx.explore.sweep.load_records`: one per
+    point, the last written winning; a torn last line ignored, a bad line elsewhere a
+    ``ValueError``).  A missing file is ``FileNotFoundError``."""
+    from .sweep import load_records
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"no sweep results at {path}: run `make sweep` first")
+    return load_records(path)
+
+
+def lut_equivalent(cost, dsp_weight=DSP_LUT_WEIGHT):
+    """``lut4 + dsp_weight·dsp`` of a record's ``cost``, or ``None`` when not synthesized."""
+    if not cost or cost.get("lut4") is None:
+        return None
+    return float(cost["lut4"]) + dsp_weight * float(cost.get("dsp") or 0)
+
+
+def value(record, key, dsp_weight=DSP_LUT_WEIGHT):
+    """``key`` of a record: ``"lut_eq"``, a metric (``"torus.phong.max"``) or a cost key; else ``None``."""
+    if key == "lut_eq":
+        result = lut_equivalent(record.get("cost"), dsp_weight)
+    elif key in (record.get("metrics") or {}):
+        result = record["metrics"][key]
+    else:
+        result = (record.get("cost") or {}).get(key)
+    if result is None or isinstance(result, bool):
+        return None
+    result = float(result)
+    return result if math.isfinite(result) else None
+
+
+def _usable(records, error_key, cost_key, dsp_weight):
+    return [r for r in records if r.get("status") == "ok" and value(r, error_key) is not None
+            and value(r, cost_key, dsp_weight) is not None]
+
+
+def pareto(records, error_key, cost_key, *, maximize=None, dsp_weight=DSP_LUT_WEIGHT):
+    """The non-dominated ``ok`` records in (error, cost), best cost first (so error falls along it).
+
+    Error is always minimized; cost is minimized, unless ``maximize`` (default: ``cost_key``
+    in :data:`MAXIMIZE`, e.g. ``"mpixels_per_s"``).  A record is dominated when another is
+    no worse in both and strictly better in one, so records tied in both are all kept.
+    Records that failed or lack either value are ignored.
+    """
+    if maximize is None:
+        maximize = cost_key in MAXIMIZE
+    sign = -1.0 if maximize else 1.0
+    points = sorted(((sign * value(r, cost_key, dsp_weight), value(r, error_key), i, r)
+                     for i, r in enumerate(_usable(records, error_key, cost_key, dsp_weight))),
+                    key=lambda p: p[:3])
+    front, best_error, best_cost = [], math.inf, None
+    for cost, error, _, record in points:  # each point sees every cheaper-or-equal one first
+        if error < best_error:
+            best_error, best_cost = error, cost
+            front.append(record)
+        elif error == best_error and cost == best_cost:
+            front.append(record)
+    return front
+
+
+_MARKERS = "osD^v<>pPX*h"
+
+
+def _style(methods):
+    import matplotlib
+
+    colours = matplotlib.colormaps["tab10"].colors
+    return {m: (colours[i % len(colours)], _MARKERS[i % len(_MARKERS)]) for i, m in enumerate(methods)}
+
+
+def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
+    """Write a two-panel PNG: ``error_key`` against LUT-equivalents and against Mpixel/s.
+
+    Every method in one picture (one colour and marker each), the Pareto front over all
+    of them drawn as a staircase with its points ringed, and a dashed line at :data:`INVISIBLE` level.  The
+    error axis (and the cost axis) is logarithmic when its values span more than a
+    factor of 20 (zero errors are drawn at a floor of 0.01 level).  Written atomically
+    (:func:`phongfx.render.lyon.atomic_write`).
+
+    Returns
+    -------
+    dict
+        ``{"lut_eq": front, "mpixels_per_s": front, "plotted": int, "skipped": int}``:
+        each front as :func:`pareto` gives it; ``skipped`` counts the ``ok`` records
+        without cost (failed records are never plotted).
+    """
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from phongfx.core.files import atomic_write
+
+    ok = [r for r in records if r.get("status") == "ok" and value(r, error_key) is not None]
+    methods = sorted({r["method"] for r in ok})
+    style = _style(methods)
+    fig, axes = plt.subplots(1, 2, figsize=(14, 5.5))
+    result = {"plotted": 0, "skipped": 0}
+    errors = [value(r, error_key) for r in ok]
+    positive = [e for e in errors if e > 0]
+    log = bool(positive) and max(positive) / min(positive + [INVISIBLE]) > 20
+    floor = 0.01
+    for ax, key in zip(axes, ("lut_eq", "mpixels_per_s")):
+        usable = _usable(ok, error_key, key, dsp_weight)
+        result["plotted"] = max(result["plotted"], len(usable))
+        result["skipped"] = max(result["skipped"], len(ok) - len(usable))
+        for method in methods:
+            pts = [r for r in usable if r["method"] == method]
+            if pts:
+                colour, marker = style[method]
+                ax.scatter([value(r, key, dsp_weight) for r in pts],
+                           [max(value(r, error_key), floor) if log else value(r, error_key) for r in pts],
+                           color=colour, marker=marker, s=30, alpha=0.75, label=method)
+        front = pareto(usable, error_key, key, dsp_weight=dsp_weight)
+        result[key] = front
+        if front:
+            xs = [value(r, key, dsp_weight) for r in front]
+            ys = [max(value(r, error_key), floor) if log else value(r, error_key) for r in front]
+            order = sorted(range(len(xs)), key=xs.__getitem__)
+            ax.step([xs[i] for i in order], [ys[i] for i in order], "k-", lw=1.2, alpha=0.7,
+                    where="pre" if key in MAXIMIZE else "post", label="Pareto front")
+            ax.scatter(xs, ys, s=130, facecolors="none", edgecolors="k", linewidths=1.5)
+        ax.axhline(INVISIBLE, color="tab:red", ls="--", lw=1, label=f"{INVISIBLE:g} level")
+        if log:
+            ax.set_yscale("log")
+        xs = [value(r, key, dsp_weight) for r in usable]
+        if key not in MAXIMIZE and xs and min(xs) > 0 and max(xs) / min(xs) > 20:
+            ax.set_xscale("log")
+        better = "→ faster (better)" if key in MAXIMIZE else "← cheaper (better)"
+        ax.set(xlabel=f"{_COST_LABEL[key]}  {better}", ylabel=f"{error_key} (8-bit levels)",
+               title=f"error vs {'speed' if key in MAXIMIZE else 'cost'} ({len(usable)} points)")
+        ax.grid(alpha=0.3, which="both")
+    handles = {}
+    for ax in axes:  # one legend for both panels, below them, so it hides no point
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(label, handle)
+    fig.legend(list(handles.values()), list(handles), loc="lower center", ncol=min(len(handles), 10), fontsize=9)
+    skipped = f"; {result['skipped']} points without cost not drawn" if result["skipped"] else ""
+    fig.suptitle(f"Sweep: {error_key} against hardware cost, ECP5{skipped}")
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    atomic_write(str(path), lambda p: fig.savefig(p, dpi=100, format="png"))
+    plt.close(fig)
+    return result
+
+
+def _params(record):
+    return ", ".join(f"{k}={v}" for k, v in sorted((record.get("params") or {}).items())) or "defaults"
+
+
+def _number(x, fmt):
+    return "–" if x is None else fmt.format(x)
+
+
+def _groups(records):
+    """``label -> records`` per method, split by shininess ``n`` where a method has several."""
+    by_method = {}
+    for r in records:
+        by_method.setdefault(r["method"], []).append(r)
+    groups = {}
+    for method in sorted(by_method):
+        shininess = {(r.get("params") or {}).get("n") for r in by_method[method]}
+        for r in by_method[method]:
+            n = (r.get("params") or {}).get("n")
+            groups.setdefault(method if len(shininess) <= 1 else f"{method} (n={n})", []).append(r)
+    return groups
+
+
+def cheapest_invisible(records, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
+    """``label -> (record, invisible)``: per group of :func:`_groups`, the cheapest ``ok`` record
+    with error <= :data:`INVISIBLE` (``invisible`` True), else the lowest-error one (False).
+    Cheapest = fewest LUT-equivalents; unsynthesized records rank after synthesized ones."""
+    ok = [r for r in records if r.get("status") == "ok" and value(r, error_key) is not None]
+    picks = {}
+    for label, group in _groups(ok).items():
+        good = [r for r in group if value(r, error_key) <= INVISIBLE]
+        if good:
+            cost = [(lut_equivalent(r.get("cost"), dsp_weight), value(r, error_key), r) for r in good]
+            best = min(cost, key=lambda c: (c[0] is None, c[0] or 0.0, c[1]))[2]
+            picks[label] = (best, True)
+        else:
+            picks[label] = (min(group, key=lambda r: value(r, error_key)), False)
+    return picks
+
+
+def _row(label, record, error_key, dsp_weight, note=""):
+    cost = record.get("cost") or {}
+    return (f"| {label} | {note}{_params(record)} | {value(record, error_key):.3f} | "
+            f"{_number(cost.get('lut4'), '{:d}')} | {_number(cost.get('dsp'), '{:d}')} | "
+            f"{_number(lut_equivalent(cost, dsp_weight), '{:.0f}')} | "
+            f"{_number(cost.get('fmax_mhz'), '{:.1f}')} | {_number(cost.get('mpixels_per_s'), '{:.1f}')} |")
+
+
+def summary_markdown(records, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
+    """Per method, the cheapest point with max error <= 1 level (or "none"), then the failed points."""
+    head = ["| method | params | max error (levels) | LUT4 | DSP | LUT-eq | Fmax MHz | Mpixel/s |",
+            "|---|---|---:|---:|---:|---:|---:|---:|"]
+    lines = [f"Cheapest point per method with `{error_key}` ≤ {INVISIBLE:g} level "
+             f"(cost = LUT4 + {dsp_weight}·DSP; – = not synthesized):", "", *head]
+    for label, (record, invisible) in cheapest_invisible(records, error_key, dsp_weight=dsp_weight).items():
+        note = "" if invisible else f"**none ≤ {INVISIBLE:g} level**; best: "
+        lines.append(_row(label, record, error_key, dsp_weight, note))
+    failed = [r for r in records if r.get("status") != "ok"]
+    ok = sum(r.get("status") == "ok" for r in records)
+    lines += ["", f"{len(records)} points: {ok} ok, {len(failed)} failed."]
+    if failed:
+        lines += ["", "Failed points:", ""]
+        lines += [f"* `{r.get('id', '?')}` {r.get('method', '?')} ({_params(r)}): "
+                  f"{(str(r.get('error') or '').strip().splitlines() or ['no message'])[0]}" for r in failed]
+    return "\n".join(lines) + "\n"
+
+
+def _baseline(records, error_key, dsp_weight):
+    mine = [r for r in records if r.get("method") == "conventional" and r.get("status") == "ok"
+            and value(r, error_key) is not None]
+    lines = ["## Conventional Phong baseline", ""]
+    if not mine:
+        return lines + ["The sweep has no `conventional` point.", ""]
+    lines += ["Every `conventional` point of the sweep (normalize by reciprocal square root, "
+              "(N̂·H)^n by table), cheapest first:", "",
+              "| method | params | max error (levels) | LUT4 | DSP | LUT-eq | Fmax MHz | Mpixel/s |",
+              "|---|---|---:|---:|---:|---:|---:|---:|"]
+    mine.sort(key=lambda r: (lut_equivalent(r.get("cost"), dsp_weight) is None,
+                             lut_equivalent(r.get("cost"), dsp_weight) or 0.0, value(r, error_key)))
+    lines += [_row("conventional", r, error_key, dsp_weight) for r in mine]
+    return lines + [""]
+
+
+#: Smaller runs of the slow tables for ``quick=True``.
+_QUICK = {"hast": {"frames": 4}, "cost": {"blocks": ("difference", "shape", "root")}}
+
+
+def _demote(text):
+    """Headings one level down; the modules' own plot links dropped (we link them relative)."""
+    return "\n".join("#" + line if line.startswith("#") else line for line in text.splitlines()
+                     if not line.startswith(("Plots: ", "![")))
+
+
+def _table_section(name, out_dir, quick):
+    from .tables import table_module
+
+    module = table_module(name)
+    where = os.path.join(out_dir, name)
+    os.makedirs(where, exist_ok=True)
+    result = module.run_table(name, out_dir=where, **(_QUICK.get(name, {}) if quick else {}))
+    lines = [_demote(module.markdown(result)), ""]
+    plots = sorted(f for f in os.listdir(where) if f.endswith(".png"))
+    lines += [f"![{name} {p}]({name}/{p})" for p in plots]
+    return lines + [""]
+
+
+def _write_text(path, text):
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
+
+
+def _sweep_section(records, points, sweep_dir, out_dir, error_keys, dsp_weight):
+    csv = os.path.join(sweep_dir, "points.csv")
+    lines = [f"{len(records)} points from `{points}`"
+             + (f" (table: [points.csv]({os.path.relpath(csv, out_dir)}))" if os.path.isfile(csv) else "")
+             + ".", "",
+             "Errors are 8-bit levels, 255·|fixed − float| over the visible pixels "
+             "(`phongfx.explore.evaluate`): `<scene>.phong.*` against float per-pixel Phong of the same "
+             "quantity, `<scene>.self.*` against the method's own float form.  `euler` and "
+             "`gouraud` (Hast et al.) measure the diffuse N·L, the other methods the specular term.", ""]
+    for i, key in enumerate(error_keys):
+        if not any(value(r, key) is not None for r in records):
+            lines += [f"No point has `{key}`.", ""]
+            continue
+        png = "pareto.png" if i == 0 else f"pareto_{key.replace('.', '_')}.png"
+        front = pareto_plot(records, os.path.join(out_dir, png), key, dsp_weight=dsp_weight)
+        lines += [f"## `{key}` against cost", "",
+                  f"{front['plotted']} points plotted, {front['skipped']} without cost not plotted.", "",
+                  f"![Pareto plot of {key}]({png})", "",
+                  "Pareto front in cost, cheapest first: " + (", ".join(
+                      f"{r['method']} ({_params(r)})" for r in front["lut_eq"]) or "–"), "",
+                  f"### Cheapest invisible-error datapaths (`{key}`)", "",
+                  summary_markdown(records, key, dsp_weight=dsp_weight)]
+    return lines + _baseline(records, error_keys[0], dsp_weight)
+
+
+def build_report(out_dir="build/report", sweep_dir="build/sweep",
+                 tables=("lyon", "szirmay", "hast", "schlick", "cost", "pipeline"), quick=False,
+                 error_keys=("torus.phong.max", "torus.self.max"), dsp_weight=DSP_LUT_WEIGHT):
+    """Write ``out_dir/index.md``: the papers' tables measured, then the sweep's Pareto plots,
+    cheapest invisible-error datapaths and the conventional baseline.
+
+    Each table module's ``run_table`` writes its plots under ``out_dir/<table>``.  For each
+    of ``error_keys`` (default: error against float Phong, then against the method's own
+    float form, on the torus) the sweep gets a Pareto plot (``out_dir/pareto.png`` for the
+    first, ``pareto_<key>.png`` for the others) and a summary; the conventional baseline is
+    listed by the first key.  ``index.md`` is written last and atomically: on any error it
+    is left as it was.  ``quick`` runs the slow tables smaller (:data:`_QUICK`).
+    Returns the path of ``index.md``.
+    """
+    from phongfx.core.files import atomic_write
+
+    if isinstance(error_keys, str) or not error_keys:
+        raise ValueError(f"error_keys must be a non-empty sequence of metric keys, not {error_keys!r}")
+    lines = ["# phongfx report", "",
+             "Measurements of the papers' claims and of the bit-width sweep: what each datapath costs and how far it is from Phong. "
+             "Regenerate with `make report`."
+             + (f" Quick run: smaller {', '.join(t for t in _QUICK if t in tables)} tables." if quick else ""), ""]
+    if tables:
+        lines += ["# The papers' tables, measured", ""]
+    for name in tables:
+        lines += _table_section(name, out_dir, quick)
+    lines += ["# Sweep: error against hardware cost", ""]
+    points = os.path.join(sweep_dir, "points.jsonl")
+    if not os.path.isfile(points):
+        lines += [f"No sweep results at `{points}`: run `make sweep` first, then `make report`.", ""]
+    else:
+        lines += _sweep_section(load(points), points, sweep_dir, out_dir, tuple(error_keys), dsp_weight)
+    index = os.path.join(out_dir, "index.md")
+    text = "\n".join(lines).rstrip() + "\n"
+    atomic_write(index, lambda p: _write_text(p, text))
+    return index

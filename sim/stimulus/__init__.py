@@ -1,0 +1,67 @@
+"""Stimulus for the harness: seeded random, directed extremes, exhaustive sets.
+
+Each block has a module here, named like its config, golden and hdl modules, with
+``stimulus(config, count, seed)`` returning raw input codes ``{port: int64 array}``:
+its directed extremes first, then an exhaustive set where the input space has at most
+2**16 codes, then ``count`` seeded random inputs; and ``extremes(block_name)``, its rows
+of the extremes table.  The helpers below are shared by all of them.  ("Vector" in
+this code base means a direction: N, L, V, R, H.)
+
+May import: ``phongfx.core``, ``phongfx.config``, ``phongfx.golden``.
+"""
+
+import numpy as np
+
+from phongfx.golden.fixed import Fixed
+
+__all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "at_angle", "AXES", "axis_pairs",
+           "EXHAUSTIVE_LIMIT"]
+
+#: Largest input space that is checked exhaustively.
+EXHAUSTIVE_LIMIT = 1 << 16
+
+
+#: The six unit axis vectors ±X, ±Y, ±Z: components exactly ±1.0 and 0.
+AXES = np.concatenate([np.eye(3), -np.eye(3)])
+
+
+def axis_pairs():
+    """Every ordered pair of :data:`AXES` as two (36, 3) arrays: equal, opposite, at 90°."""
+    first, second = np.repeat(AXES, len(AXES), axis=0), np.tile(AXES, (len(AXES), 1))
+    return first, second
+
+
+def rng(seed):
+    return np.random.default_rng(seed)
+
+
+def random_codes(fmt, shape, generator, lo=None, hi=None):
+    """Uniform raw codes of ``fmt`` (optionally limited to ``lo..hi`` raw)."""
+    lo = fmt.min_raw if lo is None else lo
+    hi = fmt.max_raw if hi is None else hi
+    return generator.integers(lo, hi, size=shape, endpoint=True, dtype=np.int64)
+
+
+def unit_vectors(count, generator):
+    """``count`` float unit vectors, uniform on the sphere."""
+    v = generator.normal(size=(count, 3))
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def at_angle(alpha, generator):
+    """Pairs of unit vectors ``(r, l)`` at angles ``alpha`` (radians), random orientation."""
+    l = unit_vectors(len(alpha), generator)
+    side = np.cross(l, unit_vectors(len(alpha), generator))
+    side /= np.linalg.norm(side, axis=-1, keepdims=True)
+    return np.cos(alpha)[:, None] * l + np.sin(alpha)[:, None] * side, l
+
+
+def codes(values, fmt):
+    """Float values to raw codes of ``fmt``, rounded half up and saturated (for stimulus)."""
+    return Fixed.from_float(values, fmt, rounding="round_half_up", overflow="saturate").raw
+
+
+def concat(*parts):
+    """Concatenate dicts of raw code arrays port by port."""
+    return {name: np.concatenate([np.asarray(part[name], dtype=np.int64) for part in parts])
+            for name in parts[0]}

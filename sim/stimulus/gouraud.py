@@ -1,0 +1,49 @@
+"""Stimulus for the Gouraud unit: scanlines, each an ``init`` pixel then steps.
+
+As :mod:`phongfx.sim.stimulus.euler`: junk in ``p0``, ``dp`` off ``init``; spans of 1,
+2 and 2048 pixels from :mod:`phongfx.golden.euler_setup`, ``init`` back to back over
+the extremes of ``p``, the extreme codes of both registers (which wrap), then seeded
+random spans up to ``count`` pixels.
+"""
+
+import numpy as np
+
+from phongfx.golden.euler_setup import quantize_gouraud, random_spans, span_setup
+from . import concat, random_codes, rng
+
+__all__ = ["stimulus", "span", "geometric"]
+
+
+def span(config, length, generator, **loads):
+    """Raw inputs of one scanline of ``length`` pixels: ``init`` and the raw ``loads``
+    (``p0``, ``dp``; random when not given) on the first, junk on the rest."""
+    raw = {name: random_codes(config.fmt(fmt), length, generator)
+           for name, fmt in (("p0", "p"), ("dp", "dp"))}
+    for name, value in loads.items():
+        raw[name][0] = value
+    raw["init"] = np.zeros(length, dtype=np.int64)
+    raw["init"][0] = 1
+    return raw
+
+
+def geometric(config, length, generator, max_angle=np.pi / 3):
+    """A span from random unit normals at most ``max_angle`` apart and a random light."""
+    na, nb, light = (v[0] for v in random_spans(1, max_angle, generator))
+    return span(config, length, generator, **quantize_gouraud(config, span_setup(na, nb, light, length)))
+
+
+def stimulus(config, count=1000, seed=0):
+    """Raw input codes: the directed spans of the module docstring, then random spans."""
+    g = rng(seed)
+    p, dp = config.fmt("p"), config.fmt("dp")
+    parts = [geometric(config, 1, g), geometric(config, 2, g), geometric(config, 2048, g)]
+    # init back to back; 1.0 where p holds it
+    parts += [span(config, 1, g, p0=code) 
+              for code in (p.min_raw, p.max_raw, 0, -1, 1, min(p.one, p.max_raw))]
+    for p0, step in ((p.max_raw, dp.max_raw), (p.min_raw, dp.min_raw), (0, dp.min_raw)):
+        parts.append(span(config, 8, g, p0=p0, dp=step))
+    while count > 0:
+        length = min(int(g.integers(1, 40)), count)
+        parts.append(geometric(config, length, g) if g.random() < 0.5 else span(config, length, g))
+        count -= length
+    return concat(*parts)

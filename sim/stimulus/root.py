@@ -1,0 +1,95 @@
+"""Stimulus for the root-shininess unit: R = ±L, extreme m, both comparators' edges, random.
+
+With ``m_const`` set, every case takes that m (the comparators' edges are those of the one
+m the hardware has) and no ``m`` port is returned.
+"""
+
+import numpy as np
+
+from . import AXES, at_angle, axis_pairs, codes, concat, random_codes, rng, unit_vectors
+
+__all__ = ["stimulus", "fraction_codes", "pairs"]
+
+
+def fraction_codes(config, m, d):
+    """What Figure 8's comparators see for raw ``D`` codes ``d`` (count, 3) of format ``d``:
+    ``big`` (an integer part of ``u_i = m|D_i|/2^s`` is set) and ``c·Σq_i²`` in units of
+    ``2^-2f``, ``q_i`` the truncated fraction codes; the shape zeroes from ``2^(2f)`` on."""
+    dfmt, f, s = config.fmt("d"), config.fmt("frac").frac_bits, config.shift
+    md = np.asarray(m)[:, None] * np.minimum(np.abs(d), dfmt.max_raw)
+    point = dfmt.frac_bits + s  # fraction bits of u
+    big = np.any(md >= 1 << point, axis=-1)
+    q = ((md >> max(point - f, 0)) << max(f - point, 0)) & ((1 << f) - 1)
+    return big, np.sum(q * q, axis=-1) << (2 * s - 1 - config.k)
+
+
+def pairs(config, d):
+    """Raw ``R``, ``L`` codes of ``vec`` with ``R - L = D`` (``d`` raw codes of ``d``),
+    exactly when the two formats have the same fraction bits."""
+    vec, dfmt = config.fmt("vec"), config.fmt("d")
+    shift = vec.frac_bits - dfmt.frac_bits
+    d = d << shift if shift >= 0 else (d + (1 << (-shift - 1))) >> -shift
+    r = np.clip(-(-d // 2), vec.min_raw, vec.max_raw)
+    return r, np.clip(r - d, vec.min_raw, vec.max_raw)
+
+
+def _directed(config, ms, d):
+    r, l = pairs(config, np.asarray(d, dtype=np.int64))
+    return {"r": r, "l": l, "m": np.asarray(ms, dtype=np.int64)}
+
+
+def stimulus(config, count=1000, seed=0):
+    vec, mfmt, dfmt = config.fmt("vec"), config.fmt("m"), config.fmt("d")
+    g = rng(seed)
+    # the m range the hardware takes: 1..m_max, or the constant
+    lo, hi = (config.m_const, config.m_const) if config.m_const else (1, config.m_max)
+    ms = sorted({lo, min(lo + 1, hi), (lo + hi) // 2, hi})
+
+    # every pair of ± AXES (R = L: x = 0; R = -L: |D| = 2, rectified -2 saturating;
+    # 90°, a grazing light), and off-axis R = L and R = -L, at m = 1, m_max and between
+    first, second = axis_pairs()
+    u = unit_vectors(8, g)
+    r = np.tile(np.concatenate([first, u, u]), (len(ms), 1))
+    l = np.tile(np.concatenate([second, u, -u]), (len(ms), 1))
+    m = np.repeat(ms, len(first) + 2 * len(u))
+    axis = {"r": codes(r, vec), "l": codes(l, vec), "m": m}
+
+    # augmented comparator, every m: along ±X, the largest |D| with u < 1 and the
+    # smallest with u >= 1 (its fraction near 0: without the flag, a peak of ~1.0)
+    every = np.arange(lo, hi + 1)
+    edge = -(-(1 << (dfmt.frac_bits + config.shift)) // every)
+    mags = np.stack([edge - 1, edge], axis=-1).ravel()
+    keep = mags <= dfmt.max_raw
+    mags, m = mags[keep], np.repeat(every, 2)[keep]
+    d = np.zeros((2 * len(mags), 3), dtype=np.int64)
+    d[:, 0] = np.concatenate([mags, -mags])
+    big = _directed(config, np.tile(m, 2), d)
+
+    # sum reaches 1: along random directions (axes too), scale |D| code by code and keep
+    # the last code below and the first at or past the shape's threshold (or the flag)
+    rows, mrows = [], []
+    steps = np.arange(1 << (dfmt.int_bits + dfmt.frac_bits + 1))
+    for mi in sorted({lo, 3, 7, 16, 40, hi} & set(every.tolist())):
+        for w in np.concatenate([AXES[:3], unit_vectors(6, g)]):
+            d = np.clip(np.rint(steps[:, None] * w), dfmt.min_raw, dfmt.max_raw).astype(np.int64)
+            big_, v = fraction_codes(config, np.full(len(d), mi), d)
+            past = np.flatnonzero(big_ | (v >= 1 << 2 * config.fmt("frac").frac_bits))
+            if len(past) and past[0]:
+                rows += [d[past[0] - 1], d[past[0]]]
+                mrows += [mi, mi]
+    threshold = _directed(config, mrows, np.array(rows).reshape(-1, 3))
+
+    # grazing approach to the peak: x = (m²/2)·α² over 0 .. 2^(k+1), denser near 0
+    n = 4 * count // 10 + 1
+    m_near = random_codes(mfmt, n, g, lo, hi)
+    alpha = np.sqrt(2 * 2.0 ** (config.k + 1) * g.uniform(0, 1, n) ** 2) / m_near
+    r_near, l_near = at_angle(alpha, g)
+    near = {"r": codes(r_near, vec), "l": codes(l_near, vec), "m": m_near}
+
+    # seeded random unit pairs, and raw codes over the whole vec format (|D| up to 4)
+    unit = {"r": codes(unit_vectors(count, g), vec), "l": codes(unit_vectors(count, g), vec),
+            "m": random_codes(mfmt, count, g, lo, hi)}
+    full = {"r": random_codes(vec, (count, 3), g), "l": random_codes(vec, (count, 3), g),
+            "m": random_codes(mfmt, count, g, lo, hi)}
+    raw = concat(axis, big, threshold, near, unit, full)
+    return {name: raw[name] for name in config.inputs}

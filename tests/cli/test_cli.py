@@ -1,0 +1,136 @@
+import os
+import subprocess
+import sys
+
+import pytest
+
+from phongfx.cli import apply_settings, main
+from phongfx.config import fig7_config
+
+
+def test_blocks_lists_every_block(capsys):
+    assert main(["blocks"]) == 0
+    out = capsys.readouterr().out
+    for name in ("lirp", "normalize", "reflect", "difference", "shape", "diffuse", "fig7"):
+        assert f"\n{name} " in "\n" + out
+
+
+def test_verilog_writes_a_module(tmp_path):
+    path = tmp_path / "shape.v"
+    assert main(["verilog", "shape", "--set", "k=1", "-o", str(path)]) == 0
+    text = path.read_text()
+    assert "module shape(" in text and "o__payload" in text
+
+
+def test_sim_passes_and_reports(capsys):
+    assert main(["sim", "lirp", "--vectors", "50", "--bubbles", "0.1"]) == 0
+    assert "0 mismatching cycle(s)" in capsys.readouterr().out
+
+
+def test_vcd_is_written(tmp_path):
+    path = tmp_path / "lirp.vcd"
+    assert main(["sim", "lirp", "--vectors", "5", "--backend", "amaranth", "--vcd", str(path)]) == 0
+    assert path.read_text().startswith("$")
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["sim", "shape", "--set", "k=9"], r"phongfx: error: k must be an integer in 0\.\.4, not 9\n"),
+    (["sim", "shape", "--set", "q=1"], r"phongfx: error: --set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding, pipeline\n"),
+    (["sim", "shape", "--set", "k=two"], r"phongfx: error: --set k: k must be an integer, not 'two'\n"),
+    (["render", "--radius", "2", "--out", "OUT"], r"phongfx: error: radius must be an integer in 4\.\.4096, not 2\n"),
+])
+def test_bad_input_exits_2_with_the_field_named(argv, message, capsys, tmp_path):
+    argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert __import__("re").fullmatch(message, err), err
+    assert not (tmp_path / "out").exists()  # nothing half-written
+
+
+def test_nested_settings():
+    config = apply_settings(fig7_config(), ["shape.k=1", "lights=1", "shape.t=1.12"])
+    assert (config.shape.k, config.lights, config.shape.t) == (1, 1, "1.12")
+
+
+def test_console_script_exit_code():
+    # the installed entry point, as a user runs it
+    proc = subprocess.run([os.path.join(os.path.dirname(sys.executable), "phongfx"), "sim", "fig7",
+                           "--set", "lights=0"], capture_output=True, text=True)
+    assert proc.returncode == 2 and proc.stderr.startswith("phongfx: error: lights must be")
+
+
+def test_tables_schlick_prints_figure1(tmp_path, capsys):
+    assert main(["tables", "schlick", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("# Figure 1, measured")
+    assert "| 1 | 0.00000 |" in out and "| 64 | 0.199" in out
+    assert (tmp_path / "figure1.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["render", "mesh", "--method", "nope", "--out", "OUT"],
+     r"phongfx: error: method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
+     r"spherical, euler-unit, gouraud-unit, conventional, not 'nope'\n"),
+    (["render", "frames", "--units", "euler", "nope", "--out", "OUT"],
+     r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, conventional, not 'nope'\n"),
+])
+def test_render_targets_refuse_bad_names_and_write_nothing(argv, message, capsys, tmp_path):
+    argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]
+    assert main(argv) == 2
+    assert __import__("re").fullmatch(message, capsys.readouterr().err)
+    assert not (tmp_path / "out").exists()
+
+
+def test_render_mesh_writes_a_png_and_reports_its_error(tmp_path, capsys):
+    assert main(["render", "mesh", "--method", "corrected-euler", "--polygons", "288", "--size", "64",
+                 "--out", str(tmp_path)]) == 0
+    summary = __import__("json").loads(capsys.readouterr().out)
+    assert (tmp_path / "torus288-corrected-euler-n20-f0.png").stat().st_size > 0
+    assert summary["pixels"] > 1000 and summary["error_8bit"]["diffuse"]["max"] < 2
+
+
+@pytest.mark.verilator
+def test_render_frames_checks_the_rtl(tmp_path, capsys):
+    assert main(["render", "frames", "--units", "gouraud", "--size", "32", "--quiet",
+                 "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "| gouraud |" in out and "Total mismatches 0" in out
+    assert (tmp_path / "frames.json").exists()
+
+
+def test_synth_prints_the_table_and_refuses_a_bad_target(monkeypatch, capsys):
+    import phongfx.explore.synth as synth_module
+    calls = []
+
+    def fake(name, **options):
+        calls.append((name, options["target"], options["freq"], options["config"].k))
+        return {"block": name, "target": options["target"], "device": "45k", "lut4": 17, "ff": 35,
+                "carry": 22, "dsp": 1, "bram_bits": 0, "fmax_mhz": 114.7, "pixels_per_second": 114.7e6,
+                "latency": 2, "latency_ns": 17.4}
+    monkeypatch.setattr(synth_module, "synth", fake)
+    assert main(["synth", "shape", "--set", "k=1", "--freq", "200", "--quiet"]) == 0
+    assert calls == [("shape", "ecp5", 200.0, 1)]
+    assert "| shape | ecp5 | 45k | 17 | 35 | 22 | 1 |" in capsys.readouterr().out
+    monkeypatch.undo()
+    assert main(["synth", "shape", "--target", "nope", "--quiet"]) == 2
+    assert capsys.readouterr().err == "phongfx: error: target must be one of 'ecp5', 'ice40', not 'nope'\n"
+
+
+def test_sweep_writes_csv_plot_and_summary_and_resumes(tmp_path, capsys):
+    spec = tmp_path / "spec.toml"
+    spec.write_text('scenes = ["torus"]\n[[grid]]\nmethod = "fig7"\nvec_frac = [8, 10]\n')
+    out = tmp_path / "out"
+    assert main(["sweep", str(spec), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    assert "2 point(s) run (2 ok, 0 failed), 0 already done, of 2" in capsys.readouterr().out
+    assert {p.name for p in out.iterdir()} >= {"points.jsonl", "points.csv", "pareto.png", "summary.md"}
+    assert "torus.self.max" in (out / "summary.md").read_text()
+    assert main(["sweep", str(spec), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    assert "0 point(s) run (0 ok, 0 failed), 2 already done, of 2" in capsys.readouterr().out
+
+
+def test_sweep_refuses_a_bad_spec_with_exit_2(tmp_path, capsys):
+    spec = tmp_path / "spec.toml"
+    spec.write_text('[[grid]]\nmethod = "fig9"\n')
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--quiet"]) == 2
+    assert capsys.readouterr().err.startswith("phongfx: error: ")
+    assert not (tmp_path / "out").exists()

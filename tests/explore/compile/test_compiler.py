@@ -1,0 +1,247 @@
+"""The scene compiler: method choice, local minimality, the elaborated
+design's blocks, the manifest and the RTL check, bad scenes."""
+
+import json
+import os
+import re
+
+import pytest
+
+from phongfx.cli import main
+from phongfx.explore.compile.compiler import SceneEval, compile_scene, width_params
+from phongfx.explore.compile.emit import submodules
+from phongfx.core.registry import get_block
+from phongfx.explore.compile.run import block_name, build
+from phongfx.hdl.emit import verilog
+from phongfx.scene.file import load_scene, parse_scene
+
+SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes")
+
+TORUS = """
+name = "tiny"
+[[lights]]
+direction = [1, 1, 1]
+[materials.shiny]
+kd = 0.6
+ks = 0.4
+n = 16
+[[objects]]
+type = "torus"
+material = "shiny"
+polygons = 72
+[output]
+width = 32
+height = 32
+[requirement]
+max_error_levels = {error}
+against = "{against}"
+"""
+
+LOCAL = """
+[camera]
+position = [0, 0, 4]
+[[lights]]
+position = [2, 2, 3]
+[materials.clay]
+kd = 0.7
+ks = 0.3
+n = [8, 32]
+[[objects]]
+type = "sphere"
+material = "clay"
+[output]
+width = 24
+height = 24
+[requirement]
+against = "self"
+"""
+
+
+def _torus(error=1.0, against="phong"):
+    return parse_scene(TORUS.format(error=error, against=against), name="tiny")
+
+
+def _lyon(radius=16):
+    text = open(os.path.join(SCENES, "lyon-balls.toml")).read()
+    return parse_scene(re.sub(r"radius = \d+", f"radius = {radius}", text), name="lyon-balls")
+
+
+def _instances(compiled):
+    config = build(compiled.chosen, compiled.best["params"], compiled.analysis)
+    block = get_block(block_name(compiled.chosen), config=config)
+    return config, submodules(verilog(block.component(), "top", emit_src=False), "top")
+
+
+def _kinds(instances, kind):
+    return sum(1 for name in instances if re.fullmatch(rf"{kind}\d+", name))
+
+
+def test_the_cheapest_feasible_method_is_chosen_and_the_rest_say_why_not():
+    compiled = compile_scene(_torus(), methods=["fig7", "fig8", "schlick", "euler"])
+    assert compiled.rejected["schlick"].startswith("Schlick's unit computes only the specular term")
+    assert "ks > 0" in compiled.rejected["euler"]
+    feasible = {m: r["cost"]["lut_eq"] for m, r in compiled.results.items() if r["feasible"]}
+    assert feasible and compiled.chosen == min(feasible, key=feasible.get)
+    assert compiled.best["max"] <= 1.0
+
+
+def test_widths_are_locally_minimal_measured_afresh():
+    spec = _torus()
+    compiled = compile_scene(spec, methods=["fig7"])
+    best, fresh = compiled.best, SceneEval(spec)  # a new evaluator: no shared cache
+    assert fresh.error("fig7", best["params"])["max"] <= 1.0
+    for name, (_, (lo, _hi)) in width_params("fig7", "phong").items():
+        value = best["params"][name]
+        if value == lo:
+            assert best["proof"][name]["why"] == "at range minimum"
+            continue
+        lower = fresh.error("fig7", {**best["params"], name: value - 1})["max"]
+        assert lower > 1.0, name
+        assert best["proof"][name]["max_error"] == pytest.approx(lower)
+
+
+def test_default_widths_are_measured_beside_the_minimal_ones():
+    best = compile_scene(_torus(against="self"), methods=["fig7"]).best
+    assert best["default"]["params"] == {k: v for k, (v, _) in width_params("fig7", "self").items()}
+    assert best["cost"]["lut_eq"] < best["default"]["cost"]["lut_eq"]
+
+
+def test_lyon_balls_compile_without_l_or_v_interpolators():
+    compiled = compile_scene(_lyon(), methods=["fig7", "conventional", "spherical"])
+    assert (compiled.analysis.local_lights, compiled.analysis.local_viewer) == (False, False)
+    config, instances = _instances(compiled)
+    assert _kinds(instances, "lirp") == 1 and _kinds(instances, "normalize") == 1
+    assert {"v", "l0", "l1"} <= set(config.inputs) and not {"v0", "l0_0"} & set(config.inputs)
+    assert compiled.rejected["spherical"] == ("needs mesh spans (its setup is per span); the scene "
+                                              "has Lyon's spheres")
+    # the conventional baseline: one unit per light, each light's stream measured
+    baseline = compiled.results["conventional"]["default"]
+    assert baseline["cost"]["copies"] == 2 and 0 < baseline["max"] < 10
+
+
+def test_a_local_light_and_viewer_compile_with_their_interpolators():
+    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["fig7"])
+    assert compiled.chosen == "fig7"
+    config, instances = _instances(compiled)
+    # N, L and V each get a LIRP and a normalizer
+    assert _kinds(instances, "lirp") == 3 and _kinds(instances, "normalize") == 3
+    assert {"v0", "v1", "l0_0", "l0_1"} <= set(config.inputs)
+
+
+def test_the_conventional_baseline_takes_a_local_light_per_pixel():
+    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["conventional"])
+    assert "conventional" not in compiled.rejected
+    # fed the exact L and H of each pixel, it is within a level of its own float (N·H)^(4n)
+    assert compiled.chosen == "conventional" and 0 < compiled.best["max"] <= 1.0
+
+
+def test_single_n_is_a_hardware_constant_and_a_range_a_port():
+    single = compile_scene(_torus(), methods=["fig7"])
+    config = build("fig7", single.best["params"], single.analysis)
+    assert config.difference.n_const == 16 and "n" not in config.inputs
+    ranged = compile_scene(parse_scene(LOCAL, name="local"), methods=["fig7"])
+    config = build("fig7", ranged.best["params"], ranged.analysis)
+    assert config.inputs["n"][0].int_bits == 6 and config.difference.n_max == 32
+
+
+def test_a_range_of_n_is_rendered_at_its_ends_and_geometric_mean():
+    scene = SceneEval(parse_scene(LOCAL, name="local"))
+    assert scene.shininess_variants == [{"clay": 8}, {"clay": 16}, {"clay": 32}]
+    assert [sorted(set(n.tolist())) for _, n in scene.renders] == [[8], [16], [32]]
+    assert len(SceneEval(_torus()).renders) == 1
+
+
+def test_an_unreachable_requirement_chooses_nothing(tmp_path, capsys):
+    path = tmp_path / "hard.toml"
+    path.write_text(TORUS.format(error=0.001, against="phong"))
+    assert main(["compile", str(path), "-o", str(tmp_path / "out"), "--methods", "fig7", "--quiet"]) == 1
+    assert re.search(r"^phongfx: no method meets max_error_levels = 0\.001 against phong on tiny; ",
+                     capsys.readouterr().err, re.M)
+    data = json.loads((tmp_path / "out" / "manifest.json").read_text())
+    assert data["chosen"] is None and data["methods"]["fig7"]["feasible"] is False
+
+
+def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    out = tmp_path / "out"
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,conventional", "--quiet"]) == 0
+    data = json.loads((out / "manifest.json").read_text())
+    for key in ("scene", "analysis", "chosen", "block", "formats", "latency", "ports", "error", "cost",
+                "cost_model", "rejected", "minimality_proof", "default_widths", "conventional_baseline",
+                "rtl_check", "blocks", "widths"):
+        assert key in data, key
+    assert data["cost_model"] == "proxy" and data["chosen"] == "fig7"
+    assert all(re.fullmatch(r"S?\d+\.\d+", f) for f in data["formats"].values())
+    check = data["rtl_check"]
+    spec = load_scene(str(path))
+    from phongfx.scene.geometry import frames
+    assert check["mismatches"] == 0 and check["pixels"] == len(frames(spec)[0]) > 0
+    assert (out / "verilog" / f"{data['module']}.v").is_file()
+    assert (out / "frames" / "frame_000.png").is_file() and (out / "error" / "frame_000.png").is_file()
+    assert "0 mismatches" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("change, message", [
+    (("direction = [1, 1, 1]", "position = [1, 2]"), r"bad\.toml: lights\[0\]\.position must be 3 numbers"),
+    (("polygons = 72", "polygons = 70"), r"bad\.toml: objects\[0\]\.polygons must be 2·k²"),
+    (("[[objects]]", "[[objects]"), r"bad\.toml: invalid TOML"),
+])
+def test_bad_scenes_exit_2_with_one_line(tmp_path, capsys, change, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong").replace(*change))
+    assert main(["compile", str(path), "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert re.fullmatch(rf"phongfx: error: .*{message}.*\n", err) and err.count("\n") == 1
+
+
+def test_a_scene_with_nothing_in_view_exits_2(tmp_path, capsys):
+    path = tmp_path / "empty.toml"
+    far = TORUS.format(error=1.0, against="phong").replace("polygons = 72",
+                                                           "polygons = 72\noffset = [100, 0, 0]")
+    path.write_text(far)
+    assert main(["compile", str(path), "-o", str(tmp_path / "o"), "--quiet"]) == 2
+    assert capsys.readouterr().err == ("phongfx: error: tiny: no object covers a pixel in any frame; "
+                                       "nothing to compile\n")
+    assert not (tmp_path / "o").exists()
+
+
+def test_unknown_method_and_missing_scene_exit_2(tmp_path, capsys):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    assert main(["compile", str(path), "-o", str(tmp_path / "o"), "--methods", "fig9"]) == 2
+    assert re.fullmatch(r"phongfx: error: method must be one of .*, not 'fig9'\n", capsys.readouterr().err)
+    assert main(["compile", str(tmp_path / "none.toml"), "-o", str(tmp_path / "o")]) == 2
+    assert capsys.readouterr().err.startswith("phongfx: error: ")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["lyon-balls", "torus", "local-mesh"])
+def test_example_scenes_compile_and_verify(tmp_path, name):
+    out = tmp_path / name
+    assert main(["compile", os.path.join(SCENES, f"{name}.toml"), "-o", str(out), "--quiet"]) == 0
+    data = json.loads((out / "manifest.json").read_text())
+    assert data["error"]["max"] <= data["requirement"]["max_error_levels"]
+    local = name == "local-mesh"  # a point light and a local viewer: L and V interpolated too
+    assert data["rtl_check"]["mismatches"] == 0 and data["block_counts"]["lirp"] == (3 if local else 1)
+
+
+def _fake_synth(name, *, config=None, **options):
+    # LUT4s that depend on the design, so the cost is seen to come from this config
+    return {"lut4": 100 + config.normalize.fmt("out").frac_bits, "ff": 1, "carry": 1, "dsp": 3,
+            "bram_bits": 0, "fmax_mhz": 99.0, "latency": 17}
+
+
+def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
+    import phongfx.explore.synth as synth_module
+    monkeypatch.setattr(synth_module, "synth", _fake_synth)
+    best = compile_scene(_torus(), methods=["fig7"], synth=True).best
+    vec = best["params"]["vec_frac"]
+    assert best["cost"]["lut_eq"] == 100 + vec + 958 * 3 and best["cost"]["fmax_mhz"] == 99.0
+
+    def broken(name, **options):
+        raise synth_module.SynthError("Yosys did not finish (exit code 1); log x:\nmore")
+    monkeypatch.setattr(synth_module, "synth", broken)
+    compiled = compile_scene(_torus(), methods=["fig7"], synth=True)
+    assert compiled.chosen == "fig7" and compiled.cost_model == "ecp5-synth"
+    assert compiled.best["cost"] == {"lut_eq": None, "why": "Yosys did not finish (exit code 1); log x:"}

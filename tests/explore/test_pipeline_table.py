@@ -1,0 +1,75 @@
+"""``phongfx.explore.pipeline_table``: Fmax, size and latency against pipeline depth."""
+
+import json
+import re
+
+import pytest
+
+from phongfx.explore import pipeline_table
+from phongfx.explore import synth
+from phongfx.core.registry import get_block
+from phongfx.explore.pipeline_table import DEPTHS, NAMES, markdown, pipeline_rows, run_table, to_json
+
+
+def _fake_synth(calls):
+    """A stand-in for :func:`phongfx.explore.synth.synth`: 35 MHz more per depth, normalize 40 MHz
+    higher, latency from the config as the real one reports it."""
+
+    def fake(name, *, config, target, freq, workdir):
+        calls.append((name, config.pipeline, target, freq))
+        fmax = 30.0 + 35 * config.pipeline + (40 if name == "normalize" else 0)
+        return {"fmax_mhz": fmax, "lut4": 1000 - 10 * config.pipeline, "ff": 2000 + 500 * config.pipeline,
+                "dsp": 39, "latency": get_block(name, config=config).latency,
+                "critical_path": {"from": f"{name}.a", "to": f"{name}.b", "ns": 1e3 / fmax,
+                                  "logic_ns": 4.0, "routing_ns": 1e3 / fmax - 4.0},
+                "cached": True}
+    return fake
+
+
+@pytest.fixture
+def fake(monkeypatch):
+    calls = []
+    monkeypatch.setattr(synth, "synth", _fake_synth(calls))
+    return calls
+
+
+def test_rows_cover_every_name_and_depth(fake):
+    rows = pipeline_rows()
+    assert [(r["name"], r["depth"]) for r in rows] == [(n, d) for n in NAMES for d in DEPTHS]
+    assert fake[0] == ("fig7", 0, "ecp5", 150)
+    fig7 = [r for r in rows if r["name"] == "fig7"]
+    assert [r["latency"] for r in fig7] == [get_block("fig7", pipeline=d).latency for d in DEPTHS]
+    assert fig7[0]["latency"] == 17  # depth 0 is the original design
+    # 150 MHz is met only where the stand-in reaches it: normalize at 30 + 40 + 35·3 = 175
+    assert [r["met"] for r in rows if r["name"] == "normalize"] == [False, False, False, True]
+
+
+def test_markdown_names_the_first_depth_that_meets_the_goal_or_the_limit(fake, tmp_path):
+    result = run_table("pipeline", tmp_path)
+    text = markdown(result)
+    assert re.search(r"^\| fig7 \| 0 \| 30\.0 ✗ \| 1000 \| 2000 \| 39 \| 17 \| fig7\.a → fig7\.b "
+                     r"\(4\.00 \+ 29\.33\) \|$", text, re.M), text
+    assert re.search(r"^\* normalize: meets 150 MHz from depth 3 \(latency 15 cycles\)\.$", text, re.M), text
+    deepest = DEPTHS[-1]
+    assert re.search(rf"^\* fig8: \*\*falls short of 150 MHz\*\*: {30 + 35 * deepest:.1f} MHz at depth "
+                     rf"{deepest}; critical path fig8\.a → fig8\.b", text, re.M), text
+    assert "![Fmax against depth](pipeline_fmax.png)" in text
+    png = (tmp_path / "pipeline_fmax.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000
+    assert json.loads(to_json(result))["rows"] == result["rows"]
+
+
+def test_unknown_table():
+    with pytest.raises(ValueError, match=r"^unknown table 'lyon'; valid tables: pipeline$"):
+        run_table("lyon")
+
+
+@pytest.mark.slow
+def test_real_synthesis_of_a_small_block(tmp_path):
+    rows = pipeline_rows(names=("shape",), depths=(0, 1), workdir=tmp_path)
+    assert [r["latency"] for r in rows] == [3, 5]
+    assert all(r["fmax_mhz"] > 20 and r["dsp"] == 2 for r in rows)
+    # depth 1 registers the two products: more flip-flops, a shorter critical path
+    assert rows[1]["ff"] > rows[0]["ff"]
+    assert rows[1]["critical_path"]["ns"] < rows[0]["critical_path"]["ns"]
+    assert pipeline_table.markdown({"target": "ecp5", "freq": 150, "rows": rows}).count("| shape |") == 2

@@ -1,0 +1,24 @@
+import json
+
+import numpy as np
+
+from phongfx.render.lyon import run
+
+
+def test_small_scene_is_bit_identical_and_reported(tmp_path, backend):
+    summary = run(radius=6, span=4, backend=backend, out_dir=str(tmp_path), sample=0, quiet=True)
+    assert summary["mismatches"] == 0
+    assert summary["pixels_checked"] == 2 * summary["error_8bit"]["exact"]["pixels"]
+    assert summary["cycles"] >= summary["pixels_checked"]
+    assert summary["cycles_per_second"][backend]["cycles_per_second"] > 0
+    written = json.loads((tmp_path / "summary.json").read_text())
+    assert written["pixels_checked"] == summary["pixels_checked"]
+    for name in ("fig7.png", "fig7_error.png"):
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the fixed-point datapath computes Lyon's k = 2 shape: against its float form with
+    # exact normals the error is quantization only; against Phong it is the approximation
+    exact = summary["error_8bit"]["exact"]
+    assert exact["specular_vs_lyon-k2"]["max"] < 3
+    assert exact["specular_vs_phong"]["max"] > exact["specular_vs_lyon-k2"]["max"]
+    assert exact["diffuse_vs_float"]["max"] < 1
+    assert np.isfinite(summary["error_8bit"]["spans"]["specular_vs_lyon-k2"]["mean"])
