@@ -6,7 +6,7 @@ VENV ?= .venv
 BACKEND ?= verilator-fast
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: sim test test-all synth sweep report bench clean
+.PHONY: sim test test-all synth sweep report bench identity clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -42,6 +42,11 @@ bench: $(STAMP)
 	$(VENV)/bin/python -m bench.rtl
 	$(VENV)/bin/python -m bench.golden
 	$(VENV)/bin/python -m bench.scaling
+
+# the behaviour identity check: this checkout's outputs against revision REF's (bench/identity.py)
+REF ?= 58cdcc7
+identity: $(STAMP)
+	$(VENV)/bin/python -m bench.identity check --ref $(REF) --out build/identity
 
 clean:
 	rm -rf build

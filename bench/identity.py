@@ -106,9 +106,11 @@ def capture(out, ref=None, synth_tables=False, parts=PARTS):
         os.makedirs(os.path.join(out, "verilog"), exist_ok=True)
         for name in names:
             run("verilog", name, "-o", os.path.join(out, "verilog", f"{name}.v"))
+    if "compile" in parts:
+        # the manifest records the scene file's path: the same relative one in both captures
+        shutil.copytree(os.path.join(source, "scenes"), os.path.join(work, "scenes"), dirs_exist_ok=True)
     for scene in SCENES if "compile" in parts else ():
-        run("compile", os.path.join(source, "scenes", f"{scene}.toml"), "-o", f"compile/{scene}",
-            "--no-check", "--quiet")
+        run("compile", f"scenes/{scene}.toml", "-o", f"compile/{scene}", "--no-check", "--quiet")
     if "sim" in parts:
         run("render", "--out", "sim", "--quiet")
     if "figure9" in parts:

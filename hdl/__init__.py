@@ -1,0 +1,13 @@
+"""The hardware: Amaranth components, twins of the golden models, and their Verilog.
+
+One module per block, named like its config, golden and stimulus modules: a
+:class:`~phongfx.hdl.block.PipelinedBlock` whose ports come from the block's
+configuration (:mod:`.block`), built from the fixed-point values of :mod:`.fixed` (the
+same formats and rounding as :mod:`phongfx.golden.fixed`, with pipeline registers placed
+by cycle tags) and carrying the simulation-only overflow assertions of :mod:`.overflow`.
+:mod:`.emit` writes a component as Verilog.
+
+Installed as ``phongfx.hdl`` from the ``hdl/`` folder, so a module reaches another layer
+by an absolute ``phongfx.`` import.  May import: ``phongfx.core``, ``phongfx.config``,
+``phongfx.golden`` (ROM and table contents are the golden model's own functions).
+"""

@@ -13,12 +13,13 @@ check a ``latency`` formula against the registers a pipeline depth adds (the
 harness catches a mismatch as well, by timing).  A sub-block's :meth:`results` carry
 the cycle of what was fed to it plus its latency.
 
-No silent overflow (issue 6): ``o.payload`` carries one more field than the config's
-outputs, ``overflow`` (:data:`OVERFLOW`): high on a valid output whose computation met an
-``overflow="error"`` quantize out of range, in this block or a sub-block it fed.  The
-golden model raises on such a value, so the harness expects 0 on every valid output:
-a 1 is an overflow in the RTL that the golden model did not predict.  Synthesis builds
-under :func:`~phongfx.hdl.fixed.overflow_checks` ``(False)``, where the field is 0.
+No silent overflow, so that a wrong answer never passes for a right one: ``o.payload``
+carries one more field than the config's outputs, ``overflow`` (:data:`OVERFLOW`): high
+on a valid output whose computation met an ``overflow="error"`` quantize out of range,
+in this block or a sub-block it fed.  The golden model raises on such a value, so the
+harness expects 0 on every valid output: a 1 is an overflow in the RTL that the golden
+model did not predict.  Synthesis builds under
+:func:`~phongfx.hdl.overflow.overflow_checks` ``(False)``, where the field is 0.
 """
 
 from amaranth.hdl import Const, Module
@@ -27,7 +28,8 @@ from amaranth.lib.wiring import In, Out
 
 from phongfx.config import BlockConfig
 from phongfx.core.format import Format
-from .fixed import FixedValue, FixedVector, align, delay, overflow_flags, report_overflow
+from .fixed import FixedValue, FixedVector, align, delay
+from .overflow import overflow_flags, report_overflow
 
 __all__ = ["OVERFLOW", "checked_outputs", "payload_layout", "stream_signature", "unbuilt", "PipelinedBlock"]
 
@@ -45,10 +47,13 @@ def checked_outputs(config):
 def unbuilt(elaboratable):
     """``elaboratable``, marked as not meant to be elaborated by its creator, and returned.
 
-    Amaranth warns about every elaboratable that is created but never elaborated.  Some
-    are made only to be asked a number (a latency) or are owned by a composite block
-    that builds its own; only the composite, if it is itself left unused, should warn.
-    Amaranth 0.5 has no public switch for this: the flag below is its private one.
+    Amaranth warns about every elaboratable that is created but never elaborated, to
+    catch a design that forgot to add a submodule.  Some are made on purpose without
+    being built: to be asked a number (a latency, a cache key), as a sub-block owned by a
+    composite block that builds its own (only the composite, if it is itself left
+    unused, should warn), or half-made by a constructor that raises.  Amaranth 0.5 has
+    no public switch for this: the flag below is its private one, set here only, so an
+    Amaranth upgrade that renames it is one line to change.
     """
     elaboratable._MustUse__silence = True
     return elaboratable
@@ -85,7 +90,7 @@ class PipelinedBlock(wiring.Component):
 
     def __init__(self, config):
         if not isinstance(config, self.config_class):
-            self._MustUse__silence = True  # never built: no "unused elaboratable" warning later
+            unbuilt(self)  # never built: no "unused elaboratable" warning later
             raise TypeError(f"config must be a {self.config_class.__name__}, not {config!r}")
         self.config = config
         self._fed = None  # (module, cycle) of the values fed by a composite block

@@ -1,7 +1,7 @@
 """A whole shading datapath as one pipelined component (Lyon 1993, Figures 6–8 and 5)."""
 
 from phongfx.config import DatapathConfig
-from .block import PipelinedBlock
+from .block import PipelinedBlock, unbuilt
 from .difference import Difference
 from .diffuse import Diffuse
 from .fixed import delay
@@ -53,7 +53,7 @@ class Datapath(PipelinedBlock):
         self._units = [self._specular_unit() for _ in range(c.lights)]
         self._diffuse = [Diffuse(c.diffuse) for _ in range(c.lights)]
         for sub in self._subs():
-            sub._MustUse__silence = True  # owned by this block: only an unused Datapath should warn
+            unbuilt(sub)  # owned by this block: only an unused Datapath should warn
 
     def _specular_unit(self):
         c = self.config

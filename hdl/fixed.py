@@ -24,22 +24,17 @@ for tests to hold against the block's ``latency`` formula.  Comparisons give pla
 
 Overflow assertions: a :meth:`FixedValue.quantize` with ``overflow="error"`` (the
 designer's claim that the value always fits) also builds, while a block is being
-elaborated, a 1-bit flag "it did not fit" at the value's cycle (:func:`overflow_flags`
-collects them; :class:`~phongfx.hdl.block.PipelinedBlock` ORs them into its ``overflow``
-output).  Simulation checks the claim on every pixel; synthesis builds under
-:func:`overflow_checks` ``(False)`` and pays nothing for it.
+elaborated, a 1-bit flag "it did not fit" at the value's cycle (:func:`overflowed`),
+collected by :mod:`phongfx.hdl.overflow`.
 """
-
-import contextlib
-import contextvars
 
 from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
 from phongfx.core.format import Format, check_overflow, check_rounding
+from .overflow import collecting_overflow, report_overflow
 
-__all__ = ["FixedValue", "FixedVector", "quantize", "overflowed", "overflow_checks", "overflow_flags",
-           "report_overflow", "stage", "delay", "cut", "align", "quantize_cut",
-           "split_product", "DSP_BITS"]
+__all__ = ["FixedValue", "FixedVector", "quantize", "overflowed", "stage", "delay", "cut", "align",
+           "quantize_cut", "split_product", "DSP_BITS"]
 
 
 def _fit(value, fmt):
@@ -99,7 +94,8 @@ def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
 
     ``overflow="error"`` declares that overflow cannot happen: the golden model
     checks it and raises; the hardware keeps the low bits, as ``wrap`` does, and
-    :meth:`FixedValue.quantize` raises a simulation-only flag (see :func:`overflow_flags`).
+    :meth:`FixedValue.quantize` raises a simulation-only flag (see
+    :func:`~phongfx.hdl.overflow.overflow_flags`).
     ``parallel_clamp`` compares with both limits side by side rather than the upper
     one behind the lower one's multiplexer: the same codes, one comparator deep.
     """
@@ -125,43 +121,6 @@ def overflowed(value, frm, to, rounding):
     frm, to = Format.parse(frm), Format.parse(to)
     flags = [flag for flag in _out_of_range(_rounded(value, frm, to, rounding), to) if flag is not None]
     return None if not flags else flags[0] if len(flags) == 1 else flags[0] | flags[1]
-
-
-#: The flags of the block being elaborated (None: checks off, or no block).
-_FLAGS = contextvars.ContextVar("phongfx_overflow_flags", default=None)
-#: Whether blocks elaborated now build overflow checks (off for synthesis).
-_CHECKS = contextvars.ContextVar("phongfx_overflow_checks", default=True)
-
-
-@contextlib.contextmanager
-def overflow_checks(enabled):
-    """Build blocks elaborated inside with (``True``, the default) or without the RTL
-    overflow flags: simulation wants them, synthesis must not pay for them."""
-    token = _CHECKS.set(bool(enabled))
-    try:
-        yield
-    finally:
-        _CHECKS.reset(token)
-
-
-@contextlib.contextmanager
-def overflow_flags():
-    """Collect, while a block's datapath is built, a 1-bit :class:`FixedValue` per
-    ``overflow="error"`` quantize that could overflow (and per sub-block fed): the list
-    yielded, or None when checks are off."""
-    flags = [] if _CHECKS.get() else None
-    token = _FLAGS.set(flags)
-    try:
-        yield flags
-    finally:
-        _FLAGS.reset(token)
-
-
-def report_overflow(flag):
-    """Add ``flag`` (a 1-bit :class:`FixedValue` at its cycle) to the block being built."""
-    flags = _FLAGS.get()
-    if flags is not None:
-        flags.append(flag)
 
 
 class FixedValue:
@@ -266,7 +225,7 @@ class FixedValue:
 
     def quantize(self, to, rounding, overflow, parallel_clamp=False):
         to = Format.parse(to)
-        if overflow == "error" and _FLAGS.get() is not None:
+        if overflow == "error" and collecting_overflow():
             bad = overflowed(self.value, self.fmt, to, rounding)
             if bad is not None:
                 report_overflow(self.flag(bad, "overflow"))

@@ -3,7 +3,7 @@
 from functools import cached_property
 
 from phongfx.config import HalfwayConfig
-from .block import PipelinedBlock
+from .block import PipelinedBlock, unbuilt
 from .fixed import cut, delay, quantize_cut, stage
 from .normalize import Normalize
 
@@ -41,8 +41,8 @@ class Halfway(PipelinedBlock):
         super().__init__(config)
         self._normalize = None
         if config.variant in ("g2proj", "g2"):
-            self._normalize = Normalize(config.normalize)
-            self._normalize._MustUse__silence = True  # owned here: only an unused Halfway should warn
+            # owned here: only an unused Halfway should warn
+            self._normalize = unbuilt(Normalize(config.normalize))
 
     @property
     def _front(self):

@@ -6,7 +6,7 @@ from amaranth.hdl import Cat
 
 from phongfx.config import RootConfig
 from phongfx.core.format import Format
-from .block import PipelinedBlock
+from .block import PipelinedBlock, unbuilt
 from .difference import const_product
 from .fixed import FixedValue, FixedVector, cut, delay, stage
 from .shape import Shape
@@ -47,8 +47,8 @@ class Root(PipelinedBlock):
 
     def __init__(self, config):
         super().__init__(config)
-        self._shape = Shape(config.shape)
-        self._shape._MustUse__silence = True  # owned by this block: only an unused Root should warn
+        # owned by this block: only an unused Root should warn
+        self._shape = unbuilt(Shape(config.shape))
 
     @cached_property
     def latency(self):

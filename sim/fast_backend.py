@@ -1,12 +1,12 @@
 """Back end: the emitted Verilog under Verilator, checked in compiled code.
 
-The fast path of issue 6 ("RTL verification throughput"): no cocotb and no Python
-in the simulation loop.  Python packs the per-cycle input words and the expected
-per-cycle output words with numpy into one binary stream; a small C++ main
-(``fast_main.cpp``, linked with the Verilated design) maps it, drives the design
-clock by clock, compares every cycle's ``o.valid`` and (when valid) ``o.payload``,
-and writes back only a summary: the cycle count, the number of mismatching
-cycles, and the first ``max_report`` of them with their cycle and words.
+The fast path, for checking whole frames cycle by cycle in seconds (a 1080p frame
+through Figure 7): no cocotb and no Python in the simulation loop.  Python packs the
+per-cycle input words and the expected per-cycle output words with numpy into one
+binary stream; a small C++ main (``fast_main.cpp``, linked with the Verilated design)
+maps it, drives the design clock by clock, compares every cycle's ``o.valid`` and (when
+valid) ``o.payload``, and writes back only a summary: the cycle count, the number of
+mismatching cycles, and the first ``max_report`` of them with their cycle and words.
 
 Words are 32-bit, least significant first, as Verilator's ``VlWide`` stores a
 wide port, so payloads of any width (Figure 7's input is 204 bits) need no
@@ -14,8 +14,9 @@ special case: the simulated top, :func:`wrapper`, pads ``{i.payload, i.valid}``
 and ``{o.payload, o.valid}`` to at least three words, which makes both ports
 ``VlWide`` whatever the block.
 
-Builds share :mod:`phongfx.sim.verilator_backend`'s cache, tool environment and
-run-time object cache (in a flavour of their own, as the flags differ).
+Builds share :mod:`phongfx.sim.verilator_backend`'s tool environment and the build and
+run-time object caches of :mod:`phongfx.sim.build_cache` (in a flavour of their own, as
+the flags differ).
 """
 
 import subprocess
@@ -25,11 +26,12 @@ from pathlib import Path
 
 import numpy as np
 
-from phongfx.hdl.emit import payload_widths
-from . import verilator_backend as vb
 from phongfx.hdl.block import checked_outputs
-from .harness import (Mismatch, Result, _fields, _row, checked_expected, columns, payload_mismatch,
-                      schedule)
+from phongfx.hdl.emit import payload_widths
+from .build_cache import BUILD_ARGS, cache_root, cached_build, keep_runtime, seed_runtime
+from .harness import (Mismatch, Result, checked_expected, columns, payload_fields, payload_mismatch,
+                      row_of, schedule)
+from .verilator_backend import tool_environment
 
 __all__ = ["MAIN", "words_of", "pack_words", "wrapper", "build", "stream", "check",
            "check_timed", "run"]
@@ -67,7 +69,7 @@ def pack_words(ports, raw, valid=True):
         ``(count, words_of(width + 1))`` uint32, bit ``k`` of the payload at bit
         ``k + 1``, as :func:`phongfx.sim.harness.pack` shifted left by one.
     """
-    _, width = _fields(ports)
+    _, width = payload_fields(ports)
     out = None
     for column, offset, bits in columns(ports, raw):
         if out is None:
@@ -117,7 +119,7 @@ def build(component, *, build_dir=None):
 
     Returns
     -------
-    phongfx.sim.verilator_backend.Build
+    phongfx.sim.build_cache.Build
         ``directory / EXECUTABLE`` is the checker.
 
     Raises
@@ -131,24 +133,24 @@ def build(component, *, build_dir=None):
     flavour = ("fast", *_VERILATOR_ARGS, *_MAKE_ARGS)
     # the key covers everything the executable depends on beyond the design
     top_text = wrapper(module, *payload_widths(component)) + "/*\n" + "\n".join(flavour) + main + "*/\n"
-    root = vb._cache_root(build_dir)
+    root = cache_root(build_dir)
 
     def compile_(work, source, log):
         (work / MAIN.name).write_text(main)
-        seeded = vb._seed_runtime(root, work, False, flavour)
-        verilator = vb.tool_environment()
+        seeded = seed_runtime(root, work, False, flavour)
+        verilator = tool_environment()
         with open(log, "w") as out:
             run_ = dict(cwd=work, stdout=out, stderr=subprocess.STDOUT, check=True)
-            subprocess.run([str(verilator), *_VERILATOR_ARGS, *vb._BUILD_ARGS, "--top-module", top,
+            subprocess.run([str(verilator), *_VERILATOR_ARGS, *BUILD_ARGS, "--top-module", top,
                             "--Mdir", str(work), str(source), str(work / MAIN.name)], **run_)
             # make rebuilds objects older than Vtop.mk, just written: refresh the seeded ones
             if seeded:
                 subprocess.run(["touch", "-c", *map(str, seeded)], **run_)
             subprocess.run(["make", "-f", "Vtop.mk", "-j", "2", *_MAKE_ARGS], **run_)
-        vb._keep_runtime(root, work, False, flavour)
+        keep_runtime(root, work, False, flavour)
 
-    return vb.cached_build(component, module, top, top_text, compile_, root=root,
-                           executable=EXECUTABLE)
+    return cached_build(component, module, top, top_text, compile_, root=root,
+                        executable=EXECUTABLE)
 
 
 def _execute(compiled, header, arrays):
@@ -177,7 +179,7 @@ def _execute(compiled, header, arrays):
 def stream(block, inputs, expected, slots, latency, seed):
     """Per-cycle input and expected output words of a ``slots`` schedule (see :func:`check`)."""
     config = block.config
-    _, in_width = _fields(config.inputs)
+    _, in_width = payload_fields(config.inputs)
     vectors = pack_words(config.inputs, inputs)
     results = pack_words(checked_outputs(config), checked_expected(expected))
     cycles = len(slots) + latency
@@ -254,7 +256,7 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
         got_valid, want_valid = int(entry["got"][0] & 1), int(entry["want"][0] & 1)
         if got_valid != want_valid:
             result.mismatches.append(Mismatch(
-                cycle, index, _row(config.inputs, inputs, index) if index >= 0 else {},
+                cycle, index, row_of(config.inputs, inputs, index) if index >= 0 else {},
                 {"valid": want_valid}, {"valid": got_valid},
                 f"o.valid is {got_valid}, expected {want_valid} (latency {latency})"))
         else:

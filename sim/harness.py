@@ -24,13 +24,13 @@ import numpy as np
 
 from phongfx.hdl.block import OVERFLOW, checked_outputs
 
-__all__ = ["BACKENDS", "Mismatch", "Result", "HarnessMismatch", "columns", "pack", "unpack", "schedule",
-           "checked_expected", "payload_mismatch", "check", "run_backend"]
+__all__ = ["BACKENDS", "Mismatch", "Result", "HarnessMismatch", "payload_fields", "columns", "pack",
+           "unpack", "schedule", "row_of", "checked_expected", "payload_mismatch", "check", "run_backend"]
 
 BACKENDS = ("amaranth", "verilator", "verilator-fast")
 
 
-def _fields(ports):
+def payload_fields(ports):
     """(name, lane, offset, width, signed) for each payload field, in layout order."""
     offset = 0
     out = []
@@ -44,7 +44,7 @@ def _fields(ports):
 def columns(ports, raw):
     """``(column, offset, width)`` of each payload field, ``column`` the int64 codes of
     that field (one lane of a vector port); all columns must have the same length."""
-    fields_, _ = _fields(ports)
+    fields_, _ = payload_fields(ports)
     count = None
     for name, lane, offset, width, _ in fields_:
         column = np.asarray(raw[name], dtype=np.int64)
@@ -67,7 +67,7 @@ def pack(ports, raw):
 
 def unpack(ports, packed):
     """Inverse of :func:`pack`: payload integers to raw codes (int64 arrays)."""
-    fields_, _ = _fields(ports)
+    fields_, _ = payload_fields(ports)
     out = {}
     for name, (fmt, lanes) in ports.items():
         out[name] = np.zeros((len(packed), lanes) if lanes > 1 else len(packed), dtype=np.int64)
@@ -82,6 +82,15 @@ def unpack(ports, packed):
         else:
             out[name][:, lane] = column
     return out
+
+
+def row_of(ports, raw, index):
+    """``{name: code or [codes]}`` of vector ``index`` of ``raw``: one row of a mismatch report."""
+    row = {}
+    for name, (fmt, lanes) in ports.items():
+        value = raw[name][index]
+        row[name] = value.tolist() if lanes > 1 else int(value)
+    return row
 
 
 def schedule(count, bubbles, seed):
@@ -160,15 +169,15 @@ def checked_expected(expected):
 def payload_mismatch(config, inputs, expected, index, cycle, got_packed):
     """The :class:`Mismatch` of a valid output whose packed payload differs from golden."""
     ports = checked_outputs(config)
-    got = _row(ports, unpack(ports, [got_packed]), 0)
-    want = _row(ports, checked_expected(expected), index)
+    got = row_of(ports, unpack(ports, [got_packed]), 0)
+    want = row_of(ports, checked_expected(expected), index)
     what = "payload differs"
     if got[OVERFLOW] and {k: v for k, v in got.items() if k != OVERFLOW} == \
             {k: v for k, v in want.items() if k != OVERFLOW}:
         what = "RTL overflow that the golden model did not predict"
     elif got[OVERFLOW]:
         what = "payload differs, and the RTL overflowed where the golden model did not"
-    return Mismatch(cycle, index, _row(config.inputs, inputs, index), want, got, what)
+    return Mismatch(cycle, index, row_of(config.inputs, inputs, index), want, got, what)
 
 
 def run_backend(backend, component, in_valid, in_payload, cycles, **options):
@@ -182,14 +191,6 @@ def run_backend(backend, component, in_valid, in_payload, cycles, **options):
     else:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
     return run(component, in_valid, in_payload, cycles, **options)
-
-
-def _row(ports, raw, index):
-    row = {}
-    for name, (fmt, lanes) in ports.items():
-        value = raw[name][index]
-        row[name] = value.tolist() if lanes > 1 else int(value)
-    return row
 
 
 def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25, seed=0,
@@ -228,7 +229,7 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
     latency = component.latency
     cycles = len(slots) + latency
     rng = np.random.default_rng(seed + 1)
-    _, in_width = _fields(config.inputs)
+    _, in_width = payload_fields(config.inputs)
     in_valid = [0] * cycles
     in_payload = [0] * cycles
     for cycle, index in enumerate(slots):
@@ -251,7 +252,7 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
         want_valid = int(index >= 0)
         if out_valid[cycle] != want_valid:
             result._add(Mismatch(
-                cycle, index, _row(config.inputs, inputs, index) if index >= 0 else {},
+                cycle, index, row_of(config.inputs, inputs, index) if index >= 0 else {},
                 {"valid": want_valid}, {"valid": out_valid[cycle]},
                 f"o.valid is {out_valid[cycle]}, expected {want_valid} (latency {latency})"),
                 max_report)

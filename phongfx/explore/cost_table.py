@@ -25,7 +25,7 @@ from phongfx.config import DifferenceConfig, RootConfig
 from .report import DSP_LUT_WEIGHT, lut_equivalent
 from .synth import SynthError, synth
 
-__all__ = ["TABLES", "BLOCKS", "CLAIM", "N", "multipliers", "cost_table", "run_table", "markdown",
+__all__ = ["TABLES", "BLOCKS", "CLAIM", "N", "WHAT", "multipliers", "cost_table", "run_table", "markdown",
            "to_json"]
 
 TABLES = ("cost",)
@@ -36,9 +36,10 @@ CLAIM = ("Figure 8: \"the six 7×11 and 9×9 multipliers are likely to be smalle
          "(Figure 7c).")
 #: Shininess at which Figure 7 (n) and Figure 8 (m = √n = 4) are compared for accuracy.
 N = 16
-_WHAT = {"difference": "Figure 7c: D, D·D, n·D·D", "shape": "Figure 7d: f_2",
-         "root": "Figure 8: m·abs(D), Σu², comparator, f_1", "fig7": "Figure 7 datapath, 2 lights",
-         "fig8": "Figure 8 datapath, 2 lights", "conventional": "conventional Phong (rsqrt, table)"}
+#: What each compared block is, as its row says it.
+WHAT = {"difference": "Figure 7c: D, D·D, n·D·D", "shape": "Figure 7d: f_2",
+        "root": "Figure 8: m·abs(D), Σu², comparator, f_1", "fig7": "Figure 7 datapath, 2 lights",
+        "fig8": "Figure 8 datapath, 2 lights", "conventional": "conventional Phong (rsqrt, table)"}
 _KEYS = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "latency", "met", "cached")
 
 
@@ -60,8 +61,8 @@ def _synthesize(block, target, freq, workdir):
     try:
         result = synth(block, target=target, freq=freq, workdir=workdir)
     except SynthError as error:
-        return {"block": block, "what": _WHAT.get(block, block), "error": str(error).splitlines()[0]}
-    row = {"block": block, "what": _WHAT.get(block, block), **{k: result[k] for k in _KEYS}}
+        return {"block": block, "what": WHAT.get(block, block), "error": str(error).splitlines()[0]}
+    row = {"block": block, "what": WHAT.get(block, block), **{k: result[k] for k in _KEYS}}
     row["mpixels_per_s"] = result["pixels_per_second"] / 1e6
     row["lut_eq"] = lut_equivalent(row)
     return row

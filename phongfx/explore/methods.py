@@ -64,57 +64,41 @@ class MethodSpec:
 
 # --- configs -----------------------------------------------------------------------------
 
-def _vec_formats(base, f, vec_int=1):
-    """Lyon's direction-vector formats at ``f`` fraction bits, guard bits kept as the
-    defaults have them (dot and normalizer ``+2``, ``D·D`` exact ``2f``)."""
-    vec, guard = f"S{vec_int}.{f}", f"1.{f + 2}"
-    return dict(lirp=base.lirp.replace(vec=vec, a=f"1.{f}", out=vec),
-                normalize=base.normalize.replace(vec=vec, out=vec, z=guard, y2=guard, g=guard),
-                diffuse=base.diffuse.replace(vec=vec))
-
+# The three Lyon datapaths take every direction-vector format from ``vec_frac`` through
+# DatapathConfig's derived setting, so a sweep point and ``--set vec_frac=F`` agree.
 
 def _build_fig7(p):
-    base = REGISTRY["fig7"].default_config()
-    f, vec, x2 = p["vec_frac"], f"S1.{p['vec_frac']}", f"13.{p['x2_frac']}"
-    return base.replace(**_vec_formats(base, f), lights=p["lights"],
-                        reflect=base.reflect.replace(vec=vec, dot=f"S1.{f + 2}", out=vec),
-                        difference=base.difference.replace(vec=vec, d=vec, dd=f"2.{2 * f}", x2=x2),
+    x2 = f"13.{p['x2_frac']}"
+    base = REGISTRY["fig7"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
+    return base.replace(difference=base.difference.replace(x2=x2),
                         shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
 
 
 def _build_fig8(p):
-    base = REGISTRY["fig8"].default_config()
-    f, vec = p["vec_frac"], f"S1.{p['vec_frac']}"
-    return base.replace(**_vec_formats(base, f), lights=p["lights"],
-                        reflect=base.reflect.replace(vec=vec, dot=f"S1.{f + 2}", out=vec),
-                        root=base.root.replace(vec=vec, d=vec, frac=f"0.{p['root_frac']}",
-                                               t=f"1.{p['t_frac']}", k=p["k"]))
+    base = REGISTRY["fig8"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
+    return base.replace(root=base.root.replace(frac=f"0.{p['root_frac']}", t=f"1.{p['t_frac']}",
+                                               k=p["k"]))
 
 
 def _build_halfway(p):
-    base = REGISTRY["halfway_datapath"].default_config()
-    f, x2 = p["vec_frac"], f"13.{p['x2_frac']}"
-    h, guard = f"S2.{f + 1}", f"1.{f + 2}"
-    unit = base.halfway.replace(vec=f"S1.{f}", hvec=h, dot=f"S2.{f + 2}", out=f"S2.{f}",
-                                normalize=base.halfway.normalize.replace(vec=h, out=h, z=guard,
-                                                                         y2=guard, g=guard))
-    return base.replace(**_vec_formats(base, f), lights=p["lights"], halfway=unit,
-                        difference=base.difference.replace(vec=f"S2.{f}", d=f"S1.{f}",
-                                                           dd=f"2.{2 * f}", x2=x2),
+    x2 = f"13.{p['x2_frac']}"
+    base = REGISTRY["halfway_datapath"].default_config().replace(vec_frac=p["vec_frac"],
+                                                                 lights=p["lights"])
+    return base.replace(difference=base.difference.replace(x2=x2),
                         shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
 
 
 def _build_spherical(p):
     _check_int("addr_bits", p["addr_bits"], 2, min(p["theta_frac"] + 1, 16))
-    return REGISTRY["spherical"].default_config().replace(theta=f"S0.{p['theta_frac']}", addr_bits=p["addr_bits"],
-                                              rom=f"0.{p['rom_bits']}")
+    return REGISTRY["spherical"].default_config().replace(
+        theta=f"S0.{p['theta_frac']}", addr_bits=p["addr_bits"], rom=f"0.{p['rom_bits']}")
 
 
 def _build_euler(p):
     _check_int("t_frac", p["t_frac"], 8, p["p_frac"])
     _check_int("ds_frac", p["ds_frac"], 8, p["t_frac"])
-    return REGISTRY["euler"].default_config().replace(p=f"S1.{p['p_frac']}", t=f"S3.{p['t_frac']}",
-                                          ds=f"S3.{p['ds_frac']}")
+    return REGISTRY["euler"].default_config().replace(
+        p=f"S1.{p['p_frac']}", t=f"S3.{p['t_frac']}", ds=f"S3.{p['ds_frac']}")
 
 
 def _build_gouraud(p):
@@ -127,8 +111,9 @@ def _build_schlick(p):
 
 
 def _build_conventional(p):
-    return REGISTRY["conventional"].default_config().replace(vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"],
-                                                 log_addr=p["table_addr"], exp_addr=p["table_addr"])
+    return REGISTRY["conventional"].default_config().replace(
+        vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"], log_addr=p["table_addr"],
+        exp_addr=p["table_addr"])
 
 
 # --- scenes ------------------------------------------------------------------------------

@@ -60,7 +60,7 @@ def run_table(name, out_dir=None):
     when given (its path is the result's ``plot``)."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
-    result = {"source": "pipelining to a target frequency",
+    result = {"source": "Fmax against pipeline depth: pipelining to a target frequency",
               "target": "ecp5", "freq": FREQ, "rows": pipeline_rows(), "plot": None}
     if out_dir is not None:
         result["plot"] = plot(result, os.path.join(out_dir, "pipeline_fmax.png"))

@@ -1,4 +1,4 @@
-"""Synthesis and timing of a block from Python: Yosys, then nextpnr (GitHub issue 5, §1).
+"""Synthesis and timing of a block from Python: Yosys, then nextpnr.
 
 :func:`synth` emits a block's Verilog (:mod:`phongfx.hdl.emit`), synthesizes it with
 Yosys for a Lattice ECP5 or iCE40 part, places and routes it with nextpnr, and returns
@@ -120,14 +120,13 @@ def _tool_versions(target):
 def _key(block, module, target, device, freq, seed):
     from amaranth.back import rtlil
 
-    from phongfx.sim.verilator_backend import _digest
-
-    from phongfx.hdl.fixed import overflow_checks
+    from phongfx.hdl.overflow import overflow_checks
+    from phongfx.sim.build_cache import digest
 
     with overflow_checks(False):  # simulation-only flags cost nothing in the netlist
         design = rtlil.convert(block.component(), name=module, emit_src=False)
-    return _digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
-                    str(seed), design, *_tool_versions(target)])
+    return digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
+                   str(seed), design, *_tool_versions(target)])
 
 
 def _tail(path, lines=_LOG_TAIL):
@@ -235,7 +234,7 @@ def _yosys_script(module, target, options):
 def _flow(block, module, target, device, freq, seed, work, progress):
     """Run the tools in ``work``; returns the result (without ``cached``, ``directory``)."""
     from phongfx.hdl.emit import payload_widths, write_verilog
-    from phongfx.hdl.fixed import overflow_checks
+    from phongfx.hdl.overflow import overflow_checks
 
     info = TARGETS[target]
     part, flag, package, options = info.devices[device]

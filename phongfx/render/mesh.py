@@ -47,8 +47,8 @@ from phongfx.core.files import atomic_write
 from phongfx.scene.span_inputs import (conventional_inputs, decode, euler_inputs, gouraud_inputs, halfway,
                           spherical_inputs)
 
-__all__ = ["METHODS", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "shade",
-           "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
+__all__ = ["METHODS", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
+           "shade", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
 METHODS = ("phong", "gouraud", "euler", "corrected-euler", "cosn", "cos2", "spherical",
            "euler-unit", "gouraud-unit", "conventional")
@@ -83,7 +83,7 @@ def _power(c, n):
     return np.where(c > 0, np.maximum(c, 0.0) ** n, 0.0)
 
 
-def _angles(spans, v):
+def span_angles(spans, v):
     """Per span ``A, φ, γ`` of Szirmay-Kalos equations 15–17 for a constant ``v``."""
     count = len(spans.length)
     v = np.broadcast_to(v, (count, 3))
@@ -93,7 +93,7 @@ def _angles(spans, v):
 
 def _spherical_float(spans, v, n, approximate):
     """``cos^n θ`` (``approximate=False``) or ``A^n·cos²(a(tγ - φ))`` per pixel."""
-    big_a, phi, gamma = _angles(spans, v)
+    big_a, phi, gamma = span_angles(spans, v)
     span, t = spans.pixel_span(), spans.pixel_t()
     x = t * gamma[span] - phi[span]
     if not approximate:

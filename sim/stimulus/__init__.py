@@ -4,8 +4,9 @@ Each block has a module here, named like its config, golden and hdl modules, wit
 ``stimulus(config, count, seed)`` returning raw input codes ``{port: int64 array}``:
 its directed extremes first, then an exhaustive set where the input space has at most
 2**16 codes, then ``count`` seeded random inputs; and ``extremes(block_name)``, its rows
-of the extremes table.  The helpers below are shared by all of them.  ("Vector" in
-this code base means a direction: N, L, V, R, H.)
+of the extremes table (:class:`~phongfx.sim.stimulus.extreme.Extreme` records; the
+checks the rows share are in :mod:`.extreme`).  The helpers below are shared by all of
+them.  ("Vector" in this code base means a direction: N, L, V, R, H.)
 
 May import: ``phongfx.core``, ``phongfx.config``, ``phongfx.golden``.
 """
@@ -15,7 +16,7 @@ import numpy as np
 from phongfx.golden.fixed import Fixed
 
 __all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "at_angle", "AXES", "axis_pairs",
-           "EXHAUSTIVE_LIMIT"]
+           "perpendicular_pairs", "EXHAUSTIVE_LIMIT"]
 
 #: Largest input space that is checked exhaustively.
 EXHAUSTIVE_LIMIT = 1 << 16
@@ -29,6 +30,13 @@ def axis_pairs():
     """Every ordered pair of :data:`AXES` as two (36, 3) arrays: equal, opposite, at 90°."""
     first, second = np.repeat(AXES, len(AXES), axis=0), np.tile(AXES, (len(AXES), 1))
     return first, second
+
+
+def perpendicular_pairs():
+    """The pairs of :func:`axis_pairs` at 90° as two (24, 3) arrays: a grazing light or view."""
+    first, second = axis_pairs()
+    keep = np.abs(np.sum(first * second, axis=-1)) < 0.5
+    return first[keep], second[keep]
 
 
 def rng(seed):

@@ -3,9 +3,11 @@ nonzero ``N``, ``t = 1`` exactly, backfacing ``H``, edge ``n``, then random high
 
 import numpy as np
 
-from . import AXES, at_angle, axis_pairs, codes, concat, random_codes, rng, unit_vectors
+from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng,
+               unit_vectors)
+from .extreme import Extreme, all_of, exactly, zero
 
-__all__ = ["stimulus", "directed", "edge_n", "highlights"]
+__all__ = ["stimulus", "directed", "edge_n", "highlights", "extremes"]
 
 
 def edge_n(config):
@@ -69,3 +71,28 @@ def stimulus(config, count=1000, seed=0):
     junk = {name: random_codes(vec, (rest, 3), g) for name in ("normal", "light", "half")}
     junk["n"] = random_codes(config.fmt("n"), rest, g, 1, config.n_max)
     return concat(directed(config), highlights(config, half, g), spread, junk)
+
+
+def _rows(c, normal, light, half):
+    """Each row of ``normal``, ``light``, ``half`` at n = 1 and at ``n_max``."""
+    ns = (1, c.n_max)
+    rows = {k: np.tile(codes(v, c.vec), (len(ns), 1)) for k, v in
+            (("normal", normal), ("light", light), ("half", half))}
+    rows["n"] = np.repeat(np.asarray(ns, dtype=np.int64), len(normal))
+    return rows
+
+
+def extremes(block_name):
+    """The conventional baseline's extreme rows (Lyon 1993 "Background"): N = 0, N = L = H,
+    N·H = −1 with a grazing light, at n = 1 and ``n_max``."""
+    graze_n, graze_l = perpendicular_pairs()
+    z = np.array([0.0, 0, 1])
+    return (
+        Extreme(block_name, "zero-length N (all-zeros code), n = 1 and n_max", "diffuse = specular = 0",
+                lambda c: _rows(c, [[0, 0, 0]], [z], [z]), all_of(zero("diffuse"), zero("specular"))),
+        Extreme(block_name, "exactly ±1.0: N = L = H, n = 1 and n_max", "diffuse = specular = 1.0 exactly",
+                lambda c: _rows(c, AXES, AXES, AXES),
+                all_of(exactly("diffuse", 1.0), exactly("specular", 1.0))),
+        Extreme(block_name, "N·H = −1 and grazing L (N ⟂ L), n = 1 and n_max", "diffuse = specular = 0",
+                lambda c: _rows(c, graze_n, graze_l, -graze_n), all_of(zero("diffuse"), zero("specular"))),
+    )

@@ -9,8 +9,9 @@ hardware), ``v`` or ``v0``/``v1``, ``l<i>`` or ``l<i>_0``/``l<i>_1``.
 import numpy as np
 
 from . import AXES, codes, concat, random_codes, rng, unit_vectors
+from .extreme import Extreme, equal
 
-__all__ = ["stimulus", "encode"]
+__all__ = ["stimulus", "encode", "extremes"]
 
 
 def encode(config, n0, n1, a, shininess, v0, v1, lights0, lights1):
@@ -103,3 +104,44 @@ def stimulus(config, count=1000, seed=0):
             directed.append(encode(config, near, near, np.zeros(len(near)), np.full(len(near), top),
                                    z, z, lights, lights))
     return concat(*directed, raw)
+
+
+def _cases(c, n0, n1, a, v, lights, ns):
+    """The span ends ``n0``, ``n1`` at ``a`` under view ``v`` and ``lights``, once per n of ``ns``."""
+    n0, n1 = np.atleast_2d(n0), np.atleast_2d(n1)
+    return concat(*(encode(c, n0, n1, np.full(len(n0), a), np.full(len(n0), n), v, v, lights, lights)
+                    for n in ns))
+
+
+def _every_light(spec, diff):
+    """Check: every light's ``spec`` and ``diff`` outputs are exactly these values."""
+    def holds(c, i, o):
+        ok = np.ones(len(o["spec0"]), dtype=bool)
+        for index in range(c.lights):
+            for name, value in ((f"spec{index}", spec), (f"diff{index}", diff)):
+                ok &= equal(o[name], c.outputs[name][0].exact_raw(value))
+        return ok
+    return holds
+
+
+def extremes(block_name):
+    """A whole datapath's extreme rows (Lyon 1993 Figures 7, 8 and 5: ``fig7``, ``fig8``,
+    ``halfway_datapath``): N = V = L, a zero-length N' at 180°, a grazing light, V = −L."""
+    z, x = np.array([0.0, 0, 1]), np.array([1.0, 0, 0])
+    # V = −L: D = R − L has |D| = 2, past 2^k, but the halfway vector H = (V + L)/2 is 0
+    halfway = block_name == "halfway_datapath"
+    spec_vl = 1.0 if halfway else 0.0
+    note = "H = (V+L)/2 = 0 gives D = 0: a full highlight, ungated by N·L < 0" if halfway else "|D| = 2: x ≥ 2^k"
+    return (
+        Extreme(block_name, "exactly ±1.0: N = V = L (R = L), n = 1 and n_max",
+                "spec = 1.0 and diff = 1.0 exactly",
+                lambda c: concat(*(_cases(c, z, z, a, z, [z], (1, _top_n(c))) for a in (0.0, 1.0))),
+                _every_light(1.0, 1.0)),
+        Extreme(block_name, "zero-length N' at 180° (N0 = −N1, a = 1/2), n_max",
+                "N = 0: diff = 0; spec = 0 (x ≥ 2^k at the largest n)",
+                lambda c: _cases(c, AXES[:3], -AXES[:3], 0.5, z, [z, x], (_top_n(c),)), _every_light(0.0, 0.0)),
+        Extreme(block_name, "grazing light (N ⟂ L), n_max", "diff = 0, spec = 0",
+                lambda c: _cases(c, z, z, 0.0, z, [x, -x[[1, 0, 2]]], (_top_n(c),)), _every_light(0.0, 0.0)),
+        Extreme(block_name, "V = −L (N = V), n_max", f"diff = 0 (N·L = −1); spec = {spec_vl:g} ({note})",
+                lambda c: _cases(c, z, z, 0.0, z, [-z], (_top_n(c),)), _every_light(spec_vl, 0.0)),
+    )

@@ -4,11 +4,15 @@ With ``n_const`` set, every case takes that n (the extremes are the vector ones 
 one n the hardware has) and no ``n`` port is returned.
 """
 
+from fractions import Fraction
+
 import numpy as np
 
-from . import AXES, at_angle, axis_pairs, codes, concat, random_codes, rng, unit_vectors
+from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng,
+               unit_vectors)
+from .extreme import Extreme, constant, corner, equal, round_exact, zero
 
-__all__ = ["stimulus"]
+__all__ = ["stimulus", "extremes"]
 
 
 def stimulus(config, count=1000, seed=0):
@@ -49,3 +53,40 @@ def stimulus(config, count=1000, seed=0):
             "n": random_codes(nfmt, count, g, lo, hi)}
     raw = concat(directed, lsb, near, unit, full)
     return {name: raw[name] for name in config.inputs}
+
+
+def _rows(c, r, l):
+    """Each pair ``r``, ``l`` at n = 1 and at ``n_max``."""
+    ns = sorted({1, c.n_max})
+    return {"r": np.tile(codes(r, c.vec), (len(ns), 1)), "l": np.tile(codes(l, c.vec), (len(ns), 1)),
+            "n": np.repeat(np.asarray(ns, dtype=np.int64), len(r))}
+
+
+def _x2_exact(c, i, o):
+    """2x = n·D·D (Figure 7c) with each lane of D = R − L saturated to ``d`` (so +2 becomes
+    2 − 2⁻¹⁰ in S1.10, −2 stays), the rest exact, then rounded and saturated to ``x2``."""
+    vec, d, x2 = c.fmt("vec"), c.fmt("d"), c.fmt("x2")
+    want = []
+    for r, l, n in zip(i["r"], i["l"], i["n"]):
+        lanes = [round_exact(Fraction(int(a) - int(b), vec.one), d) for a, b in zip(r, l)]
+        want.append(round_exact(int(n) * sum(Fraction(x, d.one) ** 2 for x in lanes), x2, c.rounding))
+    return equal(o["x2"], np.array(want))
+
+
+def extremes(block_name):
+    """The difference unit's extreme rows (Lyon 1993 Figure 7c): R = L, |D| = 2, R ⟂ L at
+    n = 1 and ``n_max``, and the end codes of ``vec``."""
+    graze_r, graze_l = perpendicular_pairs()
+    u = np.concatenate([AXES, unit_vectors(8, rng(1))])
+    return (
+        Extreme(block_name, "R = L (±axes and random), n = 1 and n_max", "2x = 0",
+                lambda c: _rows(c, u, u), zero("x2")),
+        Extreme(block_name, "|D| = 2 (R = −L), n = 1 and n_max",
+                "2x = n·|D|², D = +2 saturated to 2 − 2⁻¹⁰ (−2 exact); sum saturated to 8192 − 2⁻¹²",
+                lambda c: _rows(c, AXES, -AXES), _x2_exact),
+        Extreme(block_name, "grazing (R ⟂ L, |D|² = 2), n = 1 and n_max",
+                "2x = 2n exactly, saturated to 8192 − 2⁻¹²", lambda c: _rows(c, graze_r, graze_l), _x2_exact),
+        Extreme(block_name, "all-ones codes (R = max, L = min), n_max", "saturates to 8192 − 2⁻¹²",
+                lambda c: {"r": corner(c), "l": corner(c, high=False), "n": constant(c.n_max, 1)},
+                lambda c, i, o: equal(o["x2"], c.fmt("x2").max_raw)),
+    )

@@ -2,9 +2,10 @@
 
 import numpy as np
 
-from . import axis_pairs, codes, concat, random_codes, rng, unit_vectors
+from . import AXES, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
+from .extreme import Extreme, corner, equal, exactly, zero
 
-__all__ = ["stimulus"]
+__all__ = ["stimulus", "extremes"]
 
 
 def stimulus(config, count=1000, seed=0):
@@ -30,3 +31,20 @@ def stimulus(config, count=1000, seed=0):
     unit = {"n": codes(unit_vectors(count, g), vec), "l": codes(unit_vectors(count, g), vec)}
     full = {"n": random_codes(vec, (count, 3), g), "l": random_codes(vec, (count, 3), g)}
     return concat(axis, same, graze, unit, full)
+
+
+def extremes(block_name):
+    """Diffuse's extreme rows (Lyon 1993 "Background", Lambert): N = ±L, N ⟂ L, and the top
+    codes of ``vec``."""
+    graze_n, graze_l = perpendicular_pairs()
+    return (
+        Extreme(block_name, "exactly ±1.0, N = L", "1.0 exactly",
+                lambda c: {"n": codes(AXES, c.vec), "l": codes(AXES, c.vec)}, exactly("diff", 1.0)),
+        Extreme(block_name, "N = −L", "0 (backside test)",
+                lambda c: {"n": codes(AXES, c.vec), "l": codes(-AXES, c.vec)}, zero("diff")),
+        Extreme(block_name, "grazing light (N ⟂ L)", "0",
+                lambda c: {"n": codes(graze_n, c.vec), "l": codes(graze_l, c.vec)}, zero("diff")),
+        Extreme(block_name, "all-ones codes (N = L = max)", "saturates to 2 − 2⁻¹⁰",
+                lambda c: {"n": corner(c), "l": corner(c)},
+                lambda c, i, o: equal(o["diff"], c.fmt("out").max_raw)),
+    )

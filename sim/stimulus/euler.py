@@ -13,9 +13,11 @@ import numpy as np
 
 from phongfx.golden.euler_setup import quantize_setup, random_spans, span_setup
 from . import concat, random_codes, rng
+from .extreme import accumulator_rows
 
-__all__ = ["stimulus", "span", "geometric"]
+__all__ = ["stimulus", "span", "geometric", "extremes", "PORTS"]
 
+#: load port -> register format field
 PORTS = {"p0": "p", "t0": "t", "ds": "ds"}
 
 
@@ -53,3 +55,9 @@ def stimulus(config, count=1000, seed=0):
         parts.append(geometric(config, length, g) if g.random() < 0.5 else span(config, length, g))
         count -= length
     return concat(*parts)
+
+
+def extremes(block_name):
+    """The corrected Euler unit's extreme rows (Hast et al. eqs. 16–17): spans of 1 and 2048
+    pixels and the end codes of every register, against the closed form of eq. (14)."""
+    return accumulator_rows(block_name, span, geometric, {"t0": PORTS["t0"], "ds": PORTS["ds"]})

@@ -10,15 +10,18 @@ import numpy as np
 
 from phongfx.golden.euler_setup import quantize_gouraud, random_spans, span_setup
 from . import concat, random_codes, rng
+from .extreme import accumulator_rows
 
-__all__ = ["stimulus", "span", "geometric"]
+__all__ = ["stimulus", "span", "geometric", "extremes", "PORTS"]
+
+#: load port -> register format field
+PORTS = {"p0": "p", "dp": "dp"}
 
 
 def span(config, length, generator, **loads):
     """Raw inputs of one scanline of ``length`` pixels: ``init`` and the raw ``loads``
     (``p0``, ``dp``; random when not given) on the first, junk on the rest."""
-    raw = {name: random_codes(config.fmt(fmt), length, generator)
-           for name, fmt in (("p0", "p"), ("dp", "dp"))}
+    raw = {name: random_codes(config.fmt(fmt), length, generator) for name, fmt in PORTS.items()}
     for name, value in loads.items():
         raw[name][0] = value
     raw["init"] = np.zeros(length, dtype=np.int64)
@@ -47,3 +50,9 @@ def stimulus(config, count=1000, seed=0):
         parts.append(geometric(config, length, g) if g.random() < 0.5 else span(config, length, g))
         count -= length
     return concat(*parts)
+
+
+def extremes(block_name):
+    """The Gouraud unit's extreme rows (Hast et al. §1): spans of 1 and 2048 pixels and the
+    end codes of both registers, against the closed form ``p0 + k·dp``."""
+    return accumulator_rows(block_name, span, geometric, {"dp": PORTS["dp"]})

@@ -2,9 +2,10 @@
 
 import numpy as np
 
-from . import AXES, codes, concat, random_codes, rng, unit_vectors
+from . import AXES, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
+from .extreme import Extreme, all_of, equal, zero
 
-__all__ = ["stimulus", "grazing", "GRAZING_DEGREES"]
+__all__ = ["stimulus", "grazing", "GRAZING_DEGREES", "extremes"]
 
 #: φ, half the angle between V and L (each is φ from N): H = (V + L)/2 is cos φ long, along N.
 GRAZING_DEGREES = (0, 30, 60, 75, 80, 85, 88, 89, 89.5, 89.9, 90)
@@ -66,3 +67,20 @@ def stimulus(config, count=1000, seed=0):
     unit = {name: codes(unit_vectors(count, g), vec) for name in "nlv"}
     full = {name: random_codes(vec, (count, 3), g) for name in "nlv"}
     return concat(axis, peak, zero, graze, corners, scene, unit, full)
+
+
+def extremes(block_name):
+    """The halfway block's extreme rows (Lyon 1993 Figure 5): the peak, V = −L, V = L ⟂ N."""
+    graze_n, graze_l = perpendicular_pairs()
+    return (
+        Extreme(block_name, "exactly ±1.0, V = L = N (peak)", "p = q = N (D = 0)",
+                lambda c: {k: codes(AXES, c.vec) for k in "nlv"},
+                lambda c, i, o: equal(o["p"], i["n"]) & equal(o["q"], i["n"])),
+        Extreme(block_name, "V = −L (zero-length H)", "p = q = 0",
+                lambda c: {"n": codes(np.roll(AXES, 1, axis=0), c.vec), "l": codes(-AXES, c.vec),
+                           "v": codes(AXES, c.vec)}, all_of(zero("p"), zero("q"))),
+        Extreme(block_name, "grazing (V = L ⟂ N)", "p = 0, q = L",
+                lambda c: {"n": codes(graze_n, c.vec), "l": codes(graze_l, c.vec),
+                           "v": codes(graze_l, c.vec)},
+                lambda c, i, o: equal(o["p"], 0) & equal(o["q"], i["l"])),
+    )

@@ -3,8 +3,9 @@
 import numpy as np
 
 from . import AXES, codes, concat, random_codes, rng, unit_vectors
+from .extreme import Extreme, equal_to, zero
 
-__all__ = ["stimulus"]
+__all__ = ["stimulus", "extremes"]
 
 
 def _span(u0, u1, steps):
@@ -40,3 +41,30 @@ def stimulus(config, count=1000, seed=0):
     short = codes(unit_vectors(count, g) * g.uniform(0.7, 1.0, (count, 1)), vec)
     junk = random_codes(vec, (count, 3), g)
     return concat(*({"n": part} for part in (directed, sweeps, unit, short, junk)))
+
+
+def _end_codes(c):
+    vec = c.fmt("vec")
+    n = np.array([[vec.max_raw] * 3, [vec.min_raw] * 3, [vec.max_raw, vec.min_raw, 0],
+                  [vec.min_raw, 0, 0], [vec.max_raw, 0, 0]], dtype=np.int64)
+    return {"n": n}
+
+
+def _shrinks(c, i, o):
+    # z = N'·N' saturates below 2, where g ≤ 1: every lane shrinks toward 0, keeping its sign
+    n, out = i["n"], o["n"]
+    return np.all((np.abs(out) <= np.abs(n)) & (np.sign(out) * np.sign(n) >= 0), axis=-1)
+
+
+def extremes(block_name):
+    """The normalizer's extreme rows (Lyon 1993 Figure 7a): unit axes, zero length, and
+    the end codes of ``vec``, where ``z`` saturates."""
+    return (
+        Extreme(block_name, "exactly ±1.0 (±axes)", "N unchanged (g(1) = 1)",
+                lambda c: {"n": codes(AXES, c.vec)}, equal_to("n", "n")),
+        Extreme(block_name, "zero-length (all-zeros code)", "N = 0",
+                lambda c: {"n": np.zeros((1, 3), dtype=np.int64)}, zero("n")),
+        Extreme(block_name, "all-ones codes (|N'| up to 2√3)",
+                "z saturates below 2, g ≤ 1: each lane shrinks toward 0 keeping its sign",
+                _end_codes, _shrinks),
+    )

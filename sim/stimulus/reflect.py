@@ -2,9 +2,10 @@
 
 import numpy as np
 
-from . import AXES, axis_pairs, codes, concat, random_codes, rng, unit_vectors
+from . import AXES, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
+from .extreme import Extreme, equal, equal_to
 
-__all__ = ["stimulus"]
+__all__ = ["stimulus", "extremes"]
 
 
 def stimulus(config, count=1000, seed=0):
@@ -34,3 +35,32 @@ def stimulus(config, count=1000, seed=0):
     unit = {"n": codes(un, vec), "v": codes(uv, vec)}
     full = {"n": random_codes(vec, (count, 3), g), "v": random_codes(vec, (count, 3), g)}
     return concat(axis, tilt, sphere, unit, full)
+
+
+def _end_codes(c):
+    vec = c.fmt("vec")
+    n = np.array([[vec.max_raw] * 3, [vec.min_raw] * 3, [0] * 3], dtype=np.int64)
+    return {"n": n, "v": n}
+
+
+def _end_codes_hold(c, i, o):
+    # N = V = (c, c, c): R = (2·3c² − 1)·c per lane, ±6 at the corners: saturates to the
+    # end of ``out`` on the side of c, and 0 stays 0
+    out = c.fmt("out")
+    want = np.where(i["v"] > 0, out.max_raw, np.where(i["v"] < 0, out.min_raw, 0))
+    return equal(o["r"], want)
+
+
+def extremes(block_name):
+    """Reflect's extreme rows (Lyon 1993 Figure 7b): N = ±V, N ⟂ V, the end codes of ``vec``."""
+    graze_n, graze_v = perpendicular_pairs()
+    return (
+        Extreme(block_name, "exactly ±1.0, N = ±V", "R = V exactly",
+                lambda c: {"n": codes(np.concatenate([AXES, AXES]), c.vec),
+                           "v": codes(np.concatenate([AXES, -AXES]), c.vec)}, equal_to("v", "r")),
+        Extreme(block_name, "grazing (N ⟂ V)", "R = −V exactly",
+                lambda c: {"n": codes(graze_n, c.vec), "v": codes(graze_v, c.vec)},
+                lambda c, i, o: equal(o["r"], -i["v"])),
+        Extreme(block_name, "all-ones and all-zeros codes (N = V)",
+                "saturates to ±(2 − 2⁻¹⁰) on the side of V; 0 stays 0", _end_codes, _end_codes_hold),
+    )

@@ -6,9 +6,11 @@ m the hardware has) and no ``m`` port is returned.
 
 import numpy as np
 
-from . import AXES, at_angle, axis_pairs, codes, concat, random_codes, rng, unit_vectors
+from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng,
+               unit_vectors)
+from .extreme import Extreme, constant, corner, exactly, zero
 
-__all__ = ["stimulus", "fraction_codes", "pairs"]
+__all__ = ["stimulus", "fraction_codes", "pairs", "extremes"]
 
 
 def fraction_codes(config, m, d):
@@ -93,3 +95,37 @@ def stimulus(config, count=1000, seed=0):
             "m": random_codes(mfmt, count, g, lo, hi)}
     raw = concat(axis, big, threshold, near, unit, full)
     return {name: raw[name] for name in config.inputs}
+
+
+def _rows(c, r, l):
+    """Each pair ``r``, ``l`` at m = 1 and at ``m_max``."""
+    ms = sorted({1, c.m_max})
+    return {"r": np.tile(codes(r, c.vec), (len(ms), 1)), "l": np.tile(codes(l, c.vec), (len(ms), 1)),
+            "m": np.repeat(np.asarray(ms, dtype=np.int64), len(r))}
+
+
+def _d2(c, i, o):
+    # |D_i| = 2 is rectified and saturated to 2 − 2⁻¹⁰, so x/2^k falls just short of 1:
+    # at m = 1 the ideal f_1 = 0 comes out as at most 1 LSB; larger m pass the comparator
+    spec = o["spec"]
+    return np.where(i["m"] == 1, (spec >= 0) & (spec <= 1), spec == 0)
+
+
+def extremes(block_name):
+    """The root-shininess unit's extreme rows (Lyon 1993 Figure 8): R = L, |D| = 2 at m = 1
+    and ``m_max``, R ⟂ L at m = 1, and the end codes of ``vec``."""
+    graze_r, graze_l = perpendicular_pairs()
+    u = np.concatenate([AXES, unit_vectors(8, rng(1))])
+    return (
+        Extreme(block_name, "R = L, m = 1 and m_max", "spec = 1.0 exactly",
+                lambda c: _rows(c, u, u), exactly("spec", 1.0)),
+        Extreme(block_name, "|D| = 2 (R = −L), m = 1 and m_max",
+                "m_max: 0; m = 1: ≤ 2⁻¹⁵ (ideal 0: |D| saturates to 2 − 2⁻¹⁰, x/2 = 1 − 2⁻¹⁰)",
+                lambda c: _rows(c, AXES, -AXES), _d2),
+        Extreme(block_name, "grazing (R ⟂ L), m = 1", "f_1(1) = (1 − 1/2)² = 1/4 exactly",
+                lambda c: {"r": codes(graze_r, c.vec), "l": codes(graze_l, c.vec),
+                           "m": np.ones(len(graze_r), dtype=np.int64)}, exactly("spec", 0.25)),
+        Extreme(block_name, "all-ones codes (R = max, L = min), m_max", "0",
+                lambda c: {"r": corner(c), "l": corner(c, high=False), "m": constant(c.m_max, 1)},
+                zero("spec")),
+    )

@@ -1,10 +1,13 @@
 """Stimulus for Schlick's unit: extreme ``t`` × extreme ``n``, every ``t`` for a few ``n``, random."""
 
+from fractions import Fraction
+
 import numpy as np
 
 from . import EXHAUSTIVE_LIMIT, concat, random_codes, rng
+from .extreme import Extreme, equal, exactly, round_exact, zero
 
-__all__ = ["stimulus", "directed", "sweep_n"]
+__all__ = ["stimulus", "directed", "sweep_n", "extremes"]
 
 
 def sweep_n(config):
@@ -47,3 +50,36 @@ def stimulus(config, count=1000, seed=0, limit=EXHAUSTIVE_LIMIT):
     near = one - (g.uniform(0, 1, count - half) * one / n[half:]).astype(np.int64)
     t = np.concatenate([random_codes(t_fmt, half, g, 0, one), near])
     return concat(directed(config), exhaustive, {"t": t, "n": n})
+
+
+def _grid(ts, ns):
+    """Every raw ``t`` of ``ts`` with every ``n`` of ``ns``."""
+    ts, ns = np.asarray(ts, dtype=np.int64), np.asarray(ns, dtype=np.int64)
+    return {"t": np.tile(ts, len(ns)), "n": np.repeat(ns, len(ts))}
+
+
+def _floor(c, i, o):
+    # Schlick (1994) eq. (3) S = t/(n − n·t + t), the exact quotient floored to ``out``
+    one, out = c.fmt("t").one, c.fmt("out")
+    want = [round_exact(Fraction(int(t), one) / (n - n * Fraction(int(t), one) + Fraction(int(t), one)),
+                        out, c.rounding) for t, n in zip(i["t"], i["n"])]
+    return equal(o["spec"], np.array(want))
+
+
+def extremes(block_name):
+    """Schlick's unit's extreme rows (Schlick 1994 eq. (3)): the smallest and largest
+    divisor, n = 1, and the all-ones codes of ``t`` and ``n``."""
+    return (
+        Extreme(block_name, "smallest divisor: t = 1.0, n = 1 … n_max", "S = 1.0 exactly",
+                lambda c: _grid([c.fmt("t").one], sorted({1, 2, c.n_max})), exactly("spec", 1.0)),
+        Extreme(block_name, "n = 1 (divisor 1)", "S = t exactly",
+                lambda c: _grid([0, 1, c.fmt("t").one // 2, c.fmt("t").one - 1, c.fmt("t").one], [1]),
+                lambda c, i, o: equal(o["spec"], i["t"])),
+        Extreme(block_name, "largest divisor: t = 0, n = n_max", "0",
+                lambda c: _grid([0], [c.n_max]), zero("spec")),
+        Extreme(block_name, "all-ones codes: t = 1 − 2⁻¹⁵, 1 LSB; n = 2^j − 1, n_max",
+                "floor of the exact t/(n − n·t + t)",
+                lambda c: _grid([1, c.fmt("t").one - 1],
+                                [n for n in (1, 3, 255, 4095, c.n_max - 1, c.n_max) if n <= c.n_max]),
+                _floor),
+    )

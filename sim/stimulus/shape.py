@@ -3,8 +3,9 @@
 import numpy as np
 
 from . import EXHAUSTIVE_LIMIT, concat, random_codes, rng
+from .extreme import Extreme, exactly, zero
 
-__all__ = ["stimulus", "threshold", "nonzero_codes"]
+__all__ = ["stimulus", "threshold", "nonzero_codes", "extremes"]
 
 
 def threshold(config):
@@ -30,3 +31,14 @@ def stimulus(config, count=1000, seed=0, limit=EXHAUSTIVE_LIMIT):
     directed = directed[(directed >= 0) & (directed <= x2.max_raw)]
     full = random_codes(x2, count, rng(seed))
     return concat({"x2": nonzero_codes(config, limit)}, {"x2": directed}, {"x2": full})
+
+
+def extremes(block_name):
+    """The shape function's extreme rows (Lyon 1993 Figure 7d): x = 0, and x/2^k from 1 on."""
+    return (
+        Extreme(block_name, "all-zeros code (x = 0)", "f_k(0) = 1.0 exactly",
+                lambda c: {"x2": np.zeros(1, dtype=np.int64)}, exactly("spec", 1.0)),
+        Extreme(block_name, "x/2^k = 1 and past it, all-ones code", "0",
+                lambda c: {"x2": np.concatenate([np.arange(16) + (1 << (c.k + 1 + c.fmt("x2").frac_bits)),
+                                                 [c.fmt("x2").max_raw]])}, zero("spec")),
+    )

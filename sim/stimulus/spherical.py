@@ -9,13 +9,17 @@ then random spans of random codes up to ``count`` pixels.
 """
 
 import math
+from fractions import Fraction
 
 import numpy as np
 
+from phongfx.core.registry import get_block
+from phongfx.golden.euler import segments
 from phongfx.golden.spherical_setup import quantize_setup, span_setup
 from . import concat, random_codes, rng
+from .extreme import Extreme, all_of, equal, round_exact, wrap, zero
 
-__all__ = ["stimulus", "span"]
+__all__ = ["stimulus", "span", "extremes"]
 
 
 def span(config, length, generator, *, b, s, c, bd=None, sd=None, cd=None):
@@ -72,3 +76,63 @@ def stimulus(config, count=1000, seed=0):
                           s=random_codes(theta, 1, g)[0], c=random_codes(cfmt, 1, g)[0]))
         count -= length
     return concat(*parts)
+
+
+def _spans(c, spans):
+    """Spans ``(length, b, s, c, bd, sd[, cd])`` back to back, the junk of span j seeded j."""
+    parts = []
+    for seed, (length, b, s, cval, bd, sd, *cd) in enumerate(spans):
+        parts.append(span(c, length, rng(seed), b=b, s=s, c=cval, bd=bd, sd=sd,
+                          cd=[cd[0]] * 3 if cd else None))
+    return concat(*parts)
+
+
+def _fresh(c, i, o):
+    # θ accumulates modulo 2π (Figure 12's adder wraps): pixel X of a span equals a fresh
+    # init at b + X·s (and b_d + X·s_d) wrapped to the register
+    theta = c.fmt("theta")
+    last, k = segments(i["init"])
+    fresh = {"init": np.ones_like(i["init"]), "s": np.zeros_like(i["s"]), "sd": np.zeros_like(i["sd"]),
+             "b": np.array([wrap(int(b) + int(kk) * int(s), theta) for b, s, kk in
+                            zip(i["b"][last], i["s"][last], k)]),
+             "bd": np.array([wrap(int(b) + int(kk) * int(s), theta) for b, s, kk in
+                             zip(i["bd"][last], i["sd"][last], k)]),
+             "c": i["c"][last], "cd": i["cd"][last]}
+    want = get_block("spherical", config=c).golden(fresh)
+    return equal(o["spec"], want["spec"]) & equal(o["diff"], want["diff"])
+
+
+def _peak(c, i, o):
+    # θ = 0: cos²0 = cos 0 = 1 saturates the ROM word to 1 − 2^-D; out = C·(1 − 2^-D) rounded
+    rom, cfmt, out = c.fmt("rom"), c.fmt("c"), c.fmt("out")
+    word = Fraction(rom.max_raw, rom.one)
+    spec = [round_exact(Fraction(int(x), cfmt.one) * word, out, c.rounding) for x in i["c"]]
+    return equal(o["spec"], np.array(spec)) & equal(o["diff"], np.array(spec)[:, None])
+
+
+def extremes(block_name):
+    """The spherical unit's extreme rows (Szirmay-Kalos et al. 2000 Figure 12): spans of 1
+    and 2048 pixels, the ROM address wrapping at ±π, and C = 0."""
+    def theta(c):
+        return c.fmt("theta")
+
+    def top(c):
+        return c.fmt("c").max_raw
+
+    return (
+        Extreme(block_name, "span of 1 pixel at θ = 0", "C·(1 − 2⁻⁶) rounded (cos² 0 = 1 saturates the ROM)",
+                lambda c: _spans(c, [(1, 0, 0, x, 0, 0, x) for x in (top(c), 1, c.fmt("c").one)]), _peak),
+        Extreme(block_name, "span of 1 pixel at θ = π/2 and −π", "0 (cos ≤ 0 past ±π/2)",
+                lambda c: _spans(c, [(1, q, 0, top(c), q, 0, top(c))
+                                     for q in (1 << (theta(c).width - 2), theta(c).min_raw)]),
+                all_of(zero("spec"), zero("diff"))),
+        Extreme(block_name, "span of 2048 pixels (θ turns 8 times)", "pixel X = fresh init at b + X·s mod 2π",
+                lambda c: _spans(c, [(2048, theta(c).min_raw, (1 << theta(c).width) // 256 + 1,
+                                      top(c), 0, -3)]), _fresh),
+        Extreme(block_name, "ROM address wrap at ±π (all-ones codes)", "pixel X = fresh init at b + X·s mod 2π",
+                lambda c: _spans(c, [(6, theta(c).max_raw - 2, 1, top(c), theta(c).min_raw + 1, -1),
+                                     (4, theta(c).max_raw, theta(c).max_raw, top(c),
+                                      theta(c).min_raw, theta(c).min_raw)]), _fresh),
+        Extreme(block_name, "all-zeros codes (C = 0)", "0",
+                lambda c: _spans(c, [(4, 0, 5, 0, 0, 5, 0)]), all_of(zero("spec"), zero("diff"))),
+    )

@@ -1,4 +1,4 @@
-"""Bad input at the command line never ends in a traceback (issue 6, §2 "Bad input").
+"""Bad input at the command line never ends in a traceback, only in one clear line.
 
 A hypothesis fuzz over argument lists and ``--set field=value`` configs for ``sim``,
 ``verilog``, ``render mesh``, ``synth``, ``sweep`` and ``tables`` proves that

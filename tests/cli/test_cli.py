@@ -38,6 +38,11 @@ def test_vcd_is_written(tmp_path):
     (["sim", "shape", "--set", "q=1"], r"phongfx: error: --set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding, pipeline\n"),
     (["sim", "shape", "--set", "k=two"], r"phongfx: error: --set k: k must be an integer, not 'two'\n"),
     (["render", "--radius", "2", "--out", "OUT"], r"phongfx: error: radius must be an integer in 4\.\.4096, not 2\n"),
+    (["sim", "fig7", "--set", "vec_frac=40"], r"phongfx: error: vec_frac must be an integer in 1\.\.23, not 40\n"),
+    (["sim", "fig7", "--set", "vec_frac=ten"], r"phongfx: error: --set vec_frac: vec_frac must be an integer, not 'ten'\n"),
+    (["sim", "fig7", "--set", "vecfrac=1"], r"phongfx: error: --set vecfrac: DatapathConfig has no field 'vecfrac'; "
+                                            r"fields: .*, pipeline; derived settings: vec_frac\n"),
+    (["sim", "shape", "--set", "vec_frac=12"], r"phongfx: error: --set vec_frac: ShapeConfig has no field 'vec_frac'; .*\n"),
 ])
 def test_bad_input_exits_2_with_the_field_named(argv, message, capsys, tmp_path):
     argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]
@@ -45,6 +50,17 @@ def test_bad_input_exits_2_with_the_field_named(argv, message, capsys, tmp_path)
     err = capsys.readouterr().err
     assert __import__("re").fullmatch(message, err), err
     assert not (tmp_path / "out").exists()  # nothing half-written
+
+
+def test_one_vector_width_sets_every_connected_format():
+    # set before or after the fields, the width lands on every connected vector format
+    for settings in (["vec_frac=12", "shape.k=1"], ["shape.k=1", "vec_frac=12"]):
+        config = apply_settings(fig7_config(), settings)
+        assert config == fig7_config().replace(vec_frac=12).replace(shape=config.shape)
+        assert config.shape.k == 1 and config.vec_frac == 12
+        assert {config.lirp.out, config.normalize.vec, config.normalize.out, config.reflect.vec,
+                config.reflect.out, config.difference.vec, config.diffuse.vec} == {"S1.12"}
+        assert (config.normalize.z, config.reflect.dot, config.difference.dd) == ("1.14", "S1.14", "2.24")
 
 
 def test_nested_settings():

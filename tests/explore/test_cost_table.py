@@ -47,7 +47,7 @@ def test_side_by_side_with_claim(fake):
 
 def test_failed_synthesis_is_a_row_not_a_crash(fake):
     result = cost_table.run_table("cost", blocks=("conventional",))
-    assert result["rows"] == [{"block": "conventional", "what": cost_table._WHAT["conventional"],
+    assert result["rows"] == [{"block": "conventional", "what": cost_table.WHAT["conventional"],
                                "error": "design does not fit on LFE5U-45F: needs MULT18X18D 80/72"}]
     assert "synthesis failed: design does not fit" in row(cost_table.markdown(result), "conventional")
 

@@ -1,5 +1,6 @@
-"""The extremes table (GitHub issue 6, §2): every block at its extreme input classes,
-golden against the documented behaviour and RTL against golden, on both back ends."""
+"""The extremes table: every block at its extreme input classes (its stability where the
+inputs are extreme), golden against the documented behaviour and RTL against golden, on
+both back ends."""
 
 import json
 import re
@@ -10,9 +11,12 @@ import pytest
 from phongfx.explore import extremes
 from phongfx.core.registry import block_names, get_block
 from phongfx.cli import main
-from phongfx.explore.extremes import EXTREMES, rows_for, run_block
+from phongfx.explore.extremes import all_rows, rows_for, run_block
 
-#: Classes the issue lists, each a pattern some row's name must match.
+#: Every row of the table, in order.
+EXTREMES = all_rows()
+
+#: The extreme input classes the table must cover, each a pattern some row's name must match.
 CLASSES = [r"±1\.0", r"180°", r"n = 1", r"n_max", r"m = 1", r"m_max", r"\|D\| = 2", r"R = L",
            r"grazing", r"V = −L", r"span of 1 pixel", r"2048 pixels", r"wrap", r"smallest divisor",
            r"largest divisor", r"all-ones", r"all-zeros"]
@@ -22,12 +26,22 @@ TOLERANT = {("normalize", "all-ones codes (|N'| up to 2√3)")}
 
 
 @pytest.mark.parametrize("pattern", CLASSES)
-def test_every_issue_class_has_a_row(pattern):
+def test_every_extreme_class_has_a_row(pattern):
     assert any(re.search(pattern, row.name) for row in EXTREMES), pattern
 
 
 def test_every_block_has_rows():
     assert {row.block for row in EXTREMES} == set(block_names())
+
+
+def test_rows_come_from_the_registry_in_its_order():
+    def key(row):  # the build and holds closures are new on every call
+        return row.block, row.name, row.expected
+    assert [key(row) for row in EXTREMES] == [key(row) for name in block_names()
+                                             for row in get_block(name).extremes()]
+    assert [row.block for row in EXTREMES] == sorted((row.block for row in EXTREMES),
+                                                     key=block_names().index)
+    assert rows_for("no_such_block") == ()
 
 
 @pytest.mark.parametrize("row", [r for r in EXTREMES if (r.block, r.name) not in TOLERANT],

@@ -4,7 +4,7 @@ from phongfx.core.registry import get_block
 from phongfx.config import ConventionalConfig
 from phongfx.hdl.conventional import LATENCY, Conventional
 from phongfx.sim.harness import check
-from phongfx.sim.stimulus.conventional import vectors
+from phongfx.sim.stimulus.conventional import stimulus
 
 SMALL = dict(vec="S1.10", n="6.0", n_max=63, m="0.12", rsqrt_addr=6, y="1.12", nr="3.14",
              dot="S2.12", t="1.10", log_addr=5, log="0.14", exp_addr=6, exp="2.13", out="1.12")
@@ -40,5 +40,5 @@ def test_harness(backend, bubbles):
 ])
 def test_harness_other_formats(changes):
     block = get_block("conventional", **changes)
-    inputs = vectors(block.config, count=400, seed=2)
+    inputs = stimulus(block.config, count=400, seed=2)
     check(block, inputs, bubbles=0.1, seed=2).raise_on_mismatch()

@@ -1,4 +1,5 @@
-"""Pipeline depth (GitHub issue 5, §1): same function, the stated latency, any depth."""
+"""Pipeline depth, which trades latency for clock frequency: same function, the stated
+latency, any depth."""
 
 import numpy as np
 import pytest

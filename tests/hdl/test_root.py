@@ -3,6 +3,7 @@ from amaranth.back import rtlil
 
 from phongfx.core.registry import get_block
 from phongfx.config import RootConfig
+from phongfx.hdl.block import unbuilt
 from phongfx.hdl.root import Root
 from phongfx.hdl.shape import Shape
 from phongfx.sim.harness import check
@@ -17,10 +18,11 @@ def test_latency_and_ports(k):
 
 
 def test_shape_is_the_figure_7d_component():
-    dut = Root(RootConfig(k=3, t="1.12"))
-    assert isinstance(dut._shape, Shape)
-    assert dut._shape.config == RootConfig(k=3, t="1.12").shape
-    assert dut.latency == 3 + dut._shape.latency
+    config = RootConfig(k=3, t="1.12")
+    dut = Root(config)
+    assert dut.latency == 3 + unbuilt(Shape(config.shape)).latency
+    # elaborated as a submodule of its own, not inlined
+    assert "cell \\top.shape \\shape\n" in rtlil.convert(dut, emit_src=False)
 
 
 def test_constructor_wants_its_config():

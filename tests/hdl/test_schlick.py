@@ -4,7 +4,7 @@ from phongfx.core.registry import get_block
 from phongfx.config import SchlickConfig
 from phongfx.hdl.schlick import Schlick
 from phongfx.sim.harness import check
-from phongfx.sim.stimulus.schlick import vectors
+from phongfx.sim.stimulus.schlick import stimulus
 
 
 @pytest.mark.parametrize("changes, latency, widths", [
@@ -39,5 +39,5 @@ def test_harness(backend, bubbles):
 ])
 def test_harness_other_formats(changes):
     block = get_block("schlick", **changes)
-    inputs = vectors(block.config, count=500, seed=2, limit=4096)
+    inputs = stimulus(block.config, count=500, seed=2, limit=4096)
     check(block, inputs, bubbles=0.1, seed=2).raise_on_mismatch()

@@ -4,7 +4,7 @@ from phongfx.core.registry import get_block
 from phongfx.config import ShapeConfig
 from phongfx.hdl.shape import Shape
 from phongfx.sim.harness import check
-from phongfx.sim.stimulus.shape import vectors
+from phongfx.sim.stimulus.shape import stimulus
 
 
 @pytest.mark.parametrize("k", range(5))
@@ -29,7 +29,7 @@ def test_harness(backend, bubbles):
 @pytest.mark.parametrize("k", range(5))
 def test_harness_every_k(k):
     block = get_block("shape", k=k)
-    inputs = vectors(block.config, count=200, seed=k, limit=1024)
+    inputs = stimulus(block.config, count=200, seed=k, limit=1024)
     check(block, inputs, bubbles=0.1, seed=k).raise_on_mismatch()
 
 

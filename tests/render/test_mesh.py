@@ -66,7 +66,7 @@ def test_cosn_is_the_exact_power_of_the_slerped_normal(torus_spans):
 
 
 def test_vectorized_angles_match_the_scalar_setup(torus_spans):
-    big_a, phi, gamma = mesh_render._angles(torus_spans, H)
+    big_a, phi, gamma = mesh_render.span_angles(torus_spans, H)
     for i in np.random.default_rng(4).choice(len(big_a), 20, replace=False):
         want = spherical_setup.span_setup(torus_spans.na[i], torus_spans.nb[i], H, H, 20,
                                           int(torus_spans.length[i]))

@@ -12,8 +12,7 @@ import pytest
 
 from phongfx.core.registry import get_block
 from phongfx.core.format import Format
-from phongfx.sim import fast_backend
-from phongfx.sim import verilator_backend
+from phongfx.sim import build_cache, fast_backend
 from phongfx.sim.harness import check, pack, run_backend, schedule
 
 pytestmark = pytest.mark.verilator
@@ -114,7 +113,7 @@ def test_run_matches_amaranth_cycle_for_cycle():
 
 
 def test_build_failure_raises_with_log(monkeypatch, tmp_path):
-    monkeypatch.setattr(verilator_backend, "verilog", lambda *args, **kwargs: "module broken(;\n")
+    monkeypatch.setattr(build_cache, "verilog", lambda *args, **kwargs: "module broken(;\n")
     with pytest.raises(RuntimeError, match=r"^Verilator build of lirp failed .*log .*build\.log"):
         fast_backend.build(get_block("lirp").component(), build_dir=tmp_path)
 

@@ -22,7 +22,7 @@ from phongfx.core.format import Format
 from phongfx.hdl.block import payload_layout
 from phongfx.hdl.fixed import FixedValue, stage
 from phongfx.hdl.lirp import Lirp
-from phongfx.sim import verilator_backend
+from phongfx.sim import build_cache, verilator_backend
 from phongfx.sim.harness import HarnessMismatch, check, pack, run_backend, schedule, unpack
 
 # ---------------------------------------------------------------- pack / unpack
@@ -333,7 +333,7 @@ def test_verilator_build_is_cached():
 
 @pytest.mark.verilator
 def test_verilator_build_failure_raises_with_log(monkeypatch, tmp_path):
-    monkeypatch.setattr(verilator_backend, "verilog", lambda *args, **kwargs: "module broken(;\n")
+    monkeypatch.setattr(build_cache, "verilog", lambda *args, **kwargs: "module broken(;\n")
     with pytest.raises(RuntimeError, match=r"(?s)^Verilator build of lirp failed .*%Error") as info:
         verilator_backend.build(LIRP.component(), build_dir=tmp_path)
     assert "lirp_tb.v" in str(info.value)

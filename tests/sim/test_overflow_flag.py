@@ -1,6 +1,7 @@
-"""RTL overflow assertions (issue 6 §2): an ``overflow="error"`` quantize that meets a value
-out of its format raises the block's ``overflow`` field, and the harness reports it on every
-back end, at the cycle of the output it belongs to, never on an idle cycle."""
+"""RTL overflow assertions, so that an overflow the golden model did not predict is never
+silent: an ``overflow="error"`` quantize that meets a value out of its format raises the
+block's ``overflow`` field, and the harness reports it on every back end, at the cycle of
+the output it belongs to, never on an idle cycle."""
 
 import dataclasses
 
@@ -11,7 +12,8 @@ from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig
 from phongfx.core.format import Format
 from phongfx.hdl.block import OVERFLOW, checked_outputs
-from phongfx.hdl.fixed import FixedValue, overflow_checks
+from phongfx.hdl.fixed import FixedValue
+from phongfx.hdl.overflow import overflow_checks
 from phongfx.hdl.lirp import Lirp
 from phongfx.sim.harness import BACKENDS, check
 

@@ -1,5 +1,6 @@
-"""No silent overflow (GitHub issue 6, §2): every quantize in the golden models and the
-HDL names its overflow policy, and the golden model raises on an undeclared overflow.
+"""No silent overflow, so that a wrong answer never looks like a right one: every quantize
+in the golden models and the HDL names its overflow policy, and the golden model raises on
+an undeclared overflow.
 
 The scan reads the source of ``golden/*.py`` and ``hdl/*.py`` with :mod:`ast`: every
 call of ``quantize``, ``quantize_raw``, ``quantize_cut``, ``.quantize(...)`` and
@@ -18,7 +19,7 @@ import pytest
 from phongfx.core.registry import get_block
 from phongfx.core.format import OVERFLOWS
 from phongfx.golden.fixed import Fixed, FixedOverflowError, quantize_raw
-from phongfx.hdl.fixed import overflow_checks
+from phongfx.hdl.overflow import overflow_checks
 from phongfx.sim.harness import check
 
 ROOT = Path(__file__).resolve().parents[2]

