@@ -30,8 +30,8 @@ import time
 
 import numpy as np
 
-from phongfx.core.registry import get_block
 from phongfx.core.files import atomic_write
+from phongfx.core.registry import get_block
 
 from .golden_models import fig7_apytypes, fig7_loop
 

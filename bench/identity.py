@@ -33,11 +33,20 @@ __all__ = ["capture", "compare", "normalize_verilog", "normalize_json"]
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = ("lyon-balls", "torus", "local-mesh")
-TABLES = ("lyon", "szirmay", "schlick", "hast")
+TABLES = ("lyon", "szirmay", "schlick", "hast", "extremes")
 SYNTH_TABLES = ("cost", "pipeline")
 
-#: JSON keys whose values are measurements of time, not results
-TIMING = re.compile(r"(seconds|elapsed|per_second|_time$|^time$|wall|duration|speed|mpx_s)")
+#: JSON keys whose values are measurements of time, or provenance ("cached": whether a
+#: synthesis result came from the cache), not results
+TIMING = re.compile(r"(seconds|elapsed|per_second|_time$|^time$|wall|duration|speed|mpx_s|^cached$)")
+#: Top-level JSON keys changed on purpose since the layout revision 58cdcc7, with why:
+#: compared apart, reported as intended rather than as differences.
+INTENDED = {
+    os.path.join("tables", "pipeline.json"): {"source": "named a GitHub issue; now says what the table is"},
+    os.path.join("tables", "extremes.json"): {"source": "named a GitHub issue; now says what the table is"},
+}
+#: a run folder's random suffix (``build/synth/.<key>.<random>/``)
+TEMPORARY = re.compile(r"(/\.[0-9a-f]+)\.[A-Za-z0-9_]+/")
 SRC = re.compile(r"\(\* src = \"[^\"]*\" \*\)\s*")
 
 
@@ -46,12 +55,15 @@ def normalize_verilog(text):
     return "\n".join(line.rstrip() for line in SRC.sub("", text).splitlines() if line.strip())
 
 
-def normalize_json(value):
-    """``value`` with every timing field dropped, recursively."""
+def normalize_json(value, root=None):
+    """``value`` with every timing field dropped, recursively, and the capture folder
+    ``root`` in strings (a failed synthesis names its log) written ``<capture>``."""
     if isinstance(value, dict):
-        return {k: normalize_json(v) for k, v in value.items() if not TIMING.search(str(k))}
+        return {k: normalize_json(v, root) for k, v in value.items() if not TIMING.search(str(k))}
     if isinstance(value, list):
-        return [normalize_json(v) for v in value]
+        return [normalize_json(v, root) for v in value]
+    if isinstance(value, str) and root:
+        return TEMPORARY.sub(r"\1.<random>/", value.replace(os.path.abspath(root), "<capture>"))
     return value
 
 
@@ -83,8 +95,12 @@ def _install(ref, where):
 PARTS = ("verilog", "compile", "sim", "figure9", "tables")
 
 
-def capture(out, ref=None, synth_tables=False, parts=PARTS):
-    """Write this checkout's (or ``ref``'s) outputs into the folder ``out`` (only ``parts``)."""
+def capture(out, ref=None, synth_tables=False, parts=PARTS, synth_cache=None):
+    """Write this checkout's (or ``ref``'s) outputs into the folder ``out`` (only ``parts``).
+
+    ``synth_cache``: another capture whose synthesis cache is copied in first.  Its keys
+    hash each design's RTLIL and config, so a table row served from it (``"cached": true``)
+    shows that the design is the same as the one synthesized there, at no tool run."""
     out = os.path.abspath(out)
     os.makedirs(out, exist_ok=True)
     env = dict(os.environ)
@@ -95,6 +111,9 @@ def capture(out, ref=None, synth_tables=False, parts=PARTS):
     work = os.path.join(out, "work")  # the commands' cwd: no source folder shadows the install
     os.makedirs(work, exist_ok=True)
     log = os.path.join(out, "commands.log")
+    if synth_cache is not None:
+        shutil.copytree(os.path.join(synth_cache, "work", "build", "synth"),
+                        os.path.join(work, "build", "synth"), dirs_exist_ok=True)
     python = sys.executable
     run = lambda *args: _run(python, env, work, list(args), log)  # noqa: E731
 
@@ -136,11 +155,15 @@ def _files(root):
     return found
 
 
-def _same(a, b):
+def _same(a, b, root_a, root_b):
     if a.endswith(".v"):
         return normalize_verilog(open(a).read()) == normalize_verilog(open(b).read())
     if a.endswith(".json"):
-        return normalize_json(json.load(open(a))) == normalize_json(json.load(open(b)))
+        data = [json.load(open(path)) for path in (a, b)]
+        for key in INTENDED.get(os.path.relpath(a, root_a), {}):
+            for value in data:
+                value.pop(key, None)
+        return normalize_json(data[0], root_a) == normalize_json(data[1], root_b)
     with open(a, "rb") as fa, open(b, "rb") as fb:
         return fa.read() == fb.read()
 
@@ -148,7 +171,8 @@ def _same(a, b):
 def compare(a, b, common_only=False, ignore=()):
     """(files compared, [differences]) between two captures (``common_only``: files that
     only one of them has are not differences, for a capture of some parts only; paths
-    starting with one of ``ignore`` are skipped)."""
+    starting with one of ``ignore`` are skipped).  A difference in a key of
+    :data:`INTENDED` is listed as ``intended: ...``, not counted."""
     fa, fb = ({k: v for k, v in _files(x).items() if not k.startswith(tuple(ignore))} for x in (a, b))
     if common_only:
         fa = {k: v for k, v in fa.items() if k in fb}
@@ -156,7 +180,12 @@ def compare(a, b, common_only=False, ignore=()):
     differences = [f"only in {a}: {p}" for p in sorted(set(fa) - set(fb))]
     differences += [f"only in {b}: {p}" for p in sorted(set(fb) - set(fa))]
     common = sorted(set(fa) & set(fb))
-    differences += [f"differs: {p}" for p in common if not _same(fa[p], fb[p])]
+    differences += [f"differs: {p}" for p in common if not _same(fa[p], fb[p], a, b)]
+    for path in common:
+        for key, why in INTENDED.get(path, {}).items():
+            before, after = (json.load(open(f[path])).get(key) for f in (fa, fb))
+            if before != after:
+                print(f"intended: {path} {key}: {before!r} -> {after!r} ({why})")
     return len(common), differences
 
 
@@ -168,6 +197,7 @@ def main(argv=None):
     p.add_argument("--ref", help="git revision to install aside and capture (default: this checkout)")
     p.add_argument("--synth-tables", action="store_true", help="also tables cost and pipeline (slow)")
     p.add_argument("--parts", nargs="+", default=PARTS, choices=PARTS, help="what to capture (default all)")
+    p.add_argument("--synth-cache", metavar="CAPTURE", help="copy that capture's synthesis cache in first")
     p = sub.add_parser("compare")
     p.add_argument("a")
     p.add_argument("b")
@@ -181,7 +211,7 @@ def main(argv=None):
                    help="what to capture of this checkout (default all); only those are compared")
     args = parser.parse_args(argv)
     if args.command == "capture":
-        capture(args.out, args.ref, args.synth_tables, args.parts)
+        capture(args.out, args.ref, args.synth_tables, args.parts, args.synth_cache)
         return 0
     if args.command == "check":
         base = os.path.join(args.out, "ref")
@@ -193,7 +223,7 @@ def main(argv=None):
             open(os.path.join(base, "done"), "w").close()
         here = os.path.join(args.out, args.head)
         shutil.rmtree(here, ignore_errors=True)
-        capture(here, None, args.synth_tables, args.parts)
+        capture(here, None, args.synth_tables, args.parts, base if args.synth_tables else None)
         args.a, args.b, args.common_only = base, here, tuple(args.parts) != PARTS
         args.ignore = () if args.synth_tables else tuple(f"tables/{t}" for t in SYNTH_TABLES)
     count, differences = compare(args.a, args.b, args.common_only, getattr(args, "ignore", ()))

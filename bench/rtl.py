@@ -21,10 +21,9 @@ import platform
 import tempfile
 import time
 
-from phongfx.core.registry import get_block
 from phongfx.core.files import atomic_write
-from phongfx.sim import fast_backend
-from phongfx.sim import verilator_backend
+from phongfx.core.registry import get_block
+from phongfx.sim import fast_backend, verilator_backend
 from phongfx.sim.harness import check
 
 __all__ = ["FRAME", "TARGET_SECONDS", "measure", "table", "main"]

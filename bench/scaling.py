@@ -15,8 +15,8 @@ import json
 import os
 import time
 
-from phongfx.core.registry import get_block
 from phongfx.core.files import atomic_write
+from phongfx.core.registry import get_block
 from phongfx.sim import fast_backend
 
 __all__ = ["BLOCKS", "SIZES", "measure", "plot", "main"]

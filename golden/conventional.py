@@ -56,6 +56,7 @@ bits, ``n = 8000`` more than 16.
 import numpy as np
 
 from phongfx.core.format import Format
+
 from .fixed import Fixed, check_range
 
 __all__ = ["conventional", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift",

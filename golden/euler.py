@@ -29,6 +29,7 @@ Before any ``init`` the registers hold their reset value 0.
 import numpy as np
 
 from phongfx.core.format import Format
+
 from .fixed import Fixed, quantize_raw
 
 __all__ = ["euler", "segments", "held", "wrap", "as_uint"]

@@ -29,6 +29,7 @@ raises if a load or the float curve ever leaves its format.
 import numpy as np
 
 from phongfx.config import EulerConfig
+
 from .fixed import Fixed
 
 __all__ = ["span_setup", "span_setups", "curves_at", "duff_curve", "normalized_curve", "euler_curve",

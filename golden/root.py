@@ -54,6 +54,7 @@ small or odd ``m``, near nothing where ``m`` is a multiple of ``2^(s+1)`` (no bi
 import numpy as np
 
 from phongfx.core.format import Format
+
 from .difference import shininess_input
 from .fixed import Fixed
 from .shape import shape

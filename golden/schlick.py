@@ -23,6 +23,7 @@ floor and rounding are monotone, so the output never falls as ``t`` rises.
 """
 
 from phongfx.core.format import Format
+
 from .fixed import Fixed, check_range
 
 __all__ = ["schlick", "divisor"]

@@ -24,6 +24,7 @@ Rounding and squaring are monotone, so the output never rises with ``x``.
 """
 
 from phongfx.core.format import Format
+
 from .fixed import Fixed
 
 __all__ = ["shape"]

@@ -34,6 +34,7 @@ import math
 import numpy as np
 
 from phongfx.core.format import Format
+
 from .fixed import Fixed, quantize_raw
 
 __all__ = ["spherical", "rom_contents", "rom_angles", "interpolate", "rom_bound"]

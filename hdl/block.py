@@ -28,6 +28,7 @@ from amaranth.lib.wiring import In, Out
 
 from phongfx.config import BlockConfig
 from phongfx.core.format import Format
+
 from .fixed import FixedValue, FixedVector, align, delay
 from .overflow import overflow_flags, report_overflow
 

@@ -7,6 +7,7 @@ from amaranth.lib.memory import Memory
 from phongfx.config import ConventionalConfig
 from phongfx.core.format import Format
 from phongfx.golden.conventional import exp2_tables, log2_tables, rsqrt_table
+
 from .block import PipelinedBlock
 from .fixed import FixedValue, delay, stage
 

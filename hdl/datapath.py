@@ -1,6 +1,7 @@
 """A whole shading datapath as one pipelined component (Lyon 1993, Figures 6–8 and 5)."""
 
 from phongfx.config import DatapathConfig
+
 from .block import PipelinedBlock, unbuilt
 from .difference import Difference
 from .diffuse import Diffuse

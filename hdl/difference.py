@@ -3,8 +3,9 @@
 from functools import cached_property
 
 from phongfx.config import DifferenceConfig
-from .block import PipelinedBlock
 from phongfx.core.format import Format
+
+from .block import PipelinedBlock
 from .fixed import cut, quantize_cut, split_product, stage
 
 __all__ = ["Difference", "const_product", "signed_digits"]

@@ -3,6 +3,7 @@
 from amaranth.hdl import Signal
 
 from phongfx.config import EulerConfig
+
 from .block import PipelinedBlock
 from .fixed import FixedValue, stage
 

@@ -31,6 +31,7 @@ collected by :mod:`phongfx.hdl.overflow`.
 from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
 from phongfx.core.format import Format, check_overflow, check_rounding
+
 from .overflow import collecting_overflow, report_overflow
 
 __all__ = ["FixedValue", "FixedVector", "quantize", "overflowed", "stage", "delay", "cut", "align",

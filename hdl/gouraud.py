@@ -1,6 +1,7 @@
 """Gouraud unit: one adder, ``p += dp`` (Gouraud 1971; Hast et al. §1)."""
 
 from phongfx.config import GouraudConfig
+
 from .block import PipelinedBlock
 from .euler import forward_differences
 from .fixed import stage

@@ -3,6 +3,7 @@
 from functools import cached_property
 
 from phongfx.config import HalfwayConfig
+
 from .block import PipelinedBlock, unbuilt
 from .fixed import cut, delay, quantize_cut, stage
 from .normalize import Normalize

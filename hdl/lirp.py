@@ -3,6 +3,7 @@
 from functools import cached_property
 
 from phongfx.config import LirpConfig
+
 from .block import PipelinedBlock
 from .fixed import FixedValue, cut, stage
 

@@ -3,6 +3,7 @@
 from functools import cached_property
 
 from phongfx.config import NormalizeConfig
+
 from .block import PipelinedBlock
 from .fixed import FixedValue, cut, quantize_cut, stage
 

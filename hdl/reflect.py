@@ -3,6 +3,7 @@
 from functools import cached_property
 
 from phongfx.config import ReflectConfig
+
 from .block import PipelinedBlock
 from .fixed import cut, quantize_cut, stage
 

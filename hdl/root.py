@@ -6,6 +6,7 @@ from amaranth.hdl import Cat
 
 from phongfx.config import RootConfig
 from phongfx.core.format import Format
+
 from .block import PipelinedBlock, unbuilt
 from .difference import const_product
 from .fixed import FixedValue, FixedVector, cut, delay, stage

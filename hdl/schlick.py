@@ -4,6 +4,7 @@ from amaranth.hdl import Cat, Const, Mux
 
 from phongfx.config import SchlickConfig
 from phongfx.core.format import Format
+
 from .block import PipelinedBlock
 from .fixed import FixedValue, stage
 

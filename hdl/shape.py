@@ -4,6 +4,7 @@ from functools import cached_property
 
 from phongfx.config import ShapeConfig
 from phongfx.core.format import Format
+
 from .block import PipelinedBlock
 from .fixed import FixedValue, cut, stage
 

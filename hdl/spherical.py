@@ -5,6 +5,7 @@ from amaranth.lib.memory import Memory
 
 from phongfx.config import SphericalConfig
 from phongfx.golden.spherical import rom_contents
+
 from .block import PipelinedBlock
 from .fixed import FixedValue, FixedVector, stage
 

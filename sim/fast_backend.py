@@ -28,9 +28,10 @@ import numpy as np
 
 from phongfx.hdl.block import checked_outputs
 from phongfx.hdl.emit import payload_widths
+
 from .build_cache import BUILD_ARGS, cache_root, cached_build, keep_runtime, seed_runtime
-from .harness import (Mismatch, Result, checked_expected, columns, payload_fields, payload_mismatch,
-                      row_of, schedule)
+from .harness import (Mismatch, Result, checked_expected, columns, payload_fields, payload_mismatch, row_of,
+                      schedule)
 from .verilator_backend import tool_environment
 
 __all__ = ["MAIN", "words_of", "pack_words", "wrapper", "build", "stream", "check",

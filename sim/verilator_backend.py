@@ -28,8 +28,9 @@ from cocotb_tools.check_results import get_results
 from cocotb_tools.runner import Verilator, get_runner
 
 from phongfx.hdl.emit import payload_widths
-from .build_cache import (BUILD_ARGS, TOOL_ERRORS, Build, cache_root, cached_build, keep_runtime,
-                          log_tail, seed_runtime)
+
+from .build_cache import (BUILD_ARGS, TOOL_ERRORS, Build, cache_root, cached_build, keep_runtime, log_tail,
+                          seed_runtime)
 
 __all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "run"]
 

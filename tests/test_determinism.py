@@ -11,10 +11,10 @@ import sys
 import numpy as np
 import pytest
 
-from phongfx.papers import schlick as schlick_table
-from phongfx.papers import szirmay as szirmay_tables
 from phongfx.core.registry import block_names, get_block
 from phongfx.hdl.emit import verilog
+from phongfx.papers import schlick as schlick_table
+from phongfx.papers import szirmay as szirmay_tables
 from phongfx.render.mesh import run
 from phongfx.sim.harness import pack, run_backend, schedule
 

@@ -18,6 +18,7 @@ import os
 import sys
 
 from phongfx.explore.synth import SynthError
+
 from .commands import MAX_SIZE
 from .parser import build_parser
 from .settings import apply_settings

@@ -13,6 +13,7 @@ import sys
 
 from phongfx.core.registry import block_names, get_block
 from phongfx.explore.tables import TABLES, table_module
+
 from .settings import apply_settings, configured_block
 
 __all__ = ["MAX_SIZE", "cmd_blocks", "cmd_verilog", "cmd_sim", "cmd_render", "cmd_synth", "cmd_sweep",

@@ -9,6 +9,7 @@ import sys
 
 from phongfx.core.registry import block_names
 from phongfx.sim.harness import BACKENDS
+
 from . import commands
 
 __all__ = ["DESCRIPTION", "build_parser"]

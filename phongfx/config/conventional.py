@@ -4,8 +4,7 @@ from dataclasses import dataclass
 
 from phongfx.core.format import Format
 
-from .base import (BlockConfig, check_format, check_fraction_format, check_int,
-                   check_integer_format)
+from .base import BlockConfig, check_format, check_fraction_format, check_int, check_integer_format
 
 __all__ = ["ConventionalConfig"]
 

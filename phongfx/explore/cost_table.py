@@ -22,6 +22,7 @@ import json
 import sys
 
 from phongfx.config import DifferenceConfig, RootConfig
+
 from .report import DSP_LUT_WEIGHT, lut_equivalent
 from .synth import SynthError, synth
 

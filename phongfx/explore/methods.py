@@ -12,13 +12,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from phongfx.scene import mesh as meshes
 from phongfx.core.registry import REGISTRY, get_block
 from phongfx.golden import euler_setup
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import LIGHT, shade
-from phongfx.scene.span_inputs import (VIEWER, conventional_inputs, decode, euler_inputs, gouraud_inputs, halfway,
-                          schlick_inputs, spherical_inputs)
+from phongfx.scene import mesh as meshes
+from phongfx.scene.span_inputs import (VIEWER, conventional_inputs, decode, euler_inputs, gouraud_inputs,
+                                       halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
 __all__ = ["MethodSpec", "METHODS", "Scene", "SCENES"]

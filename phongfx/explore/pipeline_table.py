@@ -15,8 +15,8 @@ Deterministic: synthesis runs with a fixed placement seed and is cached on disk.
 import json
 import os
 
-from phongfx.core.registry import get_block
 from phongfx.config import MAX_PIPELINE
+from phongfx.core.registry import get_block
 
 __all__ = ["TABLES", "NAMES", "DEPTHS", "FREQ", "pipeline_rows", "run_table", "markdown",
            "to_json", "plot"]

@@ -19,6 +19,7 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
 from phongfx.core.files import atomic_write
+
 from .sweep_spec import SweepSpecError, expand, is_int, load_spec, point_id
 
 __all__ = ["SweepSpecError", "load_spec", "expand", "point_id", "load_records", "write_csv",
@@ -154,7 +155,8 @@ def _execute_pool(evaluate, points, record, workers):
 
 def _execute_dask(evaluate, points, record, workers, scheduler):
     try:
-        from dask.distributed import Client, LocalCluster, as_completed as dask_completed
+        from dask.distributed import Client, LocalCluster
+        from dask.distributed import as_completed as dask_completed
     except ImportError:
         raise ValueError(f"scheduler {scheduler!r} needs Dask, which is not installed: "
                          f"pip install phongfx[cluster]") from None

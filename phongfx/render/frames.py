@@ -22,12 +22,12 @@ import time
 
 import numpy as np
 
-from phongfx.core.registry import get_block
 from phongfx.core.files import atomic_write
+from phongfx.core.registry import get_block
+from phongfx.scene.span_inputs import UNITS, first_pixels, inputs
+from phongfx.sim.harness import BACKENDS
 
 from .lyon import shade
-from phongfx.sim.harness import BACKENDS
-from phongfx.scene.span_inputs import UNITS, first_pixels, inputs
 
 __all__ = ["MESHES", "LIGHT", "frame_spans", "chunk_starts", "rtl_frame", "run_all", "markdown"]
 

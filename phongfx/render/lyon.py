@@ -16,9 +16,9 @@ import time
 
 import numpy as np
 
-from phongfx.core.registry import get_block
 from phongfx.config import fig7_config
 from phongfx.core.files import atomic_write
+from phongfx.core.registry import get_block
 from phongfx.golden.reference import specular
 from phongfx.scene.lyon import Scene, pixels
 from phongfx.sim.harness import BACKENDS, check

@@ -38,14 +38,13 @@ import time
 import numpy as np
 from PIL import Image
 
-from phongfx.scene import mesh as meshes
-from phongfx.core.registry import get_block
 from phongfx.config import SphericalConfig
-from phongfx.golden import euler_setup
-from phongfx.golden import spherical_setup
 from phongfx.core.files import atomic_write
+from phongfx.core.registry import get_block
+from phongfx.golden import euler_setup, spherical_setup
+from phongfx.scene import mesh as meshes
 from phongfx.scene.span_inputs import (conventional_inputs, decode, euler_inputs, gouraud_inputs, halfway,
-                          spherical_inputs)
+                                       spherical_inputs)
 
 __all__ = ["METHODS", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
            "shade", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]

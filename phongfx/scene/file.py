@@ -11,9 +11,9 @@ import os
 import tomllib
 from dataclasses import dataclass
 
+from .lyon import Scene
 from .mesh import torus, uv_sphere
 from .obj import ObjError, load_obj
-from .lyon import Scene
 
 __all__ = ["SceneError", "SceneSpec", "Camera", "Light", "Material", "SceneObject", "Frames",
            "Output", "Requirement", "load_scene", "parse_scene", "OBJECT_TYPES"]

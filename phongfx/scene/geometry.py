@@ -25,8 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .mesh import Mesh, rasterize, unit
 from .lyon import Scene, pixels
+from .mesh import Mesh, rasterize, unit
 
 __all__ = ["FrameGeometry", "frames", "rotation", "scene_mesh", "shade", "levels", "error_levels"]
 

@@ -23,8 +23,7 @@ Szirmay-Kalos both use).
 import numpy as np
 
 from phongfx.config import ConventionalConfig, EulerConfig, GouraudConfig, SchlickConfig, SphericalConfig
-from phongfx.golden import euler_setup
-from phongfx.golden import spherical_setup
+from phongfx.golden import euler_setup, spherical_setup
 from phongfx.golden.fixed import Fixed
 
 __all__ = ["VIEWER", "UNITS", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",

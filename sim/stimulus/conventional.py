@@ -3,8 +3,7 @@ nonzero ``N``, ``t = 1`` exactly, backfacing ``H``, edge ``n``, then random high
 
 import numpy as np
 
-from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng,
-               unit_vectors)
+from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
 from .extreme import Extreme, all_of, exactly, zero
 
 __all__ = ["stimulus", "directed", "edge_n", "highlights", "extremes"]

@@ -8,8 +8,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng,
-               unit_vectors)
+from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
 from .extreme import Extreme, constant, corner, equal, round_exact, zero
 
 __all__ = ["stimulus", "extremes"]

@@ -12,6 +12,7 @@ pixels.
 import numpy as np
 
 from phongfx.golden.euler_setup import quantize_setup, random_spans, span_setup
+
 from . import concat, random_codes, rng
 from .extreme import accumulator_rows
 

@@ -20,6 +20,7 @@ from fractions import Fraction
 import numpy as np
 
 from phongfx.golden.euler import segments
+
 from . import concat, rng
 
 __all__ = ["Extreme", "equal", "round_exact", "wrap", "constant", "corner", "exactly", "zero",

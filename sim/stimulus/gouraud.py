@@ -9,6 +9,7 @@ random spans up to ``count`` pixels.
 import numpy as np
 
 from phongfx.golden.euler_setup import quantize_gouraud, random_spans, span_setup
+
 from . import concat, random_codes, rng
 from .extreme import accumulator_rows
 

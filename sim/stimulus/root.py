@@ -6,8 +6,7 @@ m the hardware has) and no ``m`` port is returned.
 
 import numpy as np
 
-from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng,
-               unit_vectors)
+from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
 from .extreme import Extreme, constant, corner, exactly, zero
 
 __all__ = ["stimulus", "fraction_codes", "pairs", "extremes"]

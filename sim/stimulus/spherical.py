@@ -16,6 +16,7 @@ import numpy as np
 from phongfx.core.registry import get_block
 from phongfx.golden.euler import segments
 from phongfx.golden.spherical_setup import quantize_setup, span_setup
+
 from . import concat, random_codes, rng
 from .extreme import Extreme, all_of, equal, round_exact, wrap, zero
 

@@ -9,10 +9,11 @@ import json
 import numpy as np
 import pytest
 
+from phongfx.config import fig7_config
+from phongfx.core.registry import get_block
+
 from bench.golden import inputs, main, peak_memory
 from bench.golden_models import fig7_apytypes, fig7_loop
-from phongfx.core.registry import get_block
-from phongfx.config import fig7_config
 
 apytypes = pytest.importorskip("apytypes")
 

@@ -19,10 +19,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import phongfx.sim.harness as harness
 import phongfx.explore.synth as synth_module
-from phongfx.core.registry import block_names, get_block
+import phongfx.sim.harness as harness
 from phongfx.cli import main
+from phongfx.core.registry import block_names, get_block
 
 FUZZ = settings(max_examples=120, deadline=None, derandomize=True,
                 suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])

@@ -2,12 +2,11 @@ import dataclasses
 
 import pytest
 
-from phongfx.config import (BlockConfig, ConventionalConfig, DatapathConfig, DifferenceConfig,
-                            DiffuseConfig, EulerConfig, GouraudConfig, HalfwayConfig, LirpConfig,
-                            NormalizeConfig, ReflectConfig, RootConfig, SchlickConfig,
-                            ShapeConfig, SphericalConfig)
-from phongfx.config.base import (MAX_PIPELINE, MAX_VEC_FRAC, check_format, check_fraction_format,
-                                 check_int, check_integer_format, check_step_formats)
+from phongfx.config import (BlockConfig, ConventionalConfig, DatapathConfig, DifferenceConfig, DiffuseConfig,
+                            EulerConfig, GouraudConfig, HalfwayConfig, LirpConfig, NormalizeConfig,
+                            ReflectConfig, RootConfig, SchlickConfig, ShapeConfig, SphericalConfig)
+from phongfx.config.base import (MAX_PIPELINE, MAX_VEC_FRAC, check_format, check_fraction_format, check_int,
+                                 check_integer_format, check_step_formats)
 from phongfx.core.format import Format
 
 BLOCKS = (LirpConfig, NormalizeConfig, ReflectConfig, DifferenceConfig, ShapeConfig, DiffuseConfig,

@@ -8,9 +8,9 @@ import re
 import numpy as np
 import pytest
 
-from phongfx.explore import extremes
-from phongfx.core.registry import block_names, get_block
 from phongfx.cli import main
+from phongfx.core.registry import block_names, get_block
+from phongfx.explore import extremes
 from phongfx.explore.extremes import all_rows, rows_for, run_block
 
 #: Every row of the table, in order.

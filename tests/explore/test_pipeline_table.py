@@ -5,9 +5,8 @@ import re
 
 import pytest
 
-from phongfx.explore import pipeline_table
-from phongfx.explore import synth
 from phongfx.core.registry import get_block
+from phongfx.explore import pipeline_table, synth
 from phongfx.explore.pipeline_table import DEPTHS, NAMES, markdown, pipeline_rows, run_table, to_json
 
 

@@ -4,8 +4,8 @@ import os
 import pytest
 
 from phongfx.explore import report
-from phongfx.explore.report import (DSP_LUT_WEIGHT, build_report, cheapest_invisible, load, lut_equivalent, pareto,
-                            pareto_plot, summary_markdown)
+from phongfx.explore.report import (DSP_LUT_WEIGHT, build_report, cheapest_invisible, load, lut_equivalent,
+                                    pareto, pareto_plot, summary_markdown)
 
 KEY = "torus.phong.max"
 PNG = b"\x89PNG\r\n\x1a\n"

@@ -7,10 +7,9 @@ import sys
 
 import pytest
 
-from phongfx.explore import synth as synth_module
 from phongfx.core.registry import get_block
+from phongfx.explore import synth as synth_module
 from phongfx.explore.synth import TARGETS, SynthError, markdown, synth
-
 
 # ---------------------------------------------------------------- argument checks
 

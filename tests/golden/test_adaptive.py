@@ -2,8 +2,8 @@ import numpy as np
 import pytest
 
 from phongfx.golden.adaptive import adaptive_test, edge_maximum, highlight_test, levels, specular_euler
-from phongfx.golden.euler_setup import (
-    curves_at, euler_curve, gouraud_curve, random_spans, span_setup, span_setups)
+from phongfx.golden.euler_setup import (curves_at, euler_curve, gouraud_curve, random_spans, span_setup,
+                                        span_setups)
 
 
 def random_setups(count, max_angle, lengths, seed):

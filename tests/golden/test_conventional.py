@@ -3,11 +3,11 @@ import math
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import ConventionalConfig
 from phongfx.core.format import Format
-from phongfx.golden.conventional import (conventional, even_shift, exp2_tables, log2_t,
-                                         log2_tables, pow2, reciprocal_sqrt, rsqrt_table)
+from phongfx.core.registry import get_block
+from phongfx.golden.conventional import (conventional, even_shift, exp2_tables, log2_t, log2_tables, pow2,
+                                         reciprocal_sqrt, rsqrt_table)
 from phongfx.golden.fixed import Fixed
 from phongfx.sim.stimulus import at_angle, codes, rng, unit_vectors
 from phongfx.sim.stimulus.conventional import directed, edge_n

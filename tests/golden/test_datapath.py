@@ -1,9 +1,9 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import (DatapathConfig, DifferenceConfig, RootConfig, ShapeConfig, fig7_config,
-                             fig8_config, halfway_config)
+                            fig8_config, halfway_config)
+from phongfx.core.registry import get_block
 from phongfx.golden.reference import specular
 
 LSB = 2.0 ** -10

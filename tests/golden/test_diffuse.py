@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import DiffuseConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.diffuse import diffuse
 from phongfx.golden.fixed import Fixed
 

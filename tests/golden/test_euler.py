@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import EulerConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.euler import euler
 from phongfx.golden.euler_setup import quantize_setup, span_setup
 from phongfx.golden.fixed import Fixed

@@ -3,9 +3,9 @@ import pytest
 
 from phongfx.config import EulerConfig
 from phongfx.golden.euler import euler
-from phongfx.golden.euler_setup import (
-    curves_at, duff_curve, euler_curve, gouraud_curve, min_frac_bits, normalized_curve, quantize_setup,
-    random_spans, span_setup, span_setups, stability)
+from phongfx.golden.euler_setup import (curves_at, duff_curve, euler_curve, gouraud_curve, min_frac_bits,
+                                        normalized_curve, quantize_setup, random_spans, span_setup,
+                                        span_setups, stability)
 from phongfx.golden.fixed import Fixed, FixedOverflowError
 from phongfx.sim.stimulus.euler import span
 

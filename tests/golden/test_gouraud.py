@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import GouraudConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.euler_setup import gouraud_curve, quantize_gouraud, span_setup
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.gouraud import gouraud

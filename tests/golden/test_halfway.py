@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import HALFWAY_VARIANTS, HalfwayConfig, NormalizeConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.halfway import halfway
 from phongfx.golden.reference import specular

@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import NormalizeConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.normalize import normalize
 from phongfx.sim.stimulus import rng, unit_vectors

@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import ReflectConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.reflect import reflect
 from phongfx.sim.stimulus import codes, rng, unit_vectors

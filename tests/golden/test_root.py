@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import DifferenceConfig, RootConfig, ShapeConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.difference import difference
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.root import root

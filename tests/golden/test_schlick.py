@@ -3,9 +3,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import SchlickConfig
 from phongfx.core.format import Format
+from phongfx.core.registry import get_block
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.schlick import divisor, schlick
 from phongfx.papers.schlick import FIGURE1_N, schlick_table

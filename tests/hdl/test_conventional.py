@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import ConventionalConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.conventional import LATENCY, Conventional
 from phongfx.sim.harness import check
 from phongfx.sim.stimulus.conventional import stimulus

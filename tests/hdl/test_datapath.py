@@ -1,8 +1,9 @@
 import pytest
 from amaranth.hdl import Fragment
 
+from phongfx.config import (DatapathConfig, DifferenceConfig, NormalizeConfig, RootConfig, ShapeConfig,
+                            fig8_config)
 from phongfx.core.registry import get_block
-from phongfx.config import DatapathConfig, DifferenceConfig, NormalizeConfig, RootConfig, ShapeConfig, fig8_config
 from phongfx.hdl.datapath import Datapath
 from phongfx.sim.harness import check
 

@@ -1,8 +1,8 @@
 import pytest
 from amaranth.back import rtlil
 
-from phongfx.core.registry import get_block
 from phongfx.config import DifferenceConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.difference import Difference, signed_digits
 from phongfx.sim.harness import check
 

@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import DiffuseConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.diffuse import Diffuse
 from phongfx.sim.harness import check
 

@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import EulerConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.euler import Euler
 from phongfx.sim.harness import check
 from phongfx.sim.stimulus.euler import span

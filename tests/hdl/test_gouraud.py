@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import GouraudConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.gouraud import Gouraud
 from phongfx.sim.harness import check
 

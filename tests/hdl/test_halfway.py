@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import HALFWAY_VARIANTS, HalfwayConfig, NormalizeConfig, ReflectConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.halfway import Halfway
 from phongfx.sim.harness import check
 

@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.lirp import Lirp
 from phongfx.sim.harness import check
 

@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig, NormalizeConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.normalize import Normalize
 from phongfx.sim.harness import check
 

@@ -6,11 +6,11 @@ import pytest
 from amaranth.hdl import Fragment, Module, Signal
 from amaranth.sim import Simulator
 
-from phongfx.core.registry import get_block
 from phongfx.cli import apply_settings
 from phongfx.config import (DatapathConfig, HalfwayConfig, LirpConfig, NormalizeConfig, RootConfig,
                             ShapeConfig, fig7_config, fig8_config)
 from phongfx.core.format import Format
+from phongfx.core.registry import get_block
 from phongfx.golden.fixed import quantize_raw
 from phongfx.hdl.fixed import FixedValue, align, quantize_cut, split_product, stage
 from phongfx.hdl.lirp import Lirp

@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import ReflectConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.reflect import Reflect
 from phongfx.sim.harness import check
 

@@ -1,8 +1,8 @@
 import pytest
 from amaranth.back import rtlil
 
-from phongfx.core.registry import get_block
 from phongfx.config import RootConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.block import unbuilt
 from phongfx.hdl.root import Root
 from phongfx.hdl.shape import Shape

@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import SchlickConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.schlick import Schlick
 from phongfx.sim.harness import check
 from phongfx.sim.stimulus.schlick import stimulus

@@ -1,7 +1,7 @@
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import ShapeConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.shape import Shape
 from phongfx.sim.harness import check
 from phongfx.sim.stimulus.shape import stimulus

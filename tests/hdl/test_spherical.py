@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import SphericalConfig
+from phongfx.core.registry import get_block
 from phongfx.hdl.spherical import Spherical
 from phongfx.sim.harness import check
 from phongfx.sim.stimulus.spherical import span

@@ -4,11 +4,10 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from phongfx.scene import mesh as meshes
-from phongfx.render import mesh as mesh_render
 from phongfx.golden import spherical_setup
-from phongfx.render.mesh import (LIGHT, METHODS, error_8bit, figure14, figure15, run, shade,
-                                 write_png)
+from phongfx.render import mesh as mesh_render
+from phongfx.render.mesh import LIGHT, METHODS, error_8bit, figure14, figure15, run, shade, write_png
+from phongfx.scene import mesh as meshes
 from phongfx.scene.span_inputs import halfway
 
 H = halfway(LIGHT)

@@ -5,10 +5,10 @@ import os
 import numpy as np
 import pytest
 
-from phongfx.scene.mesh import fit_scale, rasterize, torus
-from phongfx.scene.lyon import Scene, pixels
 from phongfx.scene.file import SceneError, load_scene, parse_scene
 from phongfx.scene.geometry import error_levels, frames, levels, rotation, scene_mesh, shade
+from phongfx.scene.lyon import Scene, pixels
+from phongfx.scene.mesh import fit_scale, rasterize, torus
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
 

@@ -3,8 +3,7 @@ import time
 import numpy as np
 import pytest
 
-from phongfx.scene.mesh import (Mesh, fit_scale, image, rasterize, rasterize_screen, rotation, torus,
-                          uv_sphere)
+from phongfx.scene.mesh import Mesh, fit_scale, image, rasterize, rasterize_screen, rotation, torus, uv_sphere
 
 UP = np.array([0.0, 0.0, 1.0])
 

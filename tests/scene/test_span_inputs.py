@@ -3,10 +3,10 @@ import math
 import numpy as np
 import pytest
 
-from phongfx.scene import span_inputs as si
 from phongfx.core.registry import get_block
 from phongfx.golden.spherical import rom_bound
 from phongfx.golden.spherical_setup import solve_a
+from phongfx.scene import span_inputs as si
 from phongfx.scene.mesh import Spans, rasterize, rotation, torus
 
 LIGHT = np.array([-0.4, 0.5, 0.77]) / np.linalg.norm([-0.4, 0.5, 0.77])

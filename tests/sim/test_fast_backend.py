@@ -10,8 +10,8 @@ import re
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.core.format import Format
+from phongfx.core.registry import get_block
 from phongfx.sim import build_cache, fast_backend
 from phongfx.sim.harness import check, pack, run_backend, schedule
 

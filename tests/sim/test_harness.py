@@ -17,8 +17,8 @@ from amaranth.hdl import Module, Signal
 from amaranth.lib import data, wiring
 from amaranth.lib.wiring import In, Out
 
-from phongfx.core.registry import get_block
 from phongfx.core.format import Format
+from phongfx.core.registry import get_block
 from phongfx.hdl.block import payload_layout
 from phongfx.hdl.fixed import FixedValue, stage
 from phongfx.hdl.lirp import Lirp

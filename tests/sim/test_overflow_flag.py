@@ -8,13 +8,13 @@ import dataclasses
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.config import LirpConfig
 from phongfx.core.format import Format
+from phongfx.core.registry import get_block
 from phongfx.hdl.block import OVERFLOW, checked_outputs
 from phongfx.hdl.fixed import FixedValue
-from phongfx.hdl.overflow import overflow_checks
 from phongfx.hdl.lirp import Lirp
+from phongfx.hdl.overflow import overflow_checks
 from phongfx.sim.harness import BACKENDS, check
 
 LIRP = get_block("lirp")

@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from phongfx.core.registry import get_block
 from phongfx.core.format import OVERFLOWS
+from phongfx.core.registry import get_block
 from phongfx.golden.fixed import Fixed, FixedOverflowError, quantize_raw
 from phongfx.hdl.overflow import overflow_checks
 from phongfx.sim.harness import check

@@ -36,13 +36,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from phongfx.core.registry import get_block
+from phongfx.explore.methods import METHODS
+from phongfx.explore.synth import SynthError
+from phongfx.golden.reference import specular
+from phongfx.scene.geometry import error_levels, frames, shade
+
 from . import run as runs
 from .analysis import analyse
-from phongfx.core.registry import get_block
-from phongfx.golden.reference import specular
-from phongfx.explore.methods import METHODS
-from phongfx.scene.geometry import error_levels, frames, shade
-from phongfx.explore.synth import SynthError
 
 __all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "search_widths", "cost"]
 

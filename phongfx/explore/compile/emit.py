@@ -20,12 +20,13 @@ from collections import Counter
 
 import numpy as np
 
-from . import run as runs
-from phongfx.core.registry import get_block
 from phongfx.config import BlockConfig, DatapathConfig
 from phongfx.core.files import atomic_write
 from phongfx.core.format import Format
+from phongfx.core.registry import get_block
 from phongfx.render.mesh import write_png
+
+from . import run as runs
 
 __all__ = ["formats", "submodules", "manifest", "emit"]
 

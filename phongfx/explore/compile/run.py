@@ -27,12 +27,12 @@ drives), and what diffuse and specular amounts per light do its raw outputs stan
 import numpy as np
 
 from phongfx.core.registry import get_block
+from phongfx.explore.methods import METHODS
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import shade as mesh_shade
 from phongfx.scene.mesh import unit
-from phongfx.explore.methods import METHODS
-from phongfx.sim.stimulus.datapath import encode
 from phongfx.scene.span_inputs import VIEWER, conventional_codes, decode, spherical_inputs
+from phongfx.sim.stimulus.datapath import encode
 
 __all__ = ["DATAPATHS", "EXTRA", "K_MAX", "rejection", "build", "frame_inputs", "frame_terms", "own_specular",
            "block_name", "copies"]

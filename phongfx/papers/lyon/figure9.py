@@ -13,10 +13,10 @@ import os
 
 import numpy as np
 
-from phongfx.core.registry import get_block
 from phongfx.config import HalfwayConfig, ShapeConfig, fig7_config, fig8_config, halfway_config
-from phongfx.golden.reference import METHODS, specular_all
 from phongfx.core.files import atomic_write
+from phongfx.core.registry import get_block
+from phongfx.golden.reference import METHODS, specular_all
 from phongfx.render.lyon import amounts, composite, scene_inputs, shade
 from phongfx.scene.lyon import Scene, pixels
 

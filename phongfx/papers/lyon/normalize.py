@@ -8,10 +8,11 @@ import math
 
 import numpy as np
 
-from phongfx.core.registry import get_block
-from phongfx.papers.claims import cell, row, within
 from phongfx.config import NormalizeConfig
+from phongfx.core.registry import get_block
 from phongfx.golden.reference import specular
+from phongfx.papers.claims import cell, row, within
+
 from .common import LEVELS, SEED, codes, f_k, g_k, rot_y, rotation
 
 __all__ = ["figure4", "spans", "SPAN_ANGLES", "SPAN_N", "INCIDENCE"]

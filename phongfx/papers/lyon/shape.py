@@ -9,6 +9,7 @@ import numpy as np
 
 from phongfx.core.registry import get_block
 from phongfx.papers.claims import first, row, within
+
 from .common import K, alpha_of_x, f_k, fixed_shape, fixed_x2, rot_y, rotation, x_of_alpha
 
 __all__ = ["figure3", "sensitivity"]

@@ -24,8 +24,9 @@ Everything is deterministic (:data:`SEED`); plots are written atomically.
 import os
 
 from phongfx.papers.claims import cell, escape, to_json
-from .common import K, LEVELS, SEED
-from .normalize import SPAN_N, SPAN_ANGLES, figure4, spans
+
+from .common import LEVELS, SEED, K
+from .normalize import SPAN_ANGLES, SPAN_N, figure4, spans
 from .shape import figure3, sensitivity
 
 __all__ = ["TABLES", "SEED", "PLOTS", "lyon", "markdown", "to_json", "run_table"]

@@ -8,9 +8,9 @@ import re
 import pytest
 
 from phongfx.cli import main
+from phongfx.core.registry import get_block
 from phongfx.explore.compile.compiler import SceneEval, compile_scene, width_params
 from phongfx.explore.compile.emit import submodules
-from phongfx.core.registry import get_block
 from phongfx.explore.compile.run import block_name, build
 from phongfx.hdl.emit import verilog
 from phongfx.scene.file import load_scene, parse_scene
