@@ -1,5 +1,6 @@
 """Honest imports: no module-level import cycle, no private name used outside its module,
-no relative import in ``golden/``, ``hdl/``, ``sim/`` that leaves its folder.
+no relative import in ``golden/``, ``hdl/``, ``sim/`` that leaves its folder, no
+module-level import of a higher layer.
 
 The checks read the source with :mod:`ast` (nothing is imported), module names taken from
 ``pyproject.toml``'s package list and ``package-dir`` mapping, so ``sim/harness.py`` is
@@ -17,6 +18,10 @@ The checks read the source with :mod:`ast` (nothing is imported), module names t
   mapping, so ``from ..config import X`` there works only because of it and points, on
   disk, at a file that does not exist; they use ``from phongfx.config import X``.
 
+* The layers of :data:`LAYERS` (``phongfx/__init__.py`` lists them) import, at module
+  level, only themselves and the layers before them.  The registry in ``phongfx.core``
+  loads the faces of a block by name when a block is asked for, not at import.
+
 Each check is also run on a tiny fake tree that breaks it, to show it can fail.
 """
 
@@ -31,6 +36,9 @@ ROOT = Path(__file__).resolve().parent.parent
 MAPPED_FOLDERS = ("golden", "hdl", "sim")
 #: Folders of files that are not part of the package but are held to the private-name rule.
 OTHER_FOLDERS = ("bench", "tests")
+#: The layers of phongfx, lowest first: each may import only itself and those before it.
+LAYERS = ("phongfx.core", "phongfx.config", "phongfx.golden", "phongfx.hdl", "phongfx.sim", "phongfx.scene",
+          "phongfx.render", "phongfx.papers", "phongfx.explore", "phongfx.cli")
 
 
 # ---------------------------------------------------------------- reading the tree
@@ -260,6 +268,28 @@ def assert_no_escaping_relative_imports(root, folders=MAPPED_FOLDERS):
                        + "\n".join(found))
 
 
+def layer_of(module, layers):
+    """Index in ``layers`` of the layer ``module`` belongs to, or None."""
+    for index, layer in enumerate(layers):
+        if module == layer or module.startswith(layer + "."):
+            return index
+    return None
+
+
+def assert_layered(modules, layers=LAYERS):
+    """Fail naming every module-level import of a later layer than the importer's."""
+    found = []
+    for name, edges in sorted(import_graph(modules).items()):
+        low = layer_of(name, layers)
+        for target, line in sorted(edges.items()):
+            high = layer_of(target, layers)
+            if low is not None and high is not None and high > low:
+                found.append(f"{_shown(modules[name][0])}:{line}: {name} ({layers[low]}) imports "
+                             f"{target} ({layers[high]})")
+    if found:
+        pytest.fail("module-level imports of a higher layer:\n" + "\n".join(found))
+
+
 # ---------------------------------------------------------------- the real tree
 
 def _package():
@@ -288,6 +318,13 @@ def test_tests_and_benchmarks_use_no_private_name_of_the_package():
 
 def test_no_relative_import_leaves_a_mapped_folder():
     assert_no_escaping_relative_imports(ROOT)
+
+
+def test_every_layer_imports_only_the_layers_before_it():
+    modules = _package()
+    assert {layer_of(name, LAYERS) for name in modules} == set(range(len(LAYERS))) | {None}
+    assert [name for name in modules if layer_of(name, LAYERS) is None] == ["phongfx"]
+    assert_layered(modules)
 
 
 # ---------------------------------------------------------------- each check can fail
@@ -368,3 +405,13 @@ def test_an_escaping_relative_import_fails(tmp_path):
         f"{tmp_path / 'low' / 'bad.py'}:2: from ..config import X"]
     with pytest.raises(AssertionError, match=r"bad\.py:2: from \.\.config import X"):
         assert_no_escaping_relative_imports(tmp_path, ("low",))
+
+
+def test_an_import_of_a_higher_layer_fails(tmp_path):
+    _tree(tmp_path, {"fake/__init__.py": "", "low/__init__.py": "",
+                     "low/base.py": "from fake.top import X\n",
+                     "fake/top.py": "X = 1\n"})
+    modules = package_modules(tmp_path, *layout(tmp_path))
+    assert_layered(modules, ("fake.top", "fake.low"))  # top is the lower layer here: allowed
+    with pytest.raises(pytest.fail.Exception, match=r"fake\.low\.base \(fake\.low\) imports fake\.top "):
+        assert_layered(modules, ("fake.low", "fake.top"))

@@ -15,6 +15,12 @@ One module per block, named like the block's files in ``golden/``, ``hdl/`` and
 pipeline and field checks, the port declarations, the vector width) and
 :mod:`~phongfx.config.datapath` the whole datapaths of Figures 7, 8 and 5.
 
+Port names keep the papers' letters, and ``n`` is two of them: the **normal** on the
+ports of the LIRP (``n0``, ``n1`` in, ``n`` out), the normalizer, reflect, diffuse and
+the halfway unit; the **shininess** on those of difference, Schlick's unit, the
+conventional baseline and the datapaths (whose normals are ``n0``, ``n1``; Figure 8's
+root unit takes ``m = √n``).
+
 May import: ``phongfx.core``.
 """
 
