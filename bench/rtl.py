@@ -33,7 +33,7 @@ TARGET_SECONDS = 10.0
 
 
 def _stimulus(block, count, seed):
-    # vectors() adds its directed cases to the random ones: cut to exactly ``count``
+    # stimulus() adds its directed cases to the random ones: cut to exactly ``count``
     raw = block.stimulus(count=count, seed=seed)
     return {name: value[:count] for name, value in raw.items()}
 

@@ -9,7 +9,7 @@ from fractions import Fraction
 import numpy as np
 
 from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
-from .extreme import Extreme, constant, corner, equal, round_exact, zero
+from .extreme import Extreme, at_shininess_ends, constant, corner, equal, round_exact, zero
 
 __all__ = ["stimulus", "extremes"]
 
@@ -55,10 +55,7 @@ def stimulus(config, count=1000, seed=0):
 
 
 def _rows(c, r, l):
-    """Each pair ``r``, ``l`` at n = 1 and at ``n_max``."""
-    ns = sorted({1, c.n_max})
-    return {"r": np.tile(codes(r, c.vec), (len(ns), 1)), "l": np.tile(codes(l, c.vec), (len(ns), 1)),
-            "n": np.repeat(np.asarray(ns, dtype=np.int64), len(r))}
+    return at_shininess_ends(c, r, l, "n", c.n_max)
 
 
 def _x2_exact(c, i, o):

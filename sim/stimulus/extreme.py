@@ -21,9 +21,9 @@ import numpy as np
 
 from phongfx.golden.euler import segments
 
-from . import concat, rng
+from . import codes, concat, rng
 
-__all__ = ["Extreme", "equal", "round_exact", "wrap", "constant", "corner", "exactly", "zero",
+__all__ = ["Extreme", "at_shininess_ends", "equal", "round_exact", "wrap", "constant", "corner", "exactly", "zero",
            "equal_to", "all_of", "accumulator_rows"]
 
 
@@ -98,6 +98,15 @@ def all_of(*checks):
     def holds(c, i, o):
         return np.all([check(c, i, o) for check in checks], axis=0)
     return holds
+
+
+def at_shininess_ends(config, r, l, port, top):
+    """Raw inputs: each direction pair ``r``, ``l`` (floats, (count, 3), coded in
+    ``config.vec``) at shininess ``port`` = 1 and at ``top`` (the block's largest)."""
+    ends = sorted({1, top})
+    return {"r": np.tile(codes(r, config.vec), (len(ends), 1)),
+            "l": np.tile(codes(l, config.vec), (len(ends), 1)),
+            port: np.repeat(np.asarray(ends, dtype=np.int64), len(r))}
 
 
 def _closed_form(c, i, o, steps):

@@ -7,7 +7,7 @@ m the hardware has) and no ``m`` port is returned.
 import numpy as np
 
 from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
-from .extreme import Extreme, constant, corner, exactly, zero
+from .extreme import Extreme, at_shininess_ends, constant, corner, exactly, zero
 
 __all__ = ["stimulus", "fraction_codes", "pairs", "extremes"]
 
@@ -97,10 +97,7 @@ def stimulus(config, count=1000, seed=0):
 
 
 def _rows(c, r, l):
-    """Each pair ``r``, ``l`` at m = 1 and at ``m_max``."""
-    ms = sorted({1, c.m_max})
-    return {"r": np.tile(codes(r, c.vec), (len(ms), 1)), "l": np.tile(codes(l, c.vec), (len(ms), 1)),
-            "m": np.repeat(np.asarray(ms, dtype=np.int64), len(r))}
+    return at_shininess_ends(c, r, l, "m", c.m_max)
 
 
 def _d2(c, i, o):
