@@ -27,13 +27,12 @@ registry), :class:`Format`, and the datapath configurations of Lyon's Figures 7,
 
 from importlib import import_module
 
-__all__ = ["Format", "get_block", "block_names", "DatapathConfig", "fig7_config", "fig8_config",
-           "halfway_config"]
-
+#: public name -> the module it lives in
 _HOMES = {"Format": "phongfx.core.format", "get_block": "phongfx.core.registry",
           "block_names": "phongfx.core.registry", "DatapathConfig": "phongfx.config",
           "fig7_config": "phongfx.config", "fig8_config": "phongfx.config",
           "halfway_config": "phongfx.config"}
+__all__ = list(_HOMES)
 
 
 def __getattr__(name):

@@ -105,18 +105,18 @@ class BlockConfig:
     VECTOR_FIELDS = {}
 
     def __post_init__(self):
+        # a composite's depth is checked before its sub-configs are rebuilt with it, a
+        # leaf's after its rounding: the first error named is the one it always was
         if self.PIPELINED:
-            self._inherit_pipeline()
+            self._inherit_pipeline(check_int("pipeline", self.pipeline, 0, MAX_PIPELINE))
         if hasattr(self, "rounding"):
             check_rounding(self.rounding)
-        if hasattr(self, "pipeline"):
+        if hasattr(self, "pipeline") and not self.PIPELINED:
             check_int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         self.validate()
 
-    def _inherit_pipeline(self):
-        # validated first, so that a bad depth is named before any sub-config is rebuilt;
+    def _inherit_pipeline(self, depth):
         # a sub-config of the wrong type is left for validate to name
-        depth = check_int("pipeline", self.pipeline, 0, MAX_PIPELINE)
         for name in self.PIPELINED:
             sub = getattr(self, name)
             if isinstance(sub, BlockConfig) and getattr(sub, "pipeline", depth) < depth:

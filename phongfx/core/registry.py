@@ -55,6 +55,12 @@ class Entry:
                    f"phongfx.sim.stimulus.{module}:stimulus",
                    f"phongfx.sim.stimulus.{module}:extremes")
 
+    @property
+    def module(self):
+        """The name of the block's files (``"root"``; ``"datapath"`` for the three datapaths),
+        as the naming rule of :meth:`of` puts it at the end of every path."""
+        return self.golden.partition(":")[0].rpartition(".")[2]
+
     def load(self, face):
         """The object behind the path of field ``face`` (``"config"``, ``"golden"``, ...)."""
         return _load(getattr(self, face))

@@ -75,10 +75,9 @@ def run_table(name, out_dir=None, backend="amaranth"):
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
     rows, seconds = [], {}
-    for block in block_names():
-        if rows_for(block):
-            block_rows, seconds[block] = run_block(block, backend)
-            rows += block_rows
+    for block in block_names():  # every registered block has extreme rows
+        block_rows, seconds[block] = run_block(block, backend)
+        rows += block_rows
     return {"source": "stability: every block at the extreme classes of its inputs", "backend": backend,
             "rows": rows, "seconds": seconds}
 

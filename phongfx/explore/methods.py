@@ -67,25 +67,20 @@ class MethodSpec:
 # The three Lyon datapaths take every direction-vector format from ``vec_frac`` through
 # DatapathConfig's derived setting, so a sweep point and ``--set vec_frac=F`` agree.
 
-def _build_fig7(p):
-    x2 = f"13.{p['x2_frac']}"
-    base = REGISTRY["fig7"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-    return base.replace(difference=base.difference.replace(x2=x2),
-                        shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
+def _shape_datapath(block):
+    """Builder of a datapath ending in ``difference`` → ``shape`` (Figure 7, halfway)."""
+    def build(p):
+        x2 = f"13.{p['x2_frac']}"
+        base = REGISTRY[block].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
+        return base.replace(difference=base.difference.replace(x2=x2),
+                            shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
+    return build
 
 
 def _build_fig8(p):
     base = REGISTRY["fig8"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
     return base.replace(root=base.root.replace(frac=f"0.{p['root_frac']}", t=f"1.{p['t_frac']}",
                                                k=p["k"]))
-
-
-def _build_halfway(p):
-    x2 = f"13.{p['x2_frac']}"
-    base = REGISTRY["halfway_datapath"].default_config().replace(vec_frac=p["vec_frac"],
-                                                                 lights=p["lights"])
-    return base.replace(difference=base.difference.replace(x2=x2),
-                        shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
 
 
 def _build_spherical(p):
@@ -228,14 +223,14 @@ _VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)
 METHODS = {spec.name: spec for spec in (
     MethodSpec("fig7", "fig7", {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
                {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (0, 2), "n": _N,
-                "lights": _LIGHTS}, _build_fig7, _run_fig7),
+                "lights": _LIGHTS}, _shape_datapath("fig7"), _run_fig7),
     MethodSpec("fig8", "fig8", {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
                {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": (0, 2), "n": (1, 63 * 63),
                 "lights": _LIGHTS}, _build_fig8, _run_fig8),
     MethodSpec("halfway", "halfway_datapath",
                {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
                {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, 2), "n": _N,
-                "lights": _LIGHTS}, _build_halfway, _run_halfway),
+                "lights": _LIGHTS}, _shape_datapath("halfway_datapath"), _run_halfway),
     MethodSpec("spherical", "spherical", {"addr_bits": 6, "rom_bits": 6, "theta_frac": 11, "n": 16},
                {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},
                _build_spherical, _run_spherical),

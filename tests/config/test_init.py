@@ -23,11 +23,9 @@ def test_public_names_kept():
 
 def test_one_module_per_block():
     modules = {path.stem for path in PACKAGE.glob("*.py")} - {"__init__", "base"}
-    blocks = {"datapath" if name in ("fig7", "fig8", "halfway_datapath") else name for name in REGISTRY}
-    assert modules == blocks
-    for name, entry in REGISTRY.items():
-        module = "datapath" if name in ("fig7", "fig8", "halfway_datapath") else name
-        assert entry.config.startswith(f"phongfx.config.{module}:")
+    assert modules == {entry.module for entry in REGISTRY.values()}
+    for entry in REGISTRY.values():
+        assert entry.config.startswith(f"phongfx.config.{entry.module}:")
 
 
 def test_registry_defaults_unchanged():

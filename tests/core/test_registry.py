@@ -29,8 +29,9 @@ def test_every_face_lives_in_a_file_named_after_the_block(name):
         package, _, leaf = module.rpartition(".")
         assert os.path.isfile(os.path.join(ROOT, FOLDERS[package], f"{leaf}.py")), (face, module)
         assert hasattr(importlib.import_module(module), attribute), (face, getattr(entry, face))
+        assert leaf == entry.module
     # the datapaths share one module per folder; every other block has its own name
-    assert leaf == ("datapath" if name in ("fig7", "fig8", "halfway_datapath") else name)
+    assert entry.module == ("datapath" if name in ("fig7", "fig8", "halfway_datapath") else name)
 
 
 @pytest.mark.parametrize("name", list(REGISTRY))
