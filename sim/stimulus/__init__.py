@@ -16,7 +16,7 @@ import numpy as np
 from phongfx.golden.fixed import Fixed
 
 __all__ = ["rng", "random_codes", "unit_vectors", "codes", "concat", "at_angle", "AXES", "axis_pairs",
-           "perpendicular_pairs", "EXHAUSTIVE_LIMIT"]
+           "perpendicular_pairs", "scanline", "init_ends", "random_scanlines", "EXHAUSTIVE_LIMIT"]
 
 #: Largest input space that is checked exhaustively.
 EXHAUSTIVE_LIMIT = 1 << 16
@@ -73,3 +73,36 @@ def concat(*parts):
     """Concatenate dicts of raw code arrays port by port."""
     return {name: np.concatenate([np.asarray(part[name], dtype=np.int64) for part in parts])
             for name in parts[0]}
+
+
+def scanline(config, ports, length, generator, **loads):
+    """Raw inputs of one scanline of ``length`` pixels of a stateful scanline unit (Hast et
+    al.'s Euler and Gouraud units): ``init`` and the raw ``loads`` of ``ports`` ``{load
+    port: register format field}`` (random when not given) on the first pixel, random junk
+    on the rest, which the unit must ignore."""
+    raw = {name: random_codes(config.fmt(fmt), length, generator) for name, fmt in ports.items()}
+    for name, value in loads.items():
+        raw[name][0] = value
+    raw["init"] = np.zeros(length, dtype=np.int64)
+    raw["init"][0] = 1
+    return raw
+
+
+def init_ends(config, span, generator):
+    """Scanlines of one pixel, ``init`` back to back, over the end codes of ``p`` (and 1.0
+    where ``p`` holds it); ``span`` is the unit's ``(config, length, generator, **loads)``."""
+    p = config.fmt("p")
+    return [span(config, 1, generator, p0=code)
+            for code in (p.min_raw, p.max_raw, 0, -1, 1, min(p.one, p.max_raw))]
+
+
+def random_scanlines(config, count, generator, span, geometric):
+    """Random scanlines of 1..39 pixels up to ``count`` pixels, half of them ``geometric``
+    (from a span setup), half ``span`` (random codes): the unit's own builders."""
+    parts = []
+    while count > 0:
+        length = min(int(generator.integers(1, 40)), count)
+        parts.append(geometric(config, length, generator) if generator.random() < 0.5
+                     else span(config, length, generator))
+        count -= length
+    return parts

@@ -13,7 +13,7 @@ import numpy as np
 
 from phongfx.golden.euler_setup import quantize_setup, random_spans, span_setup
 
-from . import concat, random_codes, rng
+from . import concat, init_ends, random_scanlines, rng, scanline
 from .extreme import accumulator_rows
 
 __all__ = ["stimulus", "span", "geometric", "extremes", "PORTS"]
@@ -23,14 +23,9 @@ PORTS = {"p0": "p", "t0": "t", "ds": "ds"}
 
 
 def span(config, length, generator, **loads):
-    """Raw inputs of one scanline of ``length`` pixels: ``init`` and the raw ``loads``
-    (``p0``, ``t0``, ``ds``; random when not given) on the first, junk on the rest."""
-    raw = {name: random_codes(config.fmt(fmt), length, generator) for name, fmt in PORTS.items()}
-    for name, value in loads.items():
-        raw[name][0] = value
-    raw["init"] = np.zeros(length, dtype=np.int64)
-    raw["init"][0] = 1
-    return raw
+    """Raw inputs of one scanline of ``length`` pixels (:func:`~phongfx.sim.stimulus.scanline`
+    with ``p0``, ``t0``, ``ds`` as the loads)."""
+    return scanline(config, PORTS, length, generator, **loads)
 
 
 def geometric(config, length, generator, max_angle=np.pi / 3, compensate=False):
@@ -46,16 +41,10 @@ def stimulus(config, count=1000, seed=0):
     p, t, d = (config.fmt(name) for name in ("p", "t", "ds"))
     parts = [geometric(config, 1, g), geometric(config, 2, g), geometric(config, 2048, g),
              geometric(config, 2048, g, compensate=True), geometric(config, 2, g, np.pi)]
-    # init back to back; 1.0 where p holds it
-    parts += [span(config, 1, g, p0=code) 
-              for code in (p.min_raw, p.max_raw, 0, -1, 1, min(p.one, p.max_raw))]
+    parts += init_ends(config, span, g)
     for t0, ds in ((t.max_raw, d.max_raw), (t.min_raw, d.min_raw), (t.max_raw, d.min_raw), (0, d.max_raw)):
         parts.append(span(config, 8, g, p0=p.max_raw, t0=t0, ds=ds))
-    while count > 0:
-        length = min(int(g.integers(1, 40)), count)
-        parts.append(geometric(config, length, g) if g.random() < 0.5 else span(config, length, g))
-        count -= length
-    return concat(*parts)
+    return concat(*parts, *random_scanlines(config, count, g, span, geometric))
 
 
 def extremes(block_name):

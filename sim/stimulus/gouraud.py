@@ -10,7 +10,7 @@ import numpy as np
 
 from phongfx.golden.euler_setup import quantize_gouraud, random_spans, span_setup
 
-from . import concat, random_codes, rng
+from . import concat, init_ends, random_scanlines, rng, scanline
 from .extreme import accumulator_rows
 
 __all__ = ["stimulus", "span", "geometric", "extremes", "PORTS"]
@@ -20,14 +20,9 @@ PORTS = {"p0": "p", "dp": "dp"}
 
 
 def span(config, length, generator, **loads):
-    """Raw inputs of one scanline of ``length`` pixels: ``init`` and the raw ``loads``
-    (``p0``, ``dp``; random when not given) on the first, junk on the rest."""
-    raw = {name: random_codes(config.fmt(fmt), length, generator) for name, fmt in PORTS.items()}
-    for name, value in loads.items():
-        raw[name][0] = value
-    raw["init"] = np.zeros(length, dtype=np.int64)
-    raw["init"][0] = 1
-    return raw
+    """Raw inputs of one scanline of ``length`` pixels (:func:`~phongfx.sim.stimulus.scanline`
+    with ``p0``, ``dp`` as the loads)."""
+    return scanline(config, PORTS, length, generator, **loads)
 
 
 def geometric(config, length, generator, max_angle=np.pi / 3):
@@ -41,16 +36,10 @@ def stimulus(config, count=1000, seed=0):
     g = rng(seed)
     p, dp = config.fmt("p"), config.fmt("dp")
     parts = [geometric(config, 1, g), geometric(config, 2, g), geometric(config, 2048, g)]
-    # init back to back; 1.0 where p holds it
-    parts += [span(config, 1, g, p0=code) 
-              for code in (p.min_raw, p.max_raw, 0, -1, 1, min(p.one, p.max_raw))]
+    parts += init_ends(config, span, g)
     for p0, step in ((p.max_raw, dp.max_raw), (p.min_raw, dp.min_raw), (0, dp.min_raw)):
         parts.append(span(config, 8, g, p0=p0, dp=step))
-    while count > 0:
-        length = min(int(g.integers(1, 40)), count)
-        parts.append(geometric(config, length, g) if g.random() < 0.5 else span(config, length, g))
-        count -= length
-    return concat(*parts)
+    return concat(*parts, *random_scanlines(config, count, g, span, geometric))
 
 
 def extremes(block_name):
