@@ -18,7 +18,7 @@ from phongfx.papers import szirmay as szirmay_tables
 from phongfx.render.mesh import run
 from phongfx.sim.harness import pack, run_backend, schedule
 
-VERILOG_BLOCKS = ("fig7", "spherical", "conventional")
+VERILOG_BLOCKS = ("fig7", "spherical", "blinn")
 
 
 def _verilog_digest(name):
@@ -71,7 +71,7 @@ def test_golden_vectors_depend_on_the_seed():
     assert not np.array_equal(block.stimulus(count=50, seed=1)["n0"], block.stimulus(count=50, seed=2)["n0"])
 
 
-@pytest.mark.parametrize("method", ["phong", "spherical", "conventional", "euler-unit"])
+@pytest.mark.parametrize("method", ["phong", "spherical", "blinn", "euler-unit"])
 def test_mesh_png_identical_twice(tmp_path, method):
     options = dict(polygons=288, width=64, height=64, frame=3)
     first = run(method, out_dir=str(tmp_path / "a"), **options)

@@ -129,7 +129,7 @@ def build_parser():
     p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43), "
                                          "`tables szirmay` (Szirmay-Kalos et al. 2000), `tables schlick` (Figure 1), "
                                          "`tables hast` (Hast et al. Tables 1–2), `tables cost` (synthesis: Figure 7 "
-                                         "vs Figure 8 vs the conventional baseline), `tables pipeline` (Fmax against pipeline depth)")
+                                         "vs Figure 8 vs the Blinn–Phong baseline), `tables pipeline` (Fmax against pipeline depth)")
     p.add_argument("table", help="which table (lyon, szirmay, schlick, hast, cost, pipeline)")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")

@@ -18,14 +18,14 @@ pipeline and field checks, the port declarations, the vector width) and
 Port names keep the papers' letters, and ``n`` is two of them: the **normal** on the
 ports of the LIRP (``n0``, ``n1`` in, ``n`` out), the normalizer, reflect, diffuse and
 the halfway unit; the **shininess** on those of difference, Schlick's unit, the
-conventional baseline and the datapaths (whose normals are ``n0``, ``n1``; Figure 8's
+Blinn–Phong baseline and the datapaths (whose normals are ``n0``, ``n1``; Figure 8's
 root unit takes ``m = √n``).
 
 May import: ``phongfx.core``.
 """
 
 from .base import MAX_PIPELINE, BlockConfig
-from .conventional import ConventionalConfig
+from .blinn import BlinnConfig
 from .datapath import SPECULAR_UNITS, DatapathConfig, fig7_config, fig8_config, halfway_config
 from .difference import DifferenceConfig
 from .diffuse import DiffuseConfig
@@ -43,7 +43,7 @@ from .spherical import SphericalConfig
 __all__ = [
     "BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
     "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
-    "EulerConfig", "GouraudConfig", "ConventionalConfig",
+    "EulerConfig", "GouraudConfig", "BlinnConfig",
     "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
     "MAX_PIPELINE",
 ]

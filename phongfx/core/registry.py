@@ -132,7 +132,7 @@ REGISTRY = {entry.name: entry for entry in (
     _("spherical", "SphericalConfig", "Spherical"),
     _("euler", "EulerConfig", "Euler"),
     _("gouraud", "GouraudConfig", "Gouraud"),
-    _("conventional", "ConventionalConfig", "Conventional"),
+    _("blinn", "BlinnConfig", "Blinn"),
     # the three datapaths of Lyon's Figures 7, 8 and 5: one component, three configs
     _("fig7", "fig7_config", "Datapath", module="datapath"),
     _("fig8", "fig8_config", "Datapath", module="datapath"),

@@ -18,7 +18,7 @@ maps it, in the unit of :mod:`phongfx.explore.cost_table` (LUT-eq = LUT4 + 958·
 * registers are counted (``ff_bits``) but priced 0, as LUT-eq prices them.
 
 Checked against ECP5 synthesis of the defaults: the DSP counts of Figure 7 (39),
-the spherical unit (4) match; the conventional baseline's 26 against 20 synthesized;
+the spherical unit (4) match; the Blinn–Phong baseline's 26 against 20 synthesized;
 LUTs run high (Yosys folds much of the rounding and saturation logic).
 
 Identical cells (same inputs) count once, as Yosys merges them.  It is a ranking

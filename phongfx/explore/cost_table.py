@@ -10,7 +10,7 @@ in the arrangement of Figure 7".  This table synthesizes, places and routes
 * ``shape`` — Figure 7d (``f_k``, ``k = 2``), which Figure 7 needs after 7c;
 * ``root`` — Figure 8 (``|D|·m``, fraction-only dot product, augmented comparator and
   its own shape ``f_1``), so it compares with ``difference`` + ``shape`` (a derived row);
-* ``fig7``, ``fig8`` — the whole datapaths (two lights), and ``conventional`` Phong.
+* ``fig7``, ``fig8`` — the whole datapaths (two lights), and the ``blinn`` (Blinn–Phong) baseline.
 
 Cost in LUT-equivalents uses :data:`phongfx.explore.report.DSP_LUT_WEIGHT` per DSP.  The
 multiplier sizes of our formats are derived from the configs (:func:`multipliers`);
@@ -30,7 +30,7 @@ __all__ = ["TABLES", "BLOCKS", "CLAIM", "N", "WHAT", "multipliers", "cost_table"
            "to_json"]
 
 TABLES = ("cost",)
-BLOCKS = ("difference", "shape", "root", "fig7", "fig8", "conventional")
+BLOCKS = ("difference", "shape", "root", "fig7", "fig8", "blinn")
 #: Lyon's words, from the end of "Hardware Rearrangements for Bit Reductions".
 CLAIM = ("Figure 8: \"the six 7×11 and 9×9 multipliers are likely to be smaller and faster than "
          "the three 12×12 and one 14×22 required for similar accuracy in the arrangement of Figure 7\" "
@@ -40,7 +40,7 @@ N = 16
 #: What each compared block is, as its row says it.
 WHAT = {"difference": "Figure 7c: D, D·D, n·D·D", "shape": "Figure 7d: f_2",
         "root": "Figure 8: m·abs(D), Σu², comparator, f_1", "fig7": "Figure 7 datapath, 2 lights",
-        "fig8": "Figure 8 datapath, 2 lights", "conventional": "conventional Phong (rsqrt, table)"}
+        "fig8": "Figure 8 datapath, 2 lights", "blinn": "Blinn–Phong (rsqrt, log/exp tables)"}
 _KEYS = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "latency", "met", "cached")
 
 
@@ -103,7 +103,7 @@ def cost_table(blocks=BLOCKS, *, target="ecp5", freq=150, n=N, workdir="build/sy
     if all(b in rows and "error" not in rows[b] for b in ("difference", "shape")):
         rows["difference+shape"] = _combined(rows["difference"], rows["shape"], "difference+shape",
                                              "Figure 7c + 7d in series")
-    order = [b for b in ("difference", "shape", "difference+shape", "root", "fig7", "fig8", "conventional")
+    order = [b for b in ("difference", "shape", "difference+shape", "root", "fig7", "fig8", "blinn")
              if b in rows]
     accuracy = _accuracy([m for m in ("fig7", "fig8") if m in blocks], n)
     return {"table": "cost", "claim": CLAIM, "target": target, "freq": freq, "n": n,

@@ -17,7 +17,7 @@ from phongfx.golden import euler_setup
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import LIGHT, shade
 from phongfx.scene import mesh as meshes
-from phongfx.scene.span_inputs import (VIEWER, conventional_inputs, decode, euler_inputs, gouraud_inputs,
+from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, decode, euler_inputs, gouraud_inputs,
                                        halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
@@ -105,8 +105,8 @@ def _build_schlick(p):
     return REGISTRY["schlick"].default_config().replace(t=f"1.{p['t_frac']}", out=f"1.{p['out_frac']}")
 
 
-def _build_conventional(p):
-    return REGISTRY["conventional"].default_config().replace(
+def _build_blinn(p):
+    return REGISTRY["blinn"].default_config().replace(
         vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"], log_addr=p["table_addr"],
         exp_addr=p["table_addr"])
 
@@ -212,11 +212,11 @@ def _run_schlick(spec, config, p, scene):
     return decode("schlick", out, config), {"phong": _nh_phong(scene, n), "self": t / (n - n * t + t)}
 
 
-def _run_conventional(spec, config, p, scene):
+def _run_blinn(spec, config, p, scene):
     d, n = scene.data, p["n"]
-    out = get_block("conventional", config=config).golden(conventional_inputs(d["spans"], d["light"], n, config))
+    out = get_block("blinn", config=config).golden(blinn_inputs(d["spans"], d["light"], n, config))
     phong = _nh_phong(scene, n)
-    return decode("conventional", out, config, "spec"), {"phong": phong, "self": phong}
+    return decode("blinn", out, config, "spec"), {"phong": phong, "self": phong}
 
 
 _VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)
@@ -242,7 +242,7 @@ METHODS = {spec.name: spec for spec in (
                _build_gouraud, _run_scanline("gouraud", gouraud_inputs, "gouraud")),
     MethodSpec("schlick", "schlick", {"t_frac": 15, "out_frac": 15, "n": 16},
                {"t_frac": (2, 30), "out_frac": (2, 30), "n": _N}, _build_schlick, _run_schlick),
-    MethodSpec("conventional", "conventional", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
+    MethodSpec("blinn", "blinn", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
                {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
-               _build_conventional, _run_conventional),
+               _build_blinn, _run_blinn),
 )}

@@ -243,18 +243,18 @@ def summary_markdown(records, error_key="torus.phong.max", *, dsp_weight=DSP_LUT
 
 
 def _baseline(records, error_key, dsp_weight):
-    mine = [r for r in records if r.get("method") == "conventional" and r.get("status") == "ok"
+    mine = [r for r in records if r.get("method") == "blinn" and r.get("status") == "ok"
             and value(r, error_key) is not None]
-    lines = ["## Conventional Phong baseline", ""]
+    lines = ["## Blinn–Phong baseline", ""]
     if not mine:
-        return lines + ["The sweep has no `conventional` point.", ""]
-    lines += ["Every `conventional` point of the sweep (normalize by reciprocal square root, "
+        return lines + ["The sweep has no `blinn` point.", ""]
+    lines += ["Every `blinn` point of the sweep (normalize by reciprocal square root, "
               "(N̂·H)^n by table), cheapest first:", "",
               "| method | params | max error (levels) | LUT4 | DSP | LUT-eq | Fmax MHz | Mpixel/s |",
               "|---|---|---:|---:|---:|---:|---:|---:|"]
     mine.sort(key=lambda r: (lut_equivalent(r.get("cost"), dsp_weight) is None,
                              lut_equivalent(r.get("cost"), dsp_weight) or 0.0, value(r, error_key)))
-    lines += [_row("conventional", r, error_key, dsp_weight) for r in mine]
+    lines += [_row("blinn", r, error_key, dsp_weight) for r in mine]
     return lines + [""]
 
 
@@ -315,12 +315,12 @@ def build_report(out_dir="build/report", sweep_dir="build/sweep",
                  tables=("lyon", "szirmay", "hast", "schlick", "cost", "pipeline"), quick=False,
                  error_keys=("torus.phong.max", "torus.self.max"), dsp_weight=DSP_LUT_WEIGHT):
     """Write ``out_dir/index.md``: the papers' tables measured, then the sweep's Pareto plots,
-    cheapest invisible-error datapaths and the conventional baseline.
+    cheapest invisible-error datapaths and the Blinn–Phong baseline.
 
     Each table module's ``run_table`` writes its plots under ``out_dir/<table>``.  For each
     of ``error_keys`` (default: error against float Phong, then against the method's own
     float form, on the torus) the sweep gets a Pareto plot (``out_dir/pareto.png`` for the
-    first, ``pareto_<key>.png`` for the others) and a summary; the conventional baseline is
+    first, ``pareto_<key>.png`` for the others) and a summary; the Blinn–Phong baseline is
     listed by the first key.  ``index.md`` is written last and atomically: on any error it
     is left as it was.  ``quick`` runs the slow tables smaller (:data:`_QUICK`).
     Returns the path of ``index.md``.

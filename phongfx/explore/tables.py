@@ -14,7 +14,7 @@ TABLES = {
     "szirmay": "phongfx.papers.szirmay",             # Szirmay-Kalos et al. 2000: Table 1, Figure 11
     "schlick": "phongfx.papers.schlick",             # Schlick 1994: Figure 1
     "hast": "phongfx.papers.hast",                   # Hast, Barrera, Bengtsson: Tables 1-2 on tori
-    "cost": "phongfx.explore.cost_table",            # synthesis: Figure 7 vs Figure 8 vs conventional
+    "cost": "phongfx.explore.cost_table",            # synthesis: Figure 7 vs Figure 8 vs blinn
     "pipeline": "phongfx.explore.pipeline_table",    # synthesis: Fmax against pipeline depth
     "extremes": "phongfx.explore.extremes",          # stability: every block at its extreme inputs
 }

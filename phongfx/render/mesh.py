@@ -24,9 +24,9 @@ directional light and the viewer at infinity (``H`` constant).  Methods:
   formats) fed by :func:`phongfx.scene.span_inputs.euler_inputs` / ``gouraud_inputs``, then
   clamped and raised like the float methods (so ``gouraud-unit`` interpolates the dot
   products, not the end intensities as ``gouraud`` does);
-* ``conventional``: the 16-bit conventional Phong baseline (:mod:`phongfx.golden.conventional`:
+* ``blinn``: the 16-bit Blinn–Phong baseline (:mod:`phongfx.golden.blinn`:
   reciprocal square root by table and Newton step, ``t^n`` by log2/exp2 tables) on the
-  interpolated normal of every pixel, fed by :func:`phongfx.scene.span_inputs.conventional_inputs`.
+  interpolated normal of every pixel, fed by :func:`phongfx.scene.span_inputs.blinn_inputs`.
 
 Errors are ``255·|I - I_phong|`` over the visible pixels (8-bit levels, as Hast's
 Table 2), for the composite and for each term.
@@ -43,14 +43,14 @@ from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
 from phongfx.golden import euler_setup, spherical_setup
 from phongfx.scene import mesh as meshes
-from phongfx.scene.span_inputs import (conventional_inputs, decode, euler_inputs, gouraud_inputs, halfway,
+from phongfx.scene.span_inputs import (blinn_inputs, decode, euler_inputs, gouraud_inputs, halfway,
                                        spherical_inputs)
 
 __all__ = ["METHODS", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
            "shade", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
 METHODS = ("phong", "gouraud", "euler", "corrected-euler", "cosn", "cos2", "spherical",
-           "euler-unit", "gouraud-unit", "conventional")
+           "euler-unit", "gouraud-unit", "blinn")
 MESHES = ("torus", "sphere")
 #: Up, left and towards the viewer, so the highlight sits on the visible side.
 LIGHT = (-0.4, 0.5, 0.77)
@@ -132,11 +132,11 @@ def shade(spans, method, *, light=LIGHT, n=20, addr_bits=6, rom_bits=6):
         curve = [decode(unit, block.golden(feed(spans, v, block.config)), block.config)
                  for v in (light, h)]
         return curve[0], _power(curve[1], n)
-    if method == "conventional":
-        block = get_block("conventional")
-        out = block.golden(conventional_inputs(spans, light, n, block.config))
-        return (decode("conventional", out, block.config, "diff"),
-                decode("conventional", out, block.config, "spec"))
+    if method == "blinn":
+        block = get_block("blinn")
+        out = block.golden(blinn_inputs(spans, light, n, block.config))
+        return (decode("blinn", out, block.config, "diff"),
+                decode("blinn", out, block.config, "spec"))
     config = SphericalConfig(addr_bits=addr_bits, rom=f"0.{rom_bits}")
     block = get_block("spherical", addr_bits=addr_bits, rom=f"0.{rom_bits}")
     raw = spherical_inputs(spans, light, n, config)

@@ -22,18 +22,18 @@ Szirmay-Kalos both use).
 
 import numpy as np
 
-from phongfx.config import ConventionalConfig, EulerConfig, GouraudConfig, SchlickConfig, SphericalConfig
+from phongfx.config import BlinnConfig, EulerConfig, GouraudConfig, SchlickConfig, SphericalConfig
 from phongfx.golden import euler_setup, spherical_setup
 from phongfx.golden.fixed import Fixed
 
 __all__ = ["VIEWER", "UNITS", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",
-           "spherical_inputs", "schlick_inputs", "conventional_inputs", "conventional_codes", "inputs", "decode"]
+           "spherical_inputs", "schlick_inputs", "blinn_inputs", "blinn_codes", "inputs", "decode"]
 
 #: Viewer direction in eye space (orthographic view along -z, viewer at infinity).
 VIEWER = np.array([0.0, 0.0, 1.0])
 
 #: The units with a per-pixel input stream built here.
-UNITS = ("euler", "gouraud", "spherical", "schlick", "conventional")
+UNITS = ("euler", "gouraud", "spherical", "schlick", "blinn")
 
 
 def _unit(name, vector):
@@ -160,8 +160,8 @@ def schlick_inputs(spans, light, n, config=SchlickConfig()):
     return {"t": raw.astype(np.int64), "n": np.full(len(raw), int(n), dtype=np.int64)}
 
 
-def conventional_inputs(spans, light, n, config=ConventionalConfig()):
-    """Raw inputs of the conventional Phong baseline: per pixel the interpolated normal
+def blinn_inputs(spans, light, n, config=BlinnConfig()):
+    """Raw inputs of the Blinn–Phong baseline: per pixel the interpolated normal
     ``N`` as it is (the unit normalizes it), unit ``L`` and ``H``, all rounded half up to
     ``config.vec`` (saturated: a component of exactly 1 is the largest code), and ``n``.
     Returns ``{normal, light, half, n}``."""
@@ -169,12 +169,12 @@ def conventional_inputs(spans, light, n, config=ConventionalConfig()):
         raise ValueError(f"n must be an integer in 1..{config.n_max}, not {n!r}")
     _, count = first_pixels(spans)
     light = np.broadcast_to(_unit("light", light), (count, 3))
-    return conventional_codes(spans.interpolated_normals(), light, np.broadcast_to(halfway(light[0]), (count, 3)),
+    return blinn_codes(spans.interpolated_normals(), light, np.broadcast_to(halfway(light[0]), (count, 3)),
                               np.full(count, int(n), dtype=np.int64), config)
 
 
-def conventional_codes(normals, lights, halves, n, config=ConventionalConfig()):
-    """:func:`conventional_inputs` from per-pixel (P, 3) ``normals`` (as interpolated),
+def blinn_codes(normals, lights, halves, n, config=BlinnConfig()):
+    """:func:`blinn_inputs` from per-pixel (P, 3) ``normals`` (as interpolated),
     unit ``lights`` and ``halves`` (a local light or viewer: one of each per pixel) and
     integer ``n`` (P,)."""
     def codes(vectors):
@@ -193,15 +193,15 @@ def inputs(unit, spans, light, *, n=32, config=None):
         return spherical_inputs(spans, light, n, config or SphericalConfig())
     if unit == "schlick":
         return schlick_inputs(spans, light, n, config or SchlickConfig())
-    if unit == "conventional":
-        return conventional_inputs(spans, light, n, config or ConventionalConfig())
+    if unit == "blinn":
+        return blinn_inputs(spans, light, n, config or BlinnConfig())
     raise ValueError(f"unit must be one of {', '.join(UNITS)}, not {unit!r}")
 
 
 def decode(block_name, outputs, config, part="spec"):
     """Float per-pixel intensity from raw outputs: ``p`` (Euler, Gouraud; negative
     clamped to 0), ``spec`` (Schlick), ``spec`` or ``diff`` ``(P, 3)`` (spherical, ``part``),
-    ``specular`` or ``diffuse`` (conventional, ``part`` ``spec`` or ``diff``)."""
+    ``specular`` or ``diffuse`` (blinn, ``part`` ``spec`` or ``diff``)."""
     ports = config.outputs
     if block_name in ("euler", "gouraud"):
         return np.maximum(np.asarray(outputs["p"]) * ports["p"][0].lsb, 0.0)
@@ -211,7 +211,7 @@ def decode(block_name, outputs, config, part="spec"):
         if part not in ("spec", "diff"):
             raise ValueError(f"part must be one of spec, diff, not {part!r}")
         return np.asarray(outputs[part]) * ports[part][0].lsb
-    if block_name == "conventional":
+    if block_name == "blinn":
         name = {"spec": "specular", "diff": "diffuse"}.get(part)
         if name is None:
             raise ValueError(f"part must be one of spec, diff, not {part!r}")

@@ -86,9 +86,9 @@ def test_tables_schlick_prints_figure1(tmp_path, capsys):
 @pytest.mark.parametrize("argv, message", [
     (["render", "mesh", "--method", "nope", "--out", "OUT"],
      r"phongfx: error: method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
-     r"spherical, euler-unit, gouraud-unit, conventional, not 'nope'\n"),
+     r"spherical, euler-unit, gouraud-unit, blinn, not 'nope'\n"),
     (["render", "frames", "--units", "euler", "nope", "--out", "OUT"],
-     r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, conventional, not 'nope'\n"),
+     r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, blinn, not 'nope'\n"),
 ])
 def test_render_targets_refuse_bad_names_and_write_nothing(argv, message, capsys, tmp_path):
     argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]

@@ -2,7 +2,7 @@ import dataclasses
 
 import pytest
 
-from phongfx.config import (BlockConfig, ConventionalConfig, DatapathConfig, DifferenceConfig, DiffuseConfig,
+from phongfx.config import (BlockConfig, BlinnConfig, DatapathConfig, DifferenceConfig, DiffuseConfig,
                             EulerConfig, GouraudConfig, HalfwayConfig, LirpConfig, NormalizeConfig,
                             ReflectConfig, RootConfig, SchlickConfig, ShapeConfig, SphericalConfig)
 from phongfx.config.base import (MAX_PIPELINE, MAX_VEC_FRAC, check_format, check_fraction_format, check_int,
@@ -11,7 +11,7 @@ from phongfx.core.format import Format
 
 BLOCKS = (LirpConfig, NormalizeConfig, ReflectConfig, DifferenceConfig, ShapeConfig, DiffuseConfig,
           RootConfig, HalfwayConfig, SchlickConfig, SphericalConfig, EulerConfig, GouraudConfig,
-          ConventionalConfig)
+          BlinnConfig)
 FIELD_NAMES = {cls: {f.name for f in dataclasses.fields(cls)} for cls in BLOCKS + (DatapathConfig,)}
 
 

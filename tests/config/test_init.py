@@ -10,7 +10,7 @@ PACKAGE = Path(phongfx.config.__file__).resolve().parent
 #: The public names of phongfx.config when it was one module; every one stays importable.
 PUBLIC = ["BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
           "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig",
-          "HalfwayConfig", "HALFWAY_VARIANTS", "EulerConfig", "GouraudConfig", "ConventionalConfig",
+          "HalfwayConfig", "HALFWAY_VARIANTS", "EulerConfig", "GouraudConfig", "BlinnConfig",
           "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
           "MAX_PIPELINE"]
 

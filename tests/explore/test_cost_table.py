@@ -12,7 +12,7 @@ FAKE = {"difference": (150, 5, 90.0, 4), "shape": (20, 2, 110.0, 3), "root": (16
 
 
 def fake_synth(name, *, target, freq, workdir, **kwargs):
-    if name == "conventional":
+    if name == "blinn":
         raise SynthError("design does not fit on LFE5U-45F: needs MULT18X18D 80/72\nlog tail")
     lut, dsp, fmax, latency = FAKE[name]
     return {"lut4": lut, "ff": 2 * lut, "carry": lut // 10, "dsp": dsp, "bram_bits": 0, "fmax_mhz": fmax,
@@ -46,10 +46,10 @@ def test_side_by_side_with_claim(fake):
 
 
 def test_failed_synthesis_is_a_row_not_a_crash(fake):
-    result = cost_table.run_table("cost", blocks=("conventional",))
-    assert result["rows"] == [{"block": "conventional", "what": cost_table.WHAT["conventional"],
+    result = cost_table.run_table("cost", blocks=("blinn",))
+    assert result["rows"] == [{"block": "blinn", "what": cost_table.WHAT["blinn"],
                                "error": "design does not fit on LFE5U-45F: needs MULT18X18D 80/72"}]
-    assert "synthesis failed: design does not fit" in row(cost_table.markdown(result), "conventional")
+    assert "synthesis failed: design does not fit" in row(cost_table.markdown(result), "blinn")
 
 
 def test_accuracy_at_equal_n(fake, monkeypatch):

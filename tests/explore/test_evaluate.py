@@ -8,7 +8,7 @@ from phongfx.core.registry import REGISTRY, get_block
 from phongfx.explore.evaluate import COST_KEYS, METHODS, SCENES, error_metrics, evaluate
 from phongfx.explore.synth import SynthError
 
-NAMES = ("fig7", "fig8", "halfway", "spherical", "euler", "gouraud", "schlick", "conventional")
+NAMES = ("fig7", "fig8", "halfway", "spherical", "euler", "gouraud", "schlick", "blinn")
 NOT_WIDTHS = ("n", "k", "lights")
 
 
@@ -40,7 +40,7 @@ def test_params_map_to_config_fields():
     assert (half.halfway.hvec, half.halfway.normalize.vec, half.difference.vec) == ("S2.13", "S2.13", "S2.12")
     sph = METHODS["spherical"].config({"addr_bits": 5, "rom_bits": 7, "theta_frac": 13})
     assert (sph.addr_bits, sph.rom, sph.theta) == (5, "0.7", "S0.13")
-    conv = METHODS["conventional"].config({"vec_frac": 12, "table_addr": 6})
+    conv = METHODS["blinn"].config({"vec_frac": 12, "table_addr": 6})
     assert (conv.vec, conv.log_addr, conv.exp_addr) == ("S1.12", 6, 6)
 
 
@@ -115,9 +115,9 @@ def test_references_behave_as_their_papers_say():
     assert euler["torus.self.max"] < 0.01 and euler["torus.phong.max"] < 1
     gouraud = evaluate("gouraud", {}, scenes=("torus",))["metrics"]
     assert gouraud["torus.self.max"] < 0.01 and gouraud["torus.phong.max"] > 3
-    # conventional Phong's own float form is Phong
-    conventional = evaluate("conventional", {})["metrics"]
-    assert all(conventional[k.replace(".self.", ".phong.")] == v for k, v in conventional.items()
+    # Blinn–Phong's own float form is Phong
+    blinn = evaluate("blinn", {})["metrics"]
+    assert all(blinn[k.replace(".self.", ".phong.")] == v for k, v in blinn.items()
                if ".self." in k)
     # n is a parameter of every method, but the diffuse curve does not depend on it
     assert evaluate("gouraud", {"n": 3}, scenes=("torus",)) == evaluate("gouraud", {}, scenes=("torus",))
@@ -125,7 +125,7 @@ def test_references_behave_as_their_papers_say():
 
 def test_bad_method_and_params():
     with pytest.raises(ValueError, match=r"^method must be one of fig7, fig8, halfway, spherical, euler, "
-                                         r"gouraud, schlick, conventional, not 'fig9'$"):
+                                         r"gouraud, schlick, blinn, not 'fig9'$"):
         evaluate("fig9", {})
     with pytest.raises(ValueError, match=r"^vec_frac must be an integer in 4\.\.16, not 3$"):
         evaluate("fig7", {"vec_frac": 3})

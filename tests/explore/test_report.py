@@ -126,7 +126,7 @@ def test_summary_splits_methods_by_shininess():
 def test_build_report_links_plot_and_baseline(tmp_path):
     sweep = tmp_path / "sweep"
     sweep.mkdir()
-    records = summary_records() + [rec("c1", "conventional", 0.4, 800, dsp=4, vec_frac=12)]
+    records = summary_records() + [rec("c1", "blinn", 0.4, 800, dsp=4, vec_frac=12)]
     (sweep / "points.jsonl").write_text("".join(json.dumps(r) + "\n" for r in records))
     (sweep / "points.csv").write_text("id\n")
     out = tmp_path / "report"
@@ -136,7 +136,7 @@ def test_build_report_links_plot_and_baseline(tmp_path):
     assert "![Pareto plot of torus.phong.max](pareto.png)" in text and (out / "pareto.png").read_bytes()[:8] == PNG
     assert "No point has `torus.self.max`." in text and not (out / "pareto_torus_self_max.png").exists()
     assert "[points.csv](../sweep/points.csv)" in text
-    assert "## Conventional Phong baseline" in text and "| conventional | vec_frac=12 | 0.400 |" in text
+    assert "## Blinn–Phong baseline" in text and "| blinn | vec_frac=12 | 0.400 |" in text
     assert "vec_frac=9" in row(text, "fig7")
 
 

@@ -97,9 +97,9 @@ def test_fixed_point_units_track_their_float_curves(torus_spans):
     np.testing.assert_allclose(specular, np.maximum(chord[1], 0) ** 20, atol=1e-6)
 
 
-def test_the_conventional_baseline_is_within_a_level_of_phong(torus_spans):
+def test_the_blinn_baseline_is_within_a_level_of_phong(torus_spans):
     phong = shade(torus_spans, "phong")
-    got = shade(torus_spans, "conventional")  # n = 20: 16-bit t, ×n in t^n
+    got = shade(torus_spans, "blinn")  # n = 20: 16-bit t, ×n in t^n
     errors = [error_8bit(a, b, torus_spans.visible) for a, b in zip(got, phong)]
     assert errors[0]["max"] < 0.1 and errors[1]["max"] < 1
 
@@ -160,7 +160,7 @@ def test_figures_write_grids_and_report(tmp_path):
 
 @pytest.mark.parametrize("call, message", [
     (lambda: run("x"), r"^method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
-                       r"spherical, euler-unit, gouraud-unit, conventional, not 'x'$"),
+                       r"spherical, euler-unit, gouraud-unit, blinn, not 'x'$"),
     (lambda: shade(None, "blinn"), r"^method must be one of .*, not 'blinn'$"),
     (lambda: run("phong", mesh="cube"), r"^mesh must be one of torus, sphere, not 'cube'$"),
     (lambda: run("phong", n=0), r"^n must be a positive number, not 0$"),

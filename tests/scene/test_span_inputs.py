@@ -130,15 +130,15 @@ def test_schlick_is_rational_specular_of_the_renormalized_normal(frame):
     assert np.all(np.abs(spec - t / (n - n * t + t)) <= n * 2.0 ** -16 + 2.0 ** -15)
 
 
-def test_conventional_is_exact_phong_to_sixteen_bits(frame):
-    block = get_block("conventional")
-    raw = si.conventional_inputs(frame, LIGHT, 8)
+def test_blinn_is_exact_phong_to_sixteen_bits(frame):
+    block = get_block("blinn")
+    raw = si.blinn_inputs(frame, LIGHT, 8)
     assert set(raw) == set(block.config.inputs) and np.all(raw["n"] == 8)
     assert _in_format(raw["normal"], block.config.fmt("vec"))
     out = block.golden(raw)
     normals = _unit(frame.interpolated_normals())
-    diffuse = si.decode("conventional", out, block.config, "diff")
-    specular = si.decode("conventional", out, block.config)
+    diffuse = si.decode("blinn", out, block.config, "diff")
+    specular = si.decode("blinn", out, block.config)
     # S1.15 inputs (half an LSB per component), a 16-bit unit: a few LSB of 1.15, ×n for t^n
     assert np.max(np.abs(diffuse - np.maximum(normals @ LIGHT, 0))) < 8 * 2.0 ** -15
     assert np.max(np.abs(specular - np.maximum(normals @ si.halfway(LIGHT), 0) ** 8)) < 8 * 8 * 2.0 ** -15
@@ -165,7 +165,7 @@ def test_bad_arguments_are_refused():
         si.schlick_inputs(spans, LIGHT, 0)
     with pytest.raises(ValueError, match=r"^n must be a positive number, not -1$"):
         si.spherical_inputs(spans, LIGHT, -1)
-    with pytest.raises(ValueError, match=r"^unit must be one of euler, gouraud, spherical, schlick, conventional, not 'x'$"):
+    with pytest.raises(ValueError, match=r"^unit must be one of euler, gouraud, spherical, schlick, blinn, not 'x'$"):
         si.inputs("x", spans, LIGHT)
     with pytest.raises(ValueError, match=r"^block_name must be one of euler, gouraud, spherical, schlick"):
         si.decode("x", {}, get_block("euler").config)

@@ -79,10 +79,10 @@ def _ports(config):
 
 
 def _baseline(compiled):
-    if "conventional" in compiled.results:
-        r = compiled.results["conventional"]
+    if "blinn" in compiled.results:
+        r = compiled.results["blinn"]
         return {k: r.get(k) for k in ("feasible", "params", "max", "mean", "cost", "default")}
-    return {"why_not": compiled.rejected.get("conventional", "not among the methods considered")}
+    return {"why_not": compiled.rejected.get("blinn", "not among the methods considered")}
 
 
 def manifest(compiled, module=None, instances=None, check=None):
@@ -98,7 +98,7 @@ def manifest(compiled, module=None, instances=None, check=None):
            "rejected": dict(compiled.rejected),
            "methods": {name: {k: r.get(k) for k in ("feasible", "params", "max", "mean", "cost", "default")}
                        for name, r in compiled.results.items()},
-           "conventional_baseline": _baseline(compiled)}
+           "blinn_baseline": _baseline(compiled)}
     if best is not None:
         config = runs.build(best["method"], best["params"], compiled.analysis)
         block = get_block(runs.block_name(best["method"]), config=config)

@@ -10,9 +10,9 @@ drives), and what diffuse and specular amounts per light do its raw outputs stan
 * Lyon's datapaths (``fig7``, ``fig8``, ``halfway``) take everything a scene has: span
   ends of N, of L and V when local (:func:`phongfx.sim.stimulus.datapath.encode`), any
   number of lights, ``n`` per pixel or fixed in the hardware (``n_const``/``m_const``).
-* ``conventional`` and ``spherical`` compute Blinn's ``(N·H)^n'`` and take one copy of
+* ``blinn`` and ``spherical`` compute Blinn's ``(N·H)^n'`` and take one copy of
   the unit per light (their streams are checked one after the other, :func:`copies`).
-  ``conventional`` is fed per pixel the interpolated ``N`` and the exact unit ``L`` and
+  ``blinn`` is fed per pixel the interpolated ``N`` and the exact unit ``L`` and
   ``H = (L+V)/|L+V|`` of that pixel, so it takes point lights and a local viewer too (the
   hardware that would compute those per-pixel vectors is not in its cost);
   ``spherical`` needs directional lights and the camera at infinity along +z.  They are
@@ -31,7 +31,7 @@ from phongfx.explore.methods import METHODS
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import shade as mesh_shade
 from phongfx.scene.mesh import unit
-from phongfx.scene.span_inputs import VIEWER, conventional_codes, decode, spherical_inputs
+from phongfx.scene.span_inputs import VIEWER, blinn_codes, decode, spherical_inputs
 from phongfx.sim.stimulus.datapath import encode
 
 __all__ = ["DATAPATHS", "EXTRA", "K_MAX", "rejection", "build", "frame_inputs", "frame_terms", "own_specular",
@@ -44,7 +44,7 @@ EXTRA = {name: {"order": (2, (1, 2))} for name in DATAPATHS}
 #: Largest shape-function ``k`` (:class:`~phongfx.config.ShapeConfig`): against true Phong
 #: the compiler searches ``k`` too, since ``f_k(n·D²/2)`` is ``(R·L)^n`` exactly at ``2^k = n``.
 K_MAX = 4
-_BLINN = ("conventional", "spherical")
+_BLINN = ("blinn", "spherical")
 
 
 def _n_hi(analysis, method):
@@ -97,7 +97,7 @@ def build(method, params, analysis):
         config = (config.replace(root=config.root.replace(k=k)) if method == "fig8"
                   else config.replace(shape=config.shape.replace(k=k)))
     if method not in DATAPATHS:
-        if method == "conventional":
+        if method == "blinn":
             top = _n_hi(analysis, method)
             config = config.replace(n=f"{top.bit_length()}.0", n_max=top)
         return config
@@ -125,8 +125,8 @@ def frame_inputs(method, config, geometry, n):
     if method in DATAPATHS:  # a shininess fixed in the hardware has no port: encode drops it
         return encode(config, geometry.n0, geometry.n1, geometry.a, n, geometry.v0, geometry.v1,
                       list(geometry.l0), list(geometry.l1))
-    if method == "conventional":  # visible pixels only, each with its own L and H
-        streams = [conventional_codes(geometry.interpolated, light, unit(light + geometry.viewer),
+    if method == "blinn":  # visible pixels only, each with its own L and H
+        streams = [blinn_codes(geometry.interpolated, light, unit(light + geometry.viewer),
                                       (4 * n).astype(np.int64), config) for light in geometry.light]
     else:  # one copy of the unit per light: their streams in a row
         lo = int(4 * n.min())
@@ -142,7 +142,7 @@ def frame_terms(method, config, outputs, geometry):
         return tuple(np.stack([outputs[f"{part}{i}"] * ports[f"{part}{i}"][0].lsb for i in lights])
                      for part in ("diff", "spec"))
     lights = len(geometry.light)
-    visible = slice(None) if method == "conventional" else geometry.spans.visible
+    visible = slice(None) if method == "blinn" else geometry.spans.visible
     diff = decode(method, outputs, config, "diff")
     diff = diff[:, 0] if diff.ndim > 1 else diff
     spec = decode(method, outputs, config, "spec")
@@ -155,7 +155,7 @@ def own_specular(method, config, params, geometry, n):
     if method == "spherical":
         return np.stack([mesh_shade(geometry.spans, "cos2", light=light, n=4 * float(n[0]))[1][
             geometry.spans.visible] for light in lights[:, 0]])
-    if method == "conventional":
+    if method == "blinn":
         form = "blinn"
     elif method == "halfway":
         form = f"halfway-g2proj-k{params.get('k', METHODS[method].params['k'])}"

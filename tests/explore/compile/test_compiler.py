@@ -107,15 +107,15 @@ def test_default_widths_are_measured_beside_the_minimal_ones():
 
 
 def test_lyon_balls_compile_without_l_or_v_interpolators():
-    compiled = compile_scene(_lyon(), methods=["fig7", "conventional", "spherical"])
+    compiled = compile_scene(_lyon(), methods=["fig7", "blinn", "spherical"])
     assert (compiled.analysis.local_lights, compiled.analysis.local_viewer) == (False, False)
     config, instances = _instances(compiled)
     assert _kinds(instances, "lirp") == 1 and _kinds(instances, "normalize") == 1
     assert {"v", "l0", "l1"} <= set(config.inputs) and not {"v0", "l0_0"} & set(config.inputs)
     assert compiled.rejected["spherical"] == ("needs mesh spans (its setup is per span); the scene "
                                               "has Lyon's spheres")
-    # the conventional baseline: one unit per light, each light's stream measured
-    baseline = compiled.results["conventional"]["default"]
+    # the Blinn–Phong baseline: one unit per light, each light's stream measured
+    baseline = compiled.results["blinn"]["default"]
     assert baseline["cost"]["copies"] == 2 and 0 < baseline["max"] < 10
 
 
@@ -128,11 +128,11 @@ def test_a_local_light_and_viewer_compile_with_their_interpolators():
     assert {"v0", "v1", "l0_0", "l0_1"} <= set(config.inputs)
 
 
-def test_the_conventional_baseline_takes_a_local_light_per_pixel():
-    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["conventional"])
-    assert "conventional" not in compiled.rejected
+def test_the_blinn_baseline_takes_a_local_light_per_pixel():
+    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["blinn"])
+    assert "blinn" not in compiled.rejected
     # fed the exact L and H of each pixel, it is within a level of its own float (N·H)^(4n)
-    assert compiled.chosen == "conventional" and 0 < compiled.best["max"] <= 1.0
+    assert compiled.chosen == "blinn" and 0 < compiled.best["max"] <= 1.0
 
 
 def test_single_n_is_a_hardware_constant_and_a_range_a_port():
@@ -165,10 +165,10 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     path = tmp_path / "tiny.toml"
     path.write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,conventional", "--quiet"]) == 0
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,blinn", "--quiet"]) == 0
     data = json.loads((out / "manifest.json").read_text())
     for key in ("scene", "analysis", "chosen", "block", "formats", "latency", "ports", "error", "cost",
-                "cost_model", "rejected", "minimality_proof", "default_widths", "conventional_baseline",
+                "cost_model", "rejected", "minimality_proof", "default_widths", "blinn_baseline",
                 "rtl_check", "blocks", "widths"):
         assert key in data, key
     assert data["cost_model"] == "proxy" and data["chosen"] == "fig7"

@@ -1,4 +1,4 @@
-"""Stimulus for the conventional Phong baseline: axis and zero normals, the shortest
+"""Stimulus for the Blinn–Phong baseline: axis and zero normals, the shortest
 nonzero ``N``, ``t = 1`` exactly, backfacing ``H``, edge ``n``, then random highlights."""
 
 import numpy as np
@@ -82,7 +82,7 @@ def _rows(c, normal, light, half):
 
 
 def extremes(block_name):
-    """The conventional baseline's extreme rows (Lyon 1993 "Background"): N = 0, N = L = H,
+    """The Blinn–Phong baseline's extreme rows (Lyon 1993 "Background"): N = 0, N = L = H,
     N·H = −1 with a grazing light, at n = 1 and ``n_max``."""
     graze_n, graze_l = perpendicular_pairs()
     z = np.array([0.0, 0, 1])

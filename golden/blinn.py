@@ -1,10 +1,10 @@
-"""Golden model of the conventional Phong baseline: exact normalization and true ``t^n``.
+"""Golden model of the Blinn–Phong baseline: exact normalization and true ``t^n``.
 
 Lyon (1993, "Background") says designs that compute ``(N·H)^n`` directly need
 "typically 16 bits of precision" in the normalization and an exponentiation that is "an
 accurate operation on a 16-bit input".  This is that design, built so every cheaper
 unit can be measured against it.  Bit growth at the defaults of
-:class:`~phongfx.config.ConventionalConfig` (``F = 15`` fraction bits of ``vec``):
+:class:`~phongfx.config.BlinnConfig` (``F = 15`` fraction bits of ``vec``):
 
 * **dot products** ``N·N``, ``N·L``, ``N·H``: ``S1.15 × S1.15`` exact in ``S3.30``, sums
   in ``S5.30``; ``q = N·N >= 0`` is held exactly in ``4.30`` (``q <= 3·2^2``, 34 bits);
@@ -39,7 +39,7 @@ unit can be measured against it.  Bit growth at the defaults of
   (``11 × 12``) rounded to ``1.18``, sum
   exact in ``2.18``; error ``<= (ln 2)²·2^-2A/4 + 2^-18``);
 * **shift and round**: ``2^f·2^floor(x)`` is exact in ``2.(18+17)`` for shifts up to
-  ``F_out + 2 = 17`` (:attr:`~phongfx.config.ConventionalConfig.flush`); it is rounded to
+  ``F_out + 2 = 17`` (:attr:`~phongfx.config.BlinnConfig.flush`); it is rounded to
   ``out = 1.15`` (``<= 1``: a shift of 0 means ``x = 0``, so ``2^f = 1``).  A larger shift
   leaves less than ``2^-17``, which every rounding takes to 0, so the flush is the rounding
   itself.  ``t = 0`` gives 0 (``log2 0`` is not formed).
@@ -59,7 +59,7 @@ from phongfx.core.format import Format
 
 from .fixed import Fixed, check_range
 
-__all__ = ["conventional", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift",
+__all__ = ["blinn", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift",
            "reciprocal_sqrt", "cosine", "log2_t", "pow2", "power"]
 
 
@@ -106,7 +106,7 @@ def even_shift(config, q):
     for i in range(pairs):  # a priority encoder: the highest nonzero pair wins
         j = np.where((q.raw >> (2 * i)) & 3, pairs - 1 - i, j)
     m = Fixed(q.raw << (2 * j), Format(0, q.fmt.width))
-    return j, m.quantize(config.m, config.rounding, "saturate", op="conventional m")
+    return j, m.quantize(config.m, config.rounding, "saturate", op="blinn m")
 
 
 def reciprocal_sqrt(config, m):
@@ -114,10 +114,10 @@ def reciprocal_sqrt(config, m):
     cfg = config
     a = m.raw >> (m.fmt.frac_bits - cfg.rsqrt_addr)
     y0 = Fixed(rsqrt_table(cfg)[a], cfg.y)
-    square = (y0 * y0).quantize(cfg.nr, cfg.rounding, "saturate", op="conventional y0²")
-    p = (m * square).quantize(cfg.nr, cfg.rounding, "saturate", op="conventional m·y0²")
+    square = (y0 * y0).quantize(cfg.nr, cfg.rounding, "saturate", op="blinn y0²")
+    p = (m * square).quantize(cfg.nr, cfg.rounding, "saturate", op="blinn m·y0²")
     r = (Fixed.const(3, "2.0") - p).shift(-1)
-    return (y0 * r).quantize(cfg.y, cfg.rounding, "saturate", op="conventional y1")
+    return (y0 * r).quantize(cfg.y, cfg.rounding, "saturate", op="blinn y1")
 
 
 def cosine(config, d, j, y1, fmt):
@@ -127,8 +127,8 @@ def cosine(config, d, j, y1, fmt):
     shift = cfg.q.width // 2 - 1
     wide = Format.covering(d.fmt.min_raw << shift, d.fmt.max_raw << shift,
                            d.fmt.frac_bits + cfg.q.int_bits // 2)
-    scaled = Fixed(d.raw << j, wide).quantize(cfg.dot, cfg.rounding, "saturate", op="conventional d'")
-    t = (scaled * y1).quantize(fmt, cfg.rounding, "saturate", op="conventional cosine")
+    scaled = Fixed(d.raw << j, wide).quantize(cfg.dot, cfg.rounding, "saturate", op="blinn d'")
+    t = (scaled * y1).quantize(fmt, cfg.rounding, "saturate", op="blinn cosine")
     return t.where(t < 1, Fixed.const(1, fmt))
 
 
@@ -148,14 +148,14 @@ def log2_t(config, t):
 def pow2(config, x):
     """``2^x`` for ``x <= 0`` (any format with ``log``'s fraction bits), rounded to
     ``config.out``: exp table and interpolation on the fraction, shift by the integer part,
-    0 past :attr:`~phongfx.config.ConventionalConfig.flush`."""
+    0 past :attr:`~phongfx.config.BlinnConfig.flush`."""
     cfg = config
     xf = x.fmt.frac_bits
     floor, f = x.raw >> xf, x.raw & ((1 << xf) - 1)
     e = _interpolate(exp2_tables(cfg), f, xf, cfg.exp_addr, cfg.fmt("exp"), cfg.rounding)
     shift = np.clip(-floor, 0, cfg.flush)
     scaled = Fixed(e.raw << (cfg.flush - shift), Format(e.fmt.int_bits, e.fmt.frac_bits + cfg.flush))
-    spec = scaled.quantize(cfg.out, cfg.rounding, "error", op="conventional 2^x")
+    spec = scaled.quantize(cfg.out, cfg.rounding, "error", op="blinn 2^x")
     return spec.where(-floor <= cfg.flush, Fixed.const(0, cfg.out))
 
 
@@ -171,16 +171,16 @@ def _interpolate(tables, code, bits, addr_bits, fmt, rounding):
     low = bits - addr_bits
     a, phi = code >> low, code & ((1 << low) - 1)
     step = (Fixed(tables[1][a], tables[2]) * Fixed(phi, Format(0, low))).shift(-addr_bits).quantize(
-        fmt, rounding, "error", op="conventional interpolation")
+        fmt, rounding, "error", op="blinn interpolation")
     return Fixed(tables[0][a], fmt) + step
 
 
-def conventional(config, normal, light, half, n):
+def blinn(config, normal, light, half, n):
     """Diffuse ``max(N·L, 0)/|N|`` and specular ``(max(N·H, 0)/|N|)^n``.
 
     Parameters
     ----------
-    config : ConventionalConfig
+    config : BlinnConfig
     normal, light, half : Fixed, shape (count, 3), format ``config.vec``
         Un-normalized ``N``; unit ``L`` and ``H`` (any codes give defined outputs).
     n : Fixed, shape (count,), format ``config.n``, integers 1..``config.n_max``
@@ -191,7 +191,7 @@ def conventional(config, normal, light, half, n):
         ``{"diffuse": Fixed (count,), "specular": Fixed (count,)}`` in ``config.out``
     """
     check_range("n", n, 1, config.n_max)
-    q = normal.dot(normal).quantize(config.q, "truncate", "error", op="conventional q")
+    q = normal.dot(normal).quantize(config.q, "truncate", "error", op="blinn q")
     j, m = even_shift(config, q)
     y1 = reciprocal_sqrt(config, m)
     diffuse = cosine(config, normal.dot(light), j, y1, config.out)

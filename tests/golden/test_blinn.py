@@ -3,19 +3,19 @@ import math
 import numpy as np
 import pytest
 
-from phongfx.config import ConventionalConfig
+from phongfx.config import BlinnConfig
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
-from phongfx.golden.conventional import (conventional, even_shift, exp2_tables, log2_t, log2_tables, pow2,
+from phongfx.golden.blinn import (blinn, even_shift, exp2_tables, log2_t, log2_tables, pow2,
                                          reciprocal_sqrt, rsqrt_table)
 from phongfx.golden.fixed import Fixed
 from phongfx.sim.stimulus import at_angle, codes, rng, unit_vectors
-from phongfx.sim.stimulus.conventional import directed, edge_n
+from phongfx.sim.stimulus.blinn import directed, edge_n
 
-CONFIG = ConventionalConfig()
+CONFIG = BlinnConfig()
 VEC = CONFIG.fmt("vec")
 
-# -- error bounds derived from the defaults (see phongfx.golden.conventional) ---------------
+# -- error bounds derived from the defaults (see phongfx.golden.blinn) ---------------
 # seed: cell balance 2^-A (A = 9) plus the table's half LSB (2^-18 over y0 >= 1)
 SEED = 2.0 ** -9 + 2.0 ** -18
 # Newton–Raphson 3e²/2 + e³/2, the roundings of y0² and p (2^-21 each, halved by (3-p)/2,
@@ -41,7 +41,7 @@ def run(normal, light, half, n, config=CONFIG):
     light = light if isinstance(light, Fixed) else vec(np.broadcast_to(light, (count, 3)))
     half = half if isinstance(half, Fixed) else vec(np.broadcast_to(half, (count, 3)))
     n = Fixed(np.broadcast_to(np.asarray(n, dtype=np.int64), (count,)), config.n)
-    out = conventional(config, normal, light, half, n)
+    out = blinn(config, normal, light, half, n)
     return out["diffuse"], out["specular"]
 
 
@@ -204,12 +204,12 @@ def test_config_errors_name_the_field():
     ]
     for changes, message in cases:
         with pytest.raises(ValueError, match=message):
-            ConventionalConfig(**changes)
-    assert CONFIG.q == Format(4, 30) and ConventionalConfig(vec="S2.10").q == Format(6, 20)
+            BlinnConfig(**changes)
+    assert CONFIG.q == Format(4, 30) and BlinnConfig(vec="S2.10").q == Format(6, 20)
 
 
 def test_vectors_start_with_the_directed_set():
-    raw = get_block("conventional").stimulus(count=40, seed=0)
+    raw = get_block("blinn").stimulus(count=40, seed=0)
     d = directed(CONFIG)
     for name in d:
         np.testing.assert_array_equal(raw[name][:len(d[name])], d[name])

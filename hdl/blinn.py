@@ -1,17 +1,17 @@
-"""The conventional Phong baseline: table-plus-Newton normalization and ``t^n`` by log/exp
+"""The Blinn–Phong baseline: table-plus-Newton normalization and ``t^n`` by log/exp
 tables (what Lyon 1993, "Background", says direct designs need)."""
 
 from amaranth.hdl import Const, Mux
 from amaranth.lib.memory import Memory
 
-from phongfx.config import ConventionalConfig
+from phongfx.config import BlinnConfig
 from phongfx.core.format import Format
-from phongfx.golden.conventional import exp2_tables, log2_tables, rsqrt_table
+from phongfx.golden.blinn import exp2_tables, log2_tables, rsqrt_table
 
 from .block import PipelinedBlock
 from .fixed import FixedValue, delay, stage
 
-__all__ = ["Conventional", "LATENCY"]
+__all__ = ["Blinn", "LATENCY"]
 
 #: Registered stages: dot products; even shift; seed read and scaled dot products; y0²;
 #: m·y0²; y1; cosines; log normalization; log tables; log2 t; n·log2 t; exp tables; 2^f;
@@ -19,7 +19,7 @@ __all__ = ["Conventional", "LATENCY"]
 LATENCY = 14
 
 
-class Conventional(PipelinedBlock):
+class Blinn(PipelinedBlock):
     """Nine ``vec × vec`` multipliers (``N·N``, ``N·L``, ``N·H``), a pair priority encoder and
     barrel shifter, the ``1/sqrt`` seed ROM, three Newton–Raphson multipliers
     (``y0²``, ``m·y0²``, ``y0·(3 - p)/2``), two cosine multipliers (``d'·y1``), a priority
@@ -35,13 +35,13 @@ class Conventional(PipelinedBlock):
     Every multiplier reads registers and feeds a register, so the latency is a constant:
     :data:`LATENCY` = 14 for every config (one stage per step listed there).  The ROM
     words come from the golden model's own table functions; formats, rounding and error
-    bounds are as in :func:`phongfx.golden.conventional.conventional`.
+    bounds are as in :func:`phongfx.golden.blinn.blinn`.
 
     Ports: ``i.payload`` = ``normal``, ``light``, ``half`` (3 × ``config.vec``), ``n``
     (``config.n``); ``o.payload`` = ``diffuse``, ``specular`` (``config.out``).
     """
 
-    config_class = ConventionalConfig
+    config_class = BlinnConfig
     cycle_tags = False  # hand-aligned registers, no pipeline depth
 
     @property
@@ -113,7 +113,7 @@ class Conventional(PipelinedBlock):
                 "specular": self._power(m, t, n)}
 
     def _power(self, m, t, n):
-        """``t^n`` (stages 8–14): the golden :func:`~phongfx.golden.conventional.power`."""
+        """``t^n`` (stages 8–14): the golden :func:`~phongfx.golden.blinn.power`."""
         cfg = self.config
         frac = t.fmt.frac_bits
         s = Const(frac, range(frac + 1))

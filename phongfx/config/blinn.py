@@ -1,4 +1,4 @@
-"""Configuration of the conventional Phong baseline: exact normalization, true power."""
+"""Configuration of the Blinn–Phong baseline: exact normalization, true power."""
 
 from dataclasses import dataclass
 
@@ -6,17 +6,17 @@ from phongfx.core.format import Format
 
 from .base import BlockConfig, check_format, check_fraction_format, check_int, check_integer_format
 
-__all__ = ["ConventionalConfig"]
+__all__ = ["BlinnConfig"]
 
 
 @dataclass(frozen=True)
-class ConventionalConfig(BlockConfig):
-    """The conventional Phong baseline Lyon (1993, "Background") argues against: exact
+class BlinnConfig(BlockConfig):
+    """The Blinn–Phong baseline Lyon (1993, "Background") argues against: exact
     normalization by ``1/sqrt(N·N)`` and true exponentiation ``t^n`` at 16-bit precision.
 
     Per pixel: ``diffuse = max(N·L, 0)/|N|`` and ``specular = (max(N·H, 0)/|N|)^n`` for an
     un-normalized ``N`` and unit ``L``, ``H`` (all ``vec``), shininess ``n`` an integer
-    ``1..n_max``.  Stages (bit growth in :mod:`phongfx.golden.conventional`):
+    ``1..n_max``.  Stages (bit growth in :mod:`phongfx.golden.blinn`):
 
     * ``q = N·N`` exact in :attr:`q`; an even left shift ``2j`` brings it to ``m`` in
       ``[1/4, 1)`` (``q = m·4^(h - j)``, ``h`` = half the integer bits of :attr:`q`),
