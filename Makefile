@@ -5,6 +5,11 @@ PYTHON ?= python3
 VENV ?= .venv
 BACKEND ?= verilator-fast
 STAMP := $(VENV)/.installed-stamp
+# Standard-cell synthesis (phongfx synth --target asic) needs OpenSTA and the OSU Liberty
+# files from Debian.  make installs them where it can (as root with apt-get, as in CI);
+# elsewhere it says how, and the tests that need them are skipped.
+DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035
+DEBIAN_STAMP := $(VENV)/.debian-stamp
 
 .PHONY: sim test test-all synth sweep report bench identity clean
 
@@ -14,14 +19,26 @@ $(STAMP): pyproject.toml
 	$(VENV)/bin/python -m pip install --quiet -e '.[cluster,bench]'
 	touch $(STAMP)
 
+$(DEBIAN_STAMP): $(STAMP)
+	@if command -v sta >/dev/null && [ -f /usr/share/qflow/tech/osu018/osu018_stdcells.lib ] \
+	    && [ -f /usr/share/qflow/tech/osu035/osu035_stdcells.lib ]; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing Debian packages: $(DEBIAN_PACKAGES)"; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null \
+	    || { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null; }; \
+	else \
+	    echo "note: standard-cell tools missing; as root: apt-get install $(DEBIAN_PACKAGES)"; \
+	fi
+	touch $@
+
 sim: $(STAMP)
 	$(VENV)/bin/phongfx render --backend $(BACKEND) --out build/sim
 
-test: $(STAMP)
+test: $(STAMP) $(DEBIAN_STAMP)
 	$(VENV)/bin/python -m pytest -q --durations=10
 
 # everything, including tests marked slow (long sweeps)
-test-all: $(STAMP)
+test-all: $(STAMP) $(DEBIAN_STAMP)
 	$(VENV)/bin/python -m pytest -q -m "" --durations=10
 
 # synthesis, place and route of the Figure 7 and Figure 8 datapaths (ECP5, yowasp tools)

@@ -118,17 +118,31 @@ def cmd_render_frames(args):
     return _exit_on_mismatch(result["mismatches"])
 
 
+def _target_device(target, device, library):
+    """The device of ``synth``: for ``asic`` the library (``--library``, or ``--device`` as
+    its synonym), for an FPGA the part; a library given for an FPGA is an error."""
+    if target != "asic":
+        if library is not None:
+            raise ValueError(f"--library applies to --target asic only, not to {target!r} "
+                             f"(use --device for an FPGA part)")
+        return device
+    if device is not None and library is not None and device != library:
+        raise ValueError(f"--device {device!r} and --library {library!r} disagree; give one")
+    return library or device
+
+
 def cmd_synth(args):
     from tqdm import tqdm
 
     from phongfx.explore.synth import markdown, synth
     block = configured_block(args.name, args.set)
+    device = _target_device(args.target, args.device, args.library)
     with tqdm(total=3, desc=f"synth {args.name}", disable=args.quiet or args.json,
               bar_format="{desc}: {n}/{total} steps {elapsed}") as bar:
         def progress(step):
             bar.set_description(f"synth {args.name}: {step}")
             bar.update(1)
-        result = synth(args.name, config=block.config, target=args.target, device=args.device,
+        result = synth(args.name, config=block.config, target=args.target, device=device,
                        freq=args.freq, seed=args.seed, workdir=args.workdir, progress=progress)
     print(json.dumps(result, indent=2, default=str) if args.json else markdown([result]), end="")
     return 0

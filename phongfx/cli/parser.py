@@ -79,10 +79,13 @@ def build_parser():
     p.add_argument("--vcd", help="write a waveform (amaranth back end)")
     p.set_defaults(run=commands.cmd_sim)
 
-    p = sub.add_parser("synth", help="synthesize, place and route a block: LUTs, FFs, DSPs, Fmax (yowasp tools)")
+    p = sub.add_parser("synth", help="synthesize a block: on an FPGA (yowasp Yosys + nextpnr) LUTs, FFs, "
+                                     "DSPs, Fmax; on standard cells (--target asic: Yosys + OpenSTA) "
+                                     "area, cells, critical path, Fmax")
     with_block(p)
-    p.add_argument("--target", default="ecp5", help="ecp5 (default) or ice40")
+    p.add_argument("--target", default="ecp5", help="ecp5 (default), ice40 or asic")
     p.add_argument("--device", help="part size: ecp5 25k/45k/85k (default 45k), ice40 up5k/hx8k/hx1k")
+    p.add_argument("--library", help="standard cells for --target asic: osu018 (default) or osu035")
     p.add_argument("--freq", type=float, default=150, help="target clock in MHz (default 150)")
     p.add_argument("--seed", type=int, default=1, help="placer seed")
     p.add_argument("--workdir", default="build/synth", help="cache and run folder")

