@@ -195,6 +195,22 @@ def cmd_figure9(args):
     return _exit_on_mismatch(table["rtl_mismatches"])
 
 
+def _cost(cost):
+    """``LUT-eq 1234`` or ``area 56,789 µm²`` of a compile cost dict; why it is missing."""
+    value = cost.get("cost")
+    if value is None:
+        return f"cost unknown ({cost.get('why', 'not costed')})"
+    if cost.get("unit") == "µm²":
+        return f"area {value:,.0f} µm²"
+    return f"LUT-eq {value:.0f}"
+
+
+def _saving(cost, other):
+    if cost.get("cost") is None or not other.get("cost"):
+        return ""
+    return f" (chosen saves {1 - cost['cost'] / other['cost']:.1%})"
+
+
 def _levels(value):
     return f"{value:.3f} levels" if isinstance(value, float) else f"{value} levels"
 
@@ -206,21 +222,22 @@ def cmd_compile(args):
     from phongfx.explore.compile.emit import emit
     from phongfx.scene.file import load_scene
     methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
+    device = _target_device(args.target, args.device, args.library)
     spec = load_scene(args.scene)
     with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
               bar_format="{desc}: {n} steps {elapsed}") as bar:
         def progress(step):
             bar.set_description(f"compile {spec.name}: {step}")
             bar.update(1)
-        compiled = compile_scene(spec, methods=methods, synth=args.synth, progress=progress)
+        compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
+                                 freq=args.freq, progress=progress)
         data = emit(compiled, args.output, check=not args.no_check, progress=progress)
     for name, reason in data["rejected"].items():
         print(f"  {name:12s} rejected: {reason}")
     for name, r in data["methods"].items():
-        default = f"defaults: max {_levels(r['default']['max'])}, LUT-eq {r['default']['cost'].get('lut_eq')}"
+        default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'])}"
         if r["feasible"]:
-            print(f"  {name:12s} max {_levels(r['max'])} LUT-eq {r['cost']['lut_eq']} at {r['params']} "
-                  f"({default})")
+            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({default})")
         else:
             print(f"  {name:12s} infeasible: max {_levels(r['max'])} even at {r['params']} ({default})")
     print(f"cost model: {data['cost_model']}; wrote {args.output}/manifest.json")
@@ -229,6 +246,20 @@ def cmd_compile(args):
               f"against {spec.requirement.against} on {spec.name}; see {args.output}/manifest.json",
               file=sys.stderr)
         return 1
+    print(f"chosen {data['chosen']} ({data['module']}): max {data['error']['max']:.3f} levels, "
+          f"mean {data['error']['mean']:.4f}, {_cost(data['cost'])}, latency {data['latency']}")
+    default = data["default_widths"]
+    print(f"  against its default widths: max {_levels(default['max'])}, {_cost(default['cost'])}"
+          f"{_saving(data['cost'], default['cost'])}")
+    baseline = data["conventional_baseline"]
+    if "why_not" in baseline:
+        print(f"  against conventional Phong: {baseline['why_not']}")
+    elif baseline["feasible"]:
+        print(f"  against conventional Phong meeting the same requirement: max {_levels(baseline['max'])}, "
+              f"{_cost(baseline['cost'])} at {baseline['params']}{_saving(data['cost'], baseline['cost'])}")
+    else:
+        print(f"  conventional Phong misses the requirement: max {_levels(baseline['max'])} even at "
+              f"{baseline['params']}")
     check = data["rtl_check"]
     print(f"chosen {data['chosen']} ({data['module']}): max {data['error']['max']:.3f} levels, "
           f"mean {data['error']['mean']:.4f}, LUT-eq {data['cost']['lut_eq']}, latency {data['latency']}")
@@ -239,8 +270,31 @@ def cmd_compile(args):
     return _exit_on_mismatch(check["mismatches"], f"; see {args.output}/manifest.json")
 
 
+#: The options of ``phongfx tables`` that only some tables take, and which.
+_TABLE_OPTIONS = {"target": ("cost", "pipeline"), "library": ("cost", "pipeline", "proxy"), "refit": ("proxy",)}
+
+
+def _table_options(args):
+    options = {}
+    for option, tables in _TABLE_OPTIONS.items():
+        value = getattr(args, option)
+        if value in (None, False):
+            continue
+        if args.table not in tables:
+            raise ValueError(f"--{option} applies to tables {', '.join(tables)} only, not to {args.table!r}")
+        options[option] = value
+    if "library" in options and args.table != "proxy":
+        if options.get("target", "ecp5") != "asic":
+            raise ValueError("--library applies to --target asic only")
+        options["device"] = options.pop("library")
+    if options.get("target") not in (None, "ecp5", "asic"):
+        raise ValueError(f"--target must be 'ecp5' or 'asic' for tables, not {options['target']!r}")
+    return options
+
+
 def cmd_tables(args):
     module = table_module(args.table)
-    result = module.run_table(args.table, out_dir=args.out or f"build/{args.table}")
+    options = _table_options(args)
+    result = module.run_table(args.table, out_dir=args.out or f"build/{args.table}", **options)
     print(module.to_json(result) if args.json else module.markdown(result))
     return 0

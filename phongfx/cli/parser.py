@@ -132,16 +132,26 @@ def build_parser():
     p = sub.add_parser("tables", help="paper claims measured: `tables lyon` (Apple TR #43), "
                                          "`tables szirmay` (Szirmay-Kalos et al. 2000), `tables schlick` (Figure 1), "
                                          "`tables hast` (Hast et al. Tables 1–2), `tables cost` (synthesis: Figure 7 "
-                                         "vs Figure 8 vs the Blinn–Phong baseline), `tables pipeline` (Fmax against pipeline depth)")
-    p.add_argument("table", help="which table (lyon, szirmay, schlick, hast, cost, pipeline)")
+                                         "vs Figure 8 vs the Phong and Blinn–Phong baselines; --target asic for "
+                                         "standard cells), `tables proxy` (the area proxy against synthesis), "
+                                         "`tables pipeline` (Fmax against pipeline depth)")
+    p.add_argument("table", help="which table (lyon, szirmay, schlick, hast, cost, proxy, pipeline, extremes)")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
+    p.add_argument("--target", help="cost, pipeline: ecp5 (default) or asic (proxy: always asic)")
+    p.add_argument("--library", help="cost, pipeline, proxy with asic: osu018 (default) or osu035")
+    p.add_argument("--refit", action="store_true", help="proxy: also fit the coefficients afresh")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=commands.cmd_tables)
     p = sub.add_parser("compile", help="the cheapest datapath meeting a scene's pixel error "
                                        "requirement: Verilog, manifest, frames, RTL check")
     p.add_argument("scene", help="scene file (TOML), e.g. scenes/torus.toml")
     p.add_argument("-o", "--output", required=True, help="output folder")
-    p.add_argument("--synth", action="store_true", help="cost by ECP5 synthesis (yowasp) instead of the proxy")
+    p.add_argument("--synth", action="store_true", help="cost by synthesis (yowasp; OpenSTA on asic) instead of the proxy")
+    p.add_argument("--target", default="ecp5", choices=("ecp5", "ice40", "asic"),
+                   help="what cost means: ecp5 (default) or ice40 LUT-eq, asic area in µm²")
+    p.add_argument("--device", help="FPGA part (ecp5 25k/45k/85k, ice40 up5k/hx8k/hx1k)")
+    p.add_argument("--library", help="standard cells for --target asic: osu018 (default) or osu035")
+    p.add_argument("--freq", type=float, default=150, help="clock given to synthesis in MHz (default 150)")
     p.add_argument("--methods", help="comma-separated methods to consider (default all)")
     p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
     p.add_argument("--quiet", action="store_true", help="no progress bar")

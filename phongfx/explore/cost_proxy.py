@@ -29,9 +29,18 @@ device, not a synthesis result: the manifest says
 import math
 import re
 
-__all__ = ["DSP_LUT_EQ", "proxy_cost", "rtlil_cost"]
+__all__ = ["DSP_LUT_EQ", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "rtlil_cost",
+           "rtlil_features", "rtlil_of"]
 
 DSP_LUT_EQ = 958
+#: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
+FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
+#: µm² per bit of each feature on each library, fitted by
+#: :func:`phongfx.explore.proxy_table.fit` to the standard-cell flow (``phongfx tables proxy``).
+AREA_COEFFICIENTS = {
+    "osu018": dict.fromkeys(FEATURES, 100.0),
+    "osu035": dict.fromkeys(FEATURES, 400.0),
+}
 _CONST = re.compile(r"^\d+'[01xz-]+$")
 _ADD = {"$add", "$sub", "$neg", "$lt", "$le", "$gt", "$ge", "$eq", "$ne", "$alu"}
 _LOGIC = {"$and", "$or", "$xor", "$xnor", "$not", "$logic_and", "$logic_or", "$logic_not"}
@@ -78,6 +87,48 @@ def _tiles(width):
     return width // 18 + (width % 18 >= 2)
 
 
+def _mul_const_adders(conns, a, b, const_a):
+    literal, other = (conns["A"], b) if const_a else (conns["B"], a)
+    return max(_ones(literal) - 1, 0) * other
+
+
+def rtlil_features(text):
+    """Bit counts of RTLIL ``text`` by kind of hardware, what an area model prices:
+    ``mul_bits`` (Σ a·b over variable×variable multipliers: their partial products),
+    ``add_bits`` (adders, subtracters, shift-and-add constant multiplies), ``cmp_bits``
+    (comparators), ``mux_bits`` (multiplexers, variable shifts), ``logic_bits``
+    (bitwise logic and reductions), ``rom_bits`` (words × bits of every ROM) and
+    ``ff_bits`` (registers)."""
+    f = dict.fromkeys(FEATURES, 0)
+    for kind, params, conns in _cells(text):
+        a, b, y = _int(params, "A_WIDTH"), _int(params, "B_WIDTH"), _int(params, "Y_WIDTH")
+        const_a, const_b = (bool(_CONST.match(conns.get(p, ""))) for p in ("A", "B"))
+        if kind == "$mul":
+            if const_a or const_b:
+                f["add_bits"] += _mul_const_adders(conns, a, b, const_a)
+            else:
+                f["mul_bits"] += a * b
+        elif kind in ("$add", "$sub", "$neg", "$alu"):
+            f["add_bits"] += y
+        elif kind in _ADD:
+            f["cmp_bits"] += max(a, b, 1)
+        elif kind in ("$mux", "$bmux"):
+            f["mux_bits"] += _int(params, "WIDTH")
+        elif kind == "$pmux":
+            f["mux_bits"] += _int(params, "WIDTH") * _int(params, "S_WIDTH", 1)
+        elif kind in _SHIFT:
+            f["mux_bits"] += 0 if const_b else y * min(b, max(y, 2).bit_length())
+        elif kind in _LOGIC:
+            f["logic_bits"] += y
+        elif kind.startswith("$reduce"):
+            f["logic_bits"] += a
+        elif kind in ("$memrd_v2", "$memrd"):
+            f["rom_bits"] += _int(params, "WIDTH") * 2 ** _int(params, "ABITS")
+        elif kind.endswith("dff") or kind.endswith("dffe"):
+            f["ff_bits"] += _int(params, "WIDTH")
+    return f
+
+
 def rtlil_cost(text):
     """``{lut_eq, lut, dsp, carry_bits, ff_bits}`` of RTLIL ``text`` (module docstring)."""
     lut = dsp = carry = ff = 0
@@ -86,8 +137,7 @@ def rtlil_cost(text):
         const_a, const_b = (bool(_CONST.match(conns.get(p, ""))) for p in ("A", "B"))
         if kind == "$mul":
             if const_a or const_b:
-                literal, other = (conns["A"], b) if const_a else (conns["B"], a)
-                carry += max(_ones(literal) - 1, 0) * other
+                carry += _mul_const_adders(conns, a, b, const_a)
             else:
                 dsp += _tiles(a) * _tiles(b)
         elif kind in _ADD:
@@ -107,6 +157,25 @@ def rtlil_cost(text):
         elif kind.endswith("dff") or kind.endswith("dffe"):
             ff += _int(params, "WIDTH")
     return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff}
+
+
+def proxy_area(block, library="osu018"):
+    """Estimated standard-cell area (µm²) of ``block`` on ``library``: the
+    :func:`rtlil_features` priced by :data:`AREA_COEFFICIENTS`, fitted to the real flow
+    (:mod:`phongfx.explore.asic`) over the registry's blocks."""
+    if library not in AREA_COEFFICIENTS:
+        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))}, not {library!r}")
+    features = rtlil_features(rtlil_of(block))
+    return float(sum(AREA_COEFFICIENTS[library][k] * features[k] for k in FEATURES))
+
+
+def rtlil_of(block):
+    from amaranth.back import rtlil
+
+    from phongfx.hdl.overflow import overflow_checks
+
+    with overflow_checks(False):  # the flows synthesize without the simulation-only flags
+        return rtlil.convert(block.component(), name="top")
 
 
 def proxy_cost(block):

@@ -34,34 +34,40 @@ DEPTHS = tuple(range(MAX_PIPELINE + 1))
 FREQ = 150
 
 _KEYS = ("fmax_mhz", "lut4", "ff", "dsp", "latency", "critical_path")
+_ASIC_KEYS = ("fmax_mhz", "area_um2", "ff", "latency", "critical_path")
 
 
-def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", freq=FREQ, workdir="build/synth",
+def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", device=None, freq=FREQ, workdir="build/synth",
                   progress=None):
-    """Rows ``{name, depth, fmax_mhz, lut4, ff, dsp, latency, critical_path, met}``, one per
-    (name, depth), from :func:`phongfx.explore.synth.synth`."""
+    """Rows ``{name, depth, fmax_mhz, lut4, ff, dsp, latency, critical_path, met}`` (on
+    ``target="asic"``: ``area_um2`` instead of ``lut4`` and ``dsp``), one per (name,
+    depth), from :func:`phongfx.explore.synth.synth`."""
     from . import synth as synth_module
 
     rows = []
+    keys = _ASIC_KEYS if target == "asic" else _KEYS
     for name in names:
         for depth in depths:
             if progress is not None:
                 progress(name, depth)
             config = get_block(name, pipeline=depth).config
-            result = synth_module.synth(name, config=config, target=target, freq=freq, workdir=workdir)
-            row = {"name": name, "depth": depth, **{key: result[key] for key in _KEYS}}
+            result = synth_module.synth(name, config=config, target=target, device=device, freq=freq,
+                                        workdir=workdir)
+            row = {"name": name, "depth": depth, **{key: result[key] for key in keys}}
             row["met"] = bool(row["fmax_mhz"] >= freq)
             rows.append(row)
     return rows
 
 
-def run_table(name, out_dir=None):
-    """The table called ``name`` (:data:`TABLES`); writes ``pipeline_fmax.png`` into ``out_dir``
-    when given (its path is the result's ``plot``)."""
+def run_table(name, out_dir=None, target="ecp5", device=None):
+    """The table called ``name`` (:data:`TABLES`) on ``target`` (``device``: the FPGA part or
+    the standard-cell library); writes ``pipeline_fmax.png`` into ``out_dir`` when given
+    (its path is the result's ``plot``)."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
+    rows = pipeline_rows(target=target, device=device)
     result = {"source": "Fmax against pipeline depth: pipelining to a target frequency",
-              "target": "ecp5", "freq": FREQ, "rows": pipeline_rows(), "plot": None}
+              "target": target, "device": device, "freq": FREQ, "rows": rows, "plot": None}
     if out_dir is not None:
         result["plot"] = plot(result, os.path.join(out_dir, "pipeline_fmax.png"))
     return result
@@ -73,24 +79,34 @@ def _verdict(rows, freq):
         return f"meets {freq} MHz from depth {met[0]['depth']} (latency {met[0]['latency']} cycles)"
     deepest = rows[-1]
     path = deepest["critical_path"] or {}
+    split = (f" ({path['logic_ns']:.2f} logic, {path['routing_ns']:.2f} routing)" if "logic_ns" in path else "")
     return (f"**falls short of {freq} MHz**: {deepest['fmax_mhz']:.1f} MHz at depth {deepest['depth']}; "
-            f"critical path {path.get('from', '?')} → {path.get('to', '?')}, {path.get('ns', 0):.2f} ns "
-            f"({path.get('logic_ns', 0):.2f} logic, {path.get('routing_ns', 0):.2f} routing)")
+            f"critical path {path.get('from', '?')} → {path.get('to', '?')}, {path.get('ns', 0):.2f} ns{split}")
 
 
 def markdown(result):
     """One row per (datapath, depth), then a verdict per datapath."""
     freq = result["freq"]
-    lines = [f"# Fmax against pipeline depth ({result['target']}, {freq} MHz target)", "",
-             "| datapath | depth | Fmax MHz | LUT4 | FF | DSP | latency | critical path (ns: logic + routing) |",
-             "|---|---:|---:|---:|---:|---:|---:|---|"]
+    asic = result["target"] == "asic"
+    where = result["target"] + (f" {result['device']}" if result.get("device") else "")
+    lines = [f"# Fmax against pipeline depth ({where}, {freq} MHz target)", ""]
+    if asic:
+        lines += ["| datapath | depth | Fmax MHz | area µm² | FF | latency | critical path (ns, pre-layout) |",
+                  "|---|---:|---:|---:|---:|---:|---|"]
+    else:
+        lines += ["| datapath | depth | Fmax MHz | LUT4 | FF | DSP | latency | critical path (ns: logic + routing) |",
+                  "|---|---:|---:|---:|---:|---:|---:|---|"]
     for row in result["rows"]:
         path = row["critical_path"] or {}
-        where = (f"{path.get('from', '?')} → {path.get('to', '?')} "
-                 f"({path.get('logic_ns', 0):.2f} + {path.get('routing_ns', 0):.2f})")
-        lines.append(f"| {row['name']} | {row['depth']} | {row['fmax_mhz']:.1f}"
-                     f"{'' if row['met'] else ' ✗'} | {row['lut4']} | {row['ff']} | {row['dsp']} | "
-                     f"{row['latency']} | {where} |")
+        ends = f"{path.get('from', '?')} → {path.get('to', '?')}"
+        fmax = f"{row['fmax_mhz']:.1f}{'' if row['met'] else ' ✗'}"
+        if asic:
+            lines.append(f"| {row['name']} | {row['depth']} | {fmax} | {row['area_um2']:,.0f} | {row['ff']} | "
+                         f"{row['latency']} | {ends} ({path.get('ns', 0):.2f}) |")
+        else:
+            lines.append(f"| {row['name']} | {row['depth']} | {fmax} | {row['lut4']} | {row['ff']} | {row['dsp']} | "
+                         f"{row['latency']} | {ends} ({path.get('logic_ns', 0):.2f} + "
+                         f"{path.get('routing_ns', 0):.2f}) |")
     lines.append("")
     for name in dict.fromkeys(row["name"] for row in result["rows"]):
         rows = [row for row in result["rows"] if row["name"] == name]

@@ -16,7 +16,7 @@ Speed is ``cost["mpixels_per_s"]`` (one pixel per clock), where higher is better
 import math
 import os
 
-__all__ = ["DSP_LUT_WEIGHT", "MAXIMIZE", "INVISIBLE", "load", "value", "lut_equivalent", "pareto",
+__all__ = ["DSP_LUT_WEIGHT", "MAXIMIZE", "INVISIBLE", "load", "value", "cost_key", "lut_equivalent", "pareto", "BASELINES",
            "cheapest_invisible", "pareto_plot", "summary_markdown", "build_report"]
 
 #: LUT4s one MULT18X18D stands for (Booth 18×18 signed soft multiplier, Yosys 0.70, ECP5).
@@ -29,7 +29,21 @@ MAXIMIZE = frozenset({"mpixels_per_s", "fmax_mhz"})
 INVISIBLE = 1.0
 
 _COST_LABEL = {"lut_eq": f"cost (LUT4 + {DSP_LUT_WEIGHT}·DSP LUT-equivalents)",
-               "mpixels_per_s": "Mpixel/s (nextpnr Fmax, 1 pixel/clock)"}
+               "area_um2": "area (µm², standard cells)",
+               "mpixels_per_s": "Mpixel/s (Fmax at 1 pixel/clock)"}
+
+
+def cost_key(records):
+    """The cost the records are compared by: ``"area_um2"`` when they were synthesized onto
+    standard cells, else ``"lut_eq"``."""
+    return "area_um2" if any((r.get("cost") or {}).get("area_um2") is not None for r in records) else "lut_eq"
+
+
+def _target(records):
+    synth = next((r.get("synth") for r in records if r.get("synth")), None) or {}
+    target = synth.get("target", "ecp5")
+    device = synth.get("device") or ("osu018" if target == "asic" else None)
+    return target + (f" {device}" if device else "")
 
 
 def load(path):
@@ -103,7 +117,8 @@ def _style(methods):
 
 
 def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
-    """Write a two-panel PNG: ``error_key`` against LUT-equivalents and against Mpixel/s.
+    """Write a two-panel PNG: ``error_key`` against cost (LUT-equivalents on an FPGA, µm² on
+    standard cells: :func:`cost_key`) and against Mpixel/s.
 
     Every method in one picture (one colour and marker each), the Pareto front over all
     of them drawn as a staircase with its points ringed, and a dashed line at :data:`INVISIBLE` level.  The
@@ -114,7 +129,7 @@ def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LU
     Returns
     -------
     dict
-        ``{"lut_eq": front, "mpixels_per_s": front, "plotted": int, "skipped": int}``:
+        ``{<cost key>: front, "mpixels_per_s": front, "plotted": int, "skipped": int}``:
         each front as :func:`pareto` gives it; ``skipped`` counts the ``ok`` records
         without cost (failed records are never plotted).
     """
@@ -133,7 +148,7 @@ def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LU
     positive = [e for e in errors if e > 0]
     log = bool(positive) and max(positive) / min(positive + [INVISIBLE]) > 20
     floor = 0.01
-    for ax, key in zip(axes, ("lut_eq", "mpixels_per_s")):
+    for ax, key in zip(axes, (cost_key(ok), "mpixels_per_s")):
         usable = _usable(ok, error_key, key, dsp_weight)
         result["plotted"] = max(result["plotted"], len(usable))
         result["skipped"] = max(result["skipped"], len(ok) - len(usable))
@@ -169,7 +184,7 @@ def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LU
             handles.setdefault(label, handle)
     fig.legend(list(handles.values()), list(handles), loc="lower center", ncol=min(len(handles), 10), fontsize=9)
     skipped = f"; {result['skipped']} points without cost not drawn" if result["skipped"] else ""
-    fig.suptitle(f"Sweep: {error_key} against hardware cost, ECP5{skipped}")
+    fig.suptitle(f"Sweep: {error_key} against hardware cost, {_target(ok)}{skipped}")
     fig.tight_layout(rect=(0, 0.07, 1, 1))
     atomic_write(str(path), lambda p: fig.savefig(p, dpi=100, format="png"))
     plt.close(fig)
@@ -201,13 +216,15 @@ def _groups(records):
 def cheapest_invisible(records, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
     """``label -> (record, invisible)``: per group of :func:`_groups`, the cheapest ``ok`` record
     with error <= :data:`INVISIBLE` (``invisible`` True), else the lowest-error one (False).
-    Cheapest = fewest LUT-equivalents; unsynthesized records rank after synthesized ones."""
+    Cheapest = fewest LUT-equivalents (µm² on standard cells: :func:`cost_key`);
+    unsynthesized records rank after synthesized ones."""
     ok = [r for r in records if r.get("status") == "ok" and value(r, error_key) is not None]
+    key = cost_key(ok)
     picks = {}
     for label, group in _groups(ok).items():
         good = [r for r in group if value(r, error_key) <= INVISIBLE]
         if good:
-            cost = [(lut_equivalent(r.get("cost"), dsp_weight), value(r, error_key), r) for r in good]
+            cost = [(value(r, key, dsp_weight), value(r, error_key), r) for r in good]
             best = min(cost, key=lambda c: (c[0] is None, c[0] or 0.0, c[1]))[2]
             picks[label] = (best, True)
         else:
@@ -215,23 +232,35 @@ def cheapest_invisible(records, error_key="torus.phong.max", *, dsp_weight=DSP_L
     return picks
 
 
-def _row(label, record, error_key, dsp_weight, note=""):
+def _head(asic):
+    if asic:
+        return ["| method | params | max error (levels) | area µm² | cells | area×delay µm²·ns | Fmax MHz | Mpixel/s |",
+                "|---|---|---:|---:|---:|---:|---:|---:|"]
+    return ["| method | params | max error (levels) | LUT4 | DSP | LUT-eq | Fmax MHz | Mpixel/s |",
+            "|---|---|---:|---:|---:|---:|---:|---:|"]
+
+
+def _row(label, record, error_key, dsp_weight, note="", asic=False):
     cost = record.get("cost") or {}
-    return (f"| {label} | {note}{_params(record)} | {value(record, error_key):.3f} | "
-            f"{_number(cost.get('lut4'), '{:d}')} | {_number(cost.get('dsp'), '{:d}')} | "
-            f"{_number(lut_equivalent(cost, dsp_weight), '{:.0f}')} | "
+    if asic:
+        middle = (f"{_number(cost.get('area_um2'), '{:,.0f}')} | {_number(cost.get('cell_count'), '{:d}')} | "
+                  f"{_number(cost.get('area_delay'), '{:,.0f}')}")
+    else:
+        middle = (f"{_number(cost.get('lut4'), '{:d}')} | {_number(cost.get('dsp'), '{:d}')} | "
+                  f"{_number(lut_equivalent(cost, dsp_weight), '{:.0f}')}")
+    return (f"| {label} | {note}{_params(record)} | {value(record, error_key):.3f} | {middle} | "
             f"{_number(cost.get('fmax_mhz'), '{:.1f}')} | {_number(cost.get('mpixels_per_s'), '{:.1f}')} |")
 
 
 def summary_markdown(records, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
     """Per method, the cheapest point with max error <= 1 level (or "none"), then the failed points."""
-    head = ["| method | params | max error (levels) | LUT4 | DSP | LUT-eq | Fmax MHz | Mpixel/s |",
-            "|---|---|---:|---:|---:|---:|---:|---:|"]
+    asic = cost_key(records) == "area_um2"
+    unit = f"area on {_target(records)}" if asic else f"LUT4 + {dsp_weight}·DSP"
     lines = [f"Cheapest point per method with `{error_key}` ≤ {INVISIBLE:g} level "
-             f"(cost = LUT4 + {dsp_weight}·DSP; – = not synthesized):", "", *head]
+             f"(cost = {unit}; – = not synthesized):", "", *_head(asic)]
     for label, (record, invisible) in cheapest_invisible(records, error_key, dsp_weight=dsp_weight).items():
         note = "" if invisible else f"**none ≤ {INVISIBLE:g} level**; best: "
-        lines.append(_row(label, record, error_key, dsp_weight, note))
+        lines.append(_row(label, record, error_key, dsp_weight, note, asic))
     failed = [r for r in records if r.get("status") != "ok"]
     ok = sum(r.get("status") == "ok" for r in records)
     lines += ["", f"{len(records)} points: {ok} ok, {len(failed)} failed."]
@@ -242,20 +271,27 @@ def summary_markdown(records, error_key="torus.phong.max", *, dsp_weight=DSP_LUT
     return "\n".join(lines) + "\n"
 
 
+#: The baselines the report lists every point of: what each computes.
+BASELINES = {"conventional": ("Phong baseline", "normalize N by reciprocal square root, (R·V)^n by log/exp tables"),
+             "blinn": ("Blinn–Phong baseline", "normalize by reciprocal square root, (N̂·H)^n by table")}
+
+
 def _baseline(records, error_key, dsp_weight):
-    mine = [r for r in records if r.get("method") == "blinn" and r.get("status") == "ok"
-            and value(r, error_key) is not None]
-    lines = ["## Blinn–Phong baseline", ""]
-    if not mine:
-        return lines + ["The sweep has no `blinn` point.", ""]
-    lines += ["Every `blinn` point of the sweep (normalize by reciprocal square root, "
-              "(N̂·H)^n by table), cheapest first:", "",
-              "| method | params | max error (levels) | LUT4 | DSP | LUT-eq | Fmax MHz | Mpixel/s |",
-              "|---|---|---:|---:|---:|---:|---:|---:|"]
-    mine.sort(key=lambda r: (lut_equivalent(r.get("cost"), dsp_weight) is None,
-                             lut_equivalent(r.get("cost"), dsp_weight) or 0.0, value(r, error_key)))
-    lines += [_row("blinn", r, error_key, dsp_weight) for r in mine]
-    return lines + [""]
+    asic = cost_key(records) == "area_um2"
+    key = cost_key(records)
+    lines = []
+    for method, (title, what) in BASELINES.items():
+        mine = [r for r in records if r.get("method") == method and r.get("status") == "ok"
+                and value(r, error_key) is not None]
+        lines += [f"## {title}", ""]
+        if not mine:
+            lines += [f"The sweep has no `{method}` point.", ""]
+            continue
+        lines += [f"Every `{method}` point of the sweep ({what}), cheapest first:", "", *_head(asic)]
+        mine.sort(key=lambda r: (value(r, key, dsp_weight) is None, value(r, key, dsp_weight) or 0.0,
+                                 value(r, error_key)))
+        lines += [_row(method, r, error_key, dsp_weight, asic=asic) for r in mine] + [""]
+    return lines
 
 
 #: Smaller runs of the slow tables for ``quick=True``.
@@ -305,7 +341,7 @@ def _sweep_section(records, points, sweep_dir, out_dir, error_keys, dsp_weight):
                   f"{front['plotted']} points plotted, {front['skipped']} without cost not plotted.", "",
                   f"![Pareto plot of {key}]({png})", "",
                   "Pareto front in cost, cheapest first: " + (", ".join(
-                      f"{r['method']} ({_params(r)})" for r in front["lut_eq"]) or "–"), "",
+                      f"{r['method']} ({_params(r)})" for r in front[cost_key(records)]) or "–"), "",
                   f"### Cheapest invisible-error datapaths (`{key}`)", "",
                   summary_markdown(records, key, dsp_weight=dsp_weight)]
     return lines + _baseline(records, error_keys[0], dsp_weight)

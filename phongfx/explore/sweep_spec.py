@@ -45,7 +45,8 @@ def _check_scenes(value, where, known):
 
 
 def _check_synth(value, where):
-    from .synth import TARGETS
+    from .asic import LIBRARIES
+    from .synth import ALL_TARGETS, TARGETS
     if not isinstance(value, dict):
         raise SweepSpecError(f"{where} must be a table with keys {', '.join(_SYNTH_KEYS)}, "
                              f"not {value!r}")
@@ -53,13 +54,13 @@ def _check_synth(value, where):
         if key not in _SYNTH_KEYS:
             raise SweepSpecError(f"{where}: unknown key {key!r}; keys: {', '.join(_SYNTH_KEYS)}")
     target, freq = value.get("target", "ecp5"), value.get("freq", 150)
-    if target not in TARGETS:
-        raise SweepSpecError(f"{where}.target must be one of {', '.join(TARGETS)}, not {target!r}")
+    if target not in ALL_TARGETS:
+        raise SweepSpecError(f"{where}.target must be one of {', '.join(ALL_TARGETS)}, not {target!r}")
     if isinstance(freq, bool) or not isinstance(freq, (int, float)) or not 0 < freq <= 1000:
         raise SweepSpecError(f"{where}.freq must be a number of MHz in (0, 1000], not {freq!r}")
     options = {"target": target, "freq": freq}
-    if "device" in value:
-        devices = TARGETS[target].devices
+    if "device" in value:  # on asic the device is the standard-cell library
+        devices = LIBRARIES if target == "asic" else TARGETS[target].devices
         if value["device"] not in devices:
             raise SweepSpecError(f"{where}.device must be one of {', '.join(devices)} for {target}, "
                                  f"not {value['device']!r}")

@@ -15,6 +15,7 @@ TABLES = {
     "schlick": "phongfx.papers.schlick",             # Schlick 1994: Figure 1
     "hast": "phongfx.papers.hast",                   # Hast, Barrera, Bengtsson: Tables 1-2 on tori
     "cost": "phongfx.explore.cost_table",            # synthesis: Figure 7 vs Figure 8 vs blinn
+    "proxy": "phongfx.explore.proxy_table",          # the area proxy against standard-cell synthesis
     "pipeline": "phongfx.explore.pipeline_table",    # synthesis: Fmax against pipeline depth
     "extremes": "phongfx.explore.extremes",          # stability: every block at its extreme inputs
 }

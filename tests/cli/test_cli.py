@@ -6,6 +6,7 @@ import pytest
 
 from phongfx.cli import apply_settings, main
 from phongfx.config import fig7_config
+from phongfx.core.registry import get_block
 
 
 def test_blocks_lists_every_block(capsys):
@@ -63,6 +64,22 @@ def test_one_vector_width_sets_every_connected_format():
         assert (config.normalize.z, config.reflect.dot, config.difference.dd) == ("1.14", "S1.14", "2.24")
 
 
+def test_bool_settings_parse_true_and_false():
+    config = apply_settings(get_block("conventional").config, ["local_light=true", "local_viewer=False"])
+    assert config.local_light is True and config.local_viewer is False
+    assert apply_settings(fig7_config(), ["local_viewer=TRUE", "lights=1"]).local_viewer is True
+    with pytest.raises(ValueError, match=r"^--set local_light: local_light must be true or false, not 'yes'$"):
+        apply_settings(config, ["local_light=yes"])
+
+
+def test_bool_setting_on_the_command_line(capsys):
+    # the local light's normalizer is built and checked against the golden model
+    assert main(["sim", "conventional", "--set", "local_light=true", "--vectors", "20", "--backend", "amaranth"]) == 0
+    assert main(["sim", "conventional", "--set", "local_light=1"]) == 2
+    assert capsys.readouterr().err == ("phongfx: error: --set local_light: local_light must be true or false, "
+                                       "not '1'\n")
+
+
 def test_nested_settings():
     config = apply_settings(fig7_config(), ["shape.k=1", "lights=1", "shape.t=1.12"])
     assert (config.shape.k, config.lights, config.shape.t) == (1, 1, "1.12")
@@ -86,9 +103,10 @@ def test_tables_schlick_prints_figure1(tmp_path, capsys):
 @pytest.mark.parametrize("argv, message", [
     (["render", "mesh", "--method", "nope", "--out", "OUT"],
      r"phongfx: error: method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
-     r"spherical, euler-unit, gouraud-unit, blinn, not 'nope'\n"),
+     r"spherical, euler-unit, gouraud-unit, blinn, conventional, not 'nope'\n"),
     (["render", "frames", "--units", "euler", "nope", "--out", "OUT"],
-     r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, blinn, not 'nope'\n"),
+     r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, blinn, conventional, "
+     r"not 'nope'\n"),
 ])
 def test_render_targets_refuse_bad_names_and_write_nothing(argv, message, capsys, tmp_path):
     argv = [str(tmp_path / "out") if a == "OUT" else a for a in argv]

@@ -38,8 +38,8 @@ def test_side_by_side_with_claim(fake):
     # in series: resources and latency add, the slower clock rules
     assert f"| 170 | 340 | 17 | 7 | 0 | {170 + 7 * DSP_LUT_WEIGHT} | 90.0 | 90.0 | 7 | no |" in \
         row(text, "difference+shape")
-    assert "root vs difference: LUT-eq 6866 vs 4940 (**larger**)" in text
-    assert "root vs difference+shape: LUT-eq 6866 vs 6876 (about the same (±2%))" in text
+    assert "root vs difference: LUT-eq 6866 vs 4940 (**larger**; 1.39×)" in text
+    assert "root vs difference+shape: LUT-eq 6866 vs 6876 (about the same (±2%); 1.00×)" in text
     assert "Fmax 70.0 vs 90.0 MHz (**slower**)" in text
     assert result["accuracy"] == {}  # neither fig7 nor fig8 asked for
     assert json.loads(cost_table.to_json(result))["rows"][0]["lut4"] == 150
@@ -97,3 +97,27 @@ def test_real_synthesis_of_shape(tmp_path):
     assert r["block"] == "shape" and r["lut4"] > 0 and r["dsp"] >= 1 and r["fmax_mhz"] > 10
     assert r["lut_eq"] == r["lut4"] + DSP_LUT_WEIGHT * r["dsp"]
     assert "| shape | Figure 7d" in cost_table.markdown(result)
+
+
+AREAS = {"difference": (171941.0, 131.4, 4), "shape": (85690.0, 173.1, 3), "root": (132401.0, 126.8, 5)}
+
+
+def fake_asic(name, *, target, device, freq, workdir, **kwargs):
+    assert target == "asic" and device == "osu035"
+    area, fmax, latency = AREAS[name]
+    return {"area_um2": area, "cell_count": int(area // 30), "ff": 100, "fmax_mhz": fmax,
+            "area_delay": area * 1000 / fmax, "met": fmax >= freq, "pixels_per_second": fmax * 1e6,
+            "latency": latency, "cached": True}
+
+
+def test_asic_rows_are_priced_in_square_microns(monkeypatch):
+    monkeypatch.setattr(cost_table, "synth", fake_asic)
+    result = cost_table.run_table("cost", blocks=("difference", "shape", "root"), target="asic", device="osu035")
+    text = cost_table.markdown(result)
+    assert "(asic osu035, 150 MHz constraint)" in text and "| area µm² |" in text
+    # in series: areas add, the slower clock rules
+    series = row(text, "difference+shape")
+    assert "| 257,631 |" in series and "| 131.4 |" in series
+    assert "root vs difference+shape: area µm² 132,401 vs 257,631 (smaller; 0.51×)" in text
+    assert "Fmax 126.8 vs 131.4 MHz (**slower**)" in text
+    assert "grows with the product of its operand widths" in text and "MULT18X18D" not in text

@@ -8,7 +8,7 @@ from phongfx.core.registry import REGISTRY, get_block
 from phongfx.explore.evaluate import COST_KEYS, METHODS, SCENES, error_metrics, evaluate
 from phongfx.explore.synth import SynthError
 
-NAMES = ("fig7", "fig8", "halfway", "spherical", "euler", "gouraud", "schlick", "blinn")
+NAMES = ("fig7", "fig8", "halfway", "spherical", "euler", "gouraud", "schlick", "blinn", "conventional")
 NOT_WIDTHS = ("n", "k", "lights")
 
 
@@ -42,6 +42,9 @@ def test_params_map_to_config_fields():
     assert (sph.addr_bits, sph.rom, sph.theta) == (5, "0.7", "S0.13")
     conv = METHODS["blinn"].config({"vec_frac": 12, "table_addr": 6})
     assert (conv.vec, conv.log_addr, conv.exp_addr) == ("S1.12", 6, 6)
+    phong = METHODS["conventional"].config({"vec_frac": 11, "rsqrt_addr": 7, "table_addr": 4})
+    assert (phong.vec, phong.rsqrt_addr, phong.log_addr, phong.exp_addr) == ("S1.11", 7, 4, 4)
+    assert (phong.local_light, phong.local_viewer) == (False, False)
 
 
 def test_metric_keys_are_the_contract():
@@ -119,13 +122,31 @@ def test_references_behave_as_their_papers_say():
     blinn = evaluate("blinn", {})["metrics"]
     assert all(blinn[k.replace(".self.", ".phong.")] == v for k, v in blinn.items()
                if ".self." in k)
+    # the conventional unit's own float form is Phong with its backside test, which on these
+    # frames (lights in front of the viewer) is Phong
+    conventional = evaluate("conventional", {})["metrics"]
+    assert all(conventional[k.replace(".self.", ".phong.")] == v for k, v in conventional.items()
+               if ".self." in k)
     # n is a parameter of every method, but the diffuse curve does not depend on it
     assert evaluate("gouraud", {"n": 3}, scenes=("torus",)) == evaluate("gouraud", {}, scenes=("torus",))
 
 
+def test_conventional_is_within_a_level_of_phong_at_n_16():
+    # Phong's (R·V)^n on the torus: 0.12 levels at the defaults (16-bit vectors, 512-word seed,
+    # 256-word log/exp tables); the cheapest widths within a level, by the tool-free cost
+    # proxy: 11-bit vectors, a 128-word seed, 16-word log/exp tables (0.92 levels)
+    def error(**params):
+        return evaluate("conventional", {"n": 16, **params}, scenes=("torus",))["metrics"]["torus.phong.max"]
+    assert error() <= 0.15
+    assert error(vec_frac=11, rsqrt_addr=7, table_addr=4) <= 1.0
+    # one bit fewer anywhere misses it
+    for fewer in (dict(vec_frac=10), dict(rsqrt_addr=6), dict(table_addr=3)):
+        assert error(**{"vec_frac": 11, "rsqrt_addr": 7, "table_addr": 4, **fewer}) > 1.0, fewer
+
+
 def test_bad_method_and_params():
     with pytest.raises(ValueError, match=r"^method must be one of fig7, fig8, halfway, spherical, euler, "
-                                         r"gouraud, schlick, blinn, not 'fig9'$"):
+                                         r"gouraud, schlick, blinn, conventional, not 'fig9'$"):
         evaluate("fig9", {})
     with pytest.raises(ValueError, match=r"^vec_frac must be an integer in 4\.\.16, not 3$"):
         evaluate("fig7", {"vec_frac": 3})

@@ -14,7 +14,7 @@ def _fake_synth(calls):
     """A stand-in for :func:`phongfx.explore.synth.synth`: 35 MHz more per depth, normalize 40 MHz
     higher, latency from the config as the real one reports it."""
 
-    def fake(name, *, config, target, freq, workdir):
+    def fake(name, *, config, target, freq, workdir, device=None):
         calls.append((name, config.pipeline, target, freq))
         fmax = 30.0 + 35 * config.pipeline + (40 if name == "normalize" else 0)
         return {"fmax_mhz": fmax, "lut4": 1000 - 10 * config.pipeline, "ff": 2000 + 500 * config.pipeline,

@@ -186,7 +186,7 @@ SPEC_ERRORS = [
     ({"synth": {"freq": -1}, "grid": [{"method": "beta"}]},
      r"^sweep spec: synth\.freq must be a number of MHz in \(0, 1000\], not -1$"),
     ({"synth": {"target": "xc7"}, "grid": [{"method": "beta"}]},
-     r"^sweep spec: synth\.target must be one of ecp5, ice40, not 'xc7'$"),
+     r"^sweep spec: synth\.target must be one of ecp5, ice40, asic, not 'xc7'$"),
     ({"synth": {"fmax": 1}, "grid": [{"method": "beta"}]},
      r"^sweep spec: synth: unknown key 'fmax'; keys: target, freq, device, seed$"),
     ({"synth": {"target": "ice40", "device": "45k"}, "grid": [{"method": "beta"}]},

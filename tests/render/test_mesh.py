@@ -104,6 +104,22 @@ def test_the_blinn_baseline_is_within_a_level_of_phong(torus_spans):
     assert errors[0]["max"] < 0.1 and errors[1]["max"] < 1
 
 
+def test_the_conventional_unit_is_phongs_reflection_lobe(torus_spans):
+    phong = shade(torus_spans, "phong")  # (N·H)^n, Hast's form
+    got = shade(torus_spans, "conventional")  # n = 20, Phong's own (R·V)^n
+    normal = torus_spans.interpolated_normals()
+    normal = normal / np.linalg.norm(normal, axis=-1, keepdims=True)
+    nl = normal @ L
+    rv = (2 * nl[:, None] * normal - L) @ np.array([0.0, 0, 1])
+    want = np.where(nl > 0, np.maximum(rv, 0) ** 20, 0)
+    visible = torus_spans.visible
+    assert error_8bit(got[0], phong[0], visible)["max"] < 0.1  # the same N·L
+    assert error_8bit(got[1], want, visible)["max"] < 1
+    # the reflection lobe is narrower than (N·H)^n: about (N·H)^(4n)
+    assert error_8bit(got[1], phong[1], visible)["max"] > 20
+    assert error_8bit(got[1], np.maximum(normal @ H, 0) ** 80, visible)["max"] < 20
+
+
 def test_corrected_euler_beats_euler_and_gouraud(torus_spans):
     phong = shade(torus_spans, "phong")[0]
     mean = {m: error_8bit(shade(torus_spans, m)[0], phong, torus_spans.visible)["mean"]
@@ -160,8 +176,8 @@ def test_figures_write_grids_and_report(tmp_path):
 
 @pytest.mark.parametrize("call, message", [
     (lambda: run("x"), r"^method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
-                       r"spherical, euler-unit, gouraud-unit, blinn, not 'x'$"),
-    (lambda: shade(None, "blinn"), r"^method must be one of .*, not 'blinn'$"),
+                       r"spherical, euler-unit, gouraud-unit, blinn, conventional, not 'x'$"),
+    (lambda: shade(None, "halfway"), r"^method must be one of .*, not 'halfway'$"),
     (lambda: run("phong", mesh="cube"), r"^mesh must be one of torus, sphere, not 'cube'$"),
     (lambda: run("phong", n=0), r"^n must be a positive number, not 0$"),
     (lambda: run("phong", polygons=300), r"^polygons must be 2·k² for an integer k >= 3 .*, not 300$"),

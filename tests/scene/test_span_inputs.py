@@ -144,6 +144,29 @@ def test_blinn_is_exact_phong_to_sixteen_bits(frame):
     assert np.max(np.abs(specular - np.maximum(normals @ si.halfway(LIGHT), 0) ** 8)) < 8 * 8 * 2.0 ** -15
 
 
+def test_conventional_is_exact_phong_to_sixteen_bits(frame):
+    block = get_block("conventional")
+    raw = si.conventional_inputs(frame, LIGHT, 8)
+    assert list(raw) == ["normal", "light", "view", "n"] and np.all(raw["n"] == 8)
+    assert _in_format(raw["normal"], block.config.fmt("vec"))
+    assert np.all(raw["view"] == [0, 0, 1 << 15])  # V = (0, 0, 1): 1.0 exactly in S1.15
+    out = block.golden(raw)
+    normals = _unit(frame.interpolated_normals())
+    diffuse = si.decode("conventional", out, block.config, "diff")
+    specular = si.decode("conventional", out, block.config)
+    nl = normals @ LIGHT
+    r = 2 * nl[:, None] * normals - LIGHT
+    phong = np.where(nl > 0, np.maximum(r @ si.VIEWER, 0) ** 8, 0)
+    # as Blinn's, with R·V taking two cosines: twice the error, ×n for t^n
+    assert np.max(np.abs(diffuse - np.maximum(nl, 0))) < 8 * 2.0 ** -15
+    assert np.max(np.abs(specular - phong)) < 2 * 8 * 8 * 2.0 ** -15
+    assert np.max(specular) > 0.95  # the frame has a highlight
+    codes = si.conventional_codes(normals[:3], np.tile(LIGHT, (3, 1)), np.tile(si.VIEWER, (3, 1)),
+                                  [1, 2, 3], block.config)
+    np.testing.assert_array_equal(codes["light"], raw["light"][:3])
+    assert codes["n"].tolist() == [1, 2, 3]
+
+
 def test_halfway_is_blinns_bisector():
     assert np.allclose(si.halfway([0, 0, 5]), [0, 0, 1])
     assert np.allclose(si.halfway([1, 0, 0]), np.array([1, 0, 1]) / math.sqrt(2))
@@ -165,7 +188,10 @@ def test_bad_arguments_are_refused():
         si.schlick_inputs(spans, LIGHT, 0)
     with pytest.raises(ValueError, match=r"^n must be a positive number, not -1$"):
         si.spherical_inputs(spans, LIGHT, -1)
-    with pytest.raises(ValueError, match=r"^unit must be one of euler, gouraud, spherical, schlick, blinn, not 'x'$"):
+    with pytest.raises(ValueError, match=r"^n must be an integer in 1\.\.8000, not 8001$"):
+        si.conventional_inputs(spans, LIGHT, 8001)
+    with pytest.raises(ValueError, match=r"^unit must be one of euler, gouraud, spherical, schlick, blinn, "
+                                         r"conventional, not 'x'$"):
         si.inputs("x", spans, LIGHT)
     with pytest.raises(ValueError, match=r"^block_name must be one of euler, gouraud, spherical, schlick"):
         si.decode("x", {}, get_block("euler").config)

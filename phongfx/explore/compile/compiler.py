@@ -27,9 +27,11 @@ viewer of the pixel) or from the
 method's own float form (``"self"``); max and mean over all visible pixels of all
 renders.
 
-Cost (to choose among methods): synthesized LUT-eq (``LUT4 + 958·DSP``,
-:func:`phongfx.explore.synth.synth`, ECP5 defaults, cached) with ``synth=True``, else the
-tool-free :func:`phongfx.explore.cost_proxy.proxy_cost`.
+Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
+958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
+(:func:`phongfx.explore.synth.synth`, cached) with ``synth=True``, else the tool-free
+proxies :func:`phongfx.explore.cost_proxy.proxy_cost` (LUT-eq) and
+:func:`phongfx.explore.cost_proxy.proxy_area` (µm², fitted to the standard-cell flow).
 """
 
 from dataclasses import dataclass, field
@@ -45,7 +47,8 @@ from phongfx.scene.geometry import error_levels, frames, shade
 from . import run as runs
 from .analysis import analyse
 
-__all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "search_widths", "cost"]
+__all__ = ["Compiled", "SceneEval", "COST_UNITS", "compile_scene", "check_methods", "width_params", "search_widths",
+           "cost"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -208,19 +211,39 @@ def search_widths(scene, method, progress=None):
     return {**result, "feasible": True, "params": params, **scene.error(method, params), "proof": proof}
 
 
-def cost(method, config, synth=False, copies=1):
-    """``{"lut_eq", "copies", ...}`` of ``copies`` of ``method``'s block at ``config``: ECP5
-    synthesis or the proxy; ``lut_eq`` covers every copy, the other keys are per copy."""
+#: Per target: the key of the compared cost and its unit.
+COST_UNITS = {"ecp5": ("lut_eq", "LUT-eq"), "ice40": ("lut_eq", "LUT-eq"), "asic": ("area_um2", "µm²")}
+
+
+def cost(method, config, synth=False, copies=1, *, target="ecp5", device=None, freq=150, seed=1):
+    """Cost of ``copies`` of ``method``'s block at ``config`` on ``target``: synthesis
+    (``synth``) or the tool-free proxy.  ``cost`` is the compared number for every copy
+    (LUT-eq on an FPGA, µm² on standard cells), also under its own key (``lut_eq`` or
+    ``area_um2``); the other keys are per copy, and ``target``, ``device``, ``freq``,
+    ``seed`` and ``model`` say what produced it."""
+    from phongfx.explore.asic import DEFAULT_LIBRARY
+
     block = get_block(runs.block_name(method), config=config)
+    key, unit_name = COST_UNITS[target]
+    if target == "asic":
+        device = device or DEFAULT_LIBRARY
+    where = {"target": target, "device": device, "freq": freq if synth else None,
+             "seed": seed if synth and target != "asic" else None,
+             "model": f"{target}-synth" if synth else f"{target}-proxy", "unit": unit_name}
     if not synth:
-        from phongfx.explore.cost_proxy import proxy_cost
-        unit = proxy_cost(block)
+        from phongfx.explore.cost_proxy import proxy_area, proxy_cost
+        unit = {"area_um2": proxy_area(block, device)} if target == "asic" else proxy_cost(block)
     else:
         from phongfx.explore.synth import synth as run_synth
-        result = run_synth(block.name, config=config)
-        keys = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "latency")
-        unit = {"lut_eq": result["lut4"] + 958 * result["dsp"], **{k: result[k] for k in keys}}
-    return {**unit, "lut_eq": copies * unit["lut_eq"], "copies": copies}
+        result = run_synth(block.name, config=config, target=target, device=device, freq=freq, seed=seed)
+        if target == "asic":
+            keys = ("area_um2", "cell_count", "ff", "fmax_mhz", "latency", "critical_path")
+            unit = {k: result[k] for k in keys}
+        else:
+            keys = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "latency")
+            unit = {"lut_eq": result["lut4"] + 958 * result["dsp"], **{k: result[k] for k in keys}}
+    total = copies * unit[key]
+    return {**unit, key: total, "cost": total, "copies": copies, **where}
 
 
 def check_methods(methods):
@@ -232,7 +255,8 @@ def check_methods(methods):
     return names
 
 
-def compile_scene(spec, *, methods=None, synth=False, progress=None, geometries=None):
+def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, progress=None,
+                  geometries=None):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
     Parameters
@@ -240,7 +264,10 @@ def compile_scene(spec, *, methods=None, synth=False, progress=None, geometries=
     methods : sequence of str, optional
         Keys of :data:`~phongfx.explore.methods.METHODS` to consider (default all).
     synth : bool
-        Cost by ECP5 synthesis instead of the proxy.
+        Cost by synthesis instead of the proxy.
+    target, device, freq : str, str, float
+        What the cost is measured on: ``"ecp5"`` (LUT-eq), ``"ice40"`` or ``"asic"``
+        (µm²; ``device`` the library, default ``osu018``), and the clock given to the tools.
     progress : callable, optional
         Called with a short description of each step.
 
@@ -250,7 +277,9 @@ def compile_scene(spec, *, methods=None, synth=False, progress=None, geometries=
     """
     names = check_methods(methods)
     scene = SceneEval(spec, geometries)
-    out = Compiled(spec, scene.analysis, scene, "ecp5-synth" if synth else "proxy")
+    if target not in COST_UNITS:
+        raise ValueError(f"target must be one of {', '.join(COST_UNITS)}, not {target!r}")
+    out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy")
     for name in names:
         reason = runs.rejection(name, spec, scene.analysis, scene.geometries)
         if reason:
@@ -262,14 +291,15 @@ def compile_scene(spec, *, methods=None, synth=False, progress=None, geometries=
         for where in (result["default"], result) if result["feasible"] else (result["default"],):
             try:
                 where["cost"] = cost(name, runs.build(name, where["params"], scene.analysis), synth,
-                                     runs.copies(name, scene.analysis))
+                                     runs.copies(name, scene.analysis), target=target, device=device,
+                                     freq=freq)
             except (ValueError, SynthError) as error:  # a tool failure costs that design only
-                where["cost"] = {"lut_eq": None, "why": str(error).splitlines()[0]}
+                where["cost"] = {"cost": None, "why": str(error).splitlines()[0]}
         out.results[name] = result
         if progress:
             progress(f"{name} done")
     feasible = [r for r in out.results.values() if r["feasible"]]
     if feasible:  # an uncosted design (its synthesis failed) is chosen only if nothing else meets it
-        out.chosen = min(feasible, key=lambda r: (r["cost"]["lut_eq"] is None,
-                                                  r["cost"]["lut_eq"] or 0))["method"]
+        out.chosen = min(feasible, key=lambda r: (r["cost"]["cost"] is None,
+                                                  r["cost"]["cost"] or 0))["method"]
     return out

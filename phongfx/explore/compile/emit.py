@@ -78,11 +78,11 @@ def _ports(config):
             for name, (fmt, lanes) in ports.items()]
 
 
-def _baseline(compiled):
-    if "blinn" in compiled.results:
-        r = compiled.results["blinn"]
+def _baseline(compiled, method):
+    if method in compiled.results:
+        r = compiled.results[method]
         return {k: r.get(k) for k in ("feasible", "params", "max", "mean", "cost", "default")}
-    return {"why_not": compiled.rejected.get("blinn", "not among the methods considered")}
+    return {"why_not": compiled.rejected.get(method, "not among the methods considered")}
 
 
 def manifest(compiled, module=None, instances=None, check=None):
@@ -98,7 +98,8 @@ def manifest(compiled, module=None, instances=None, check=None):
            "rejected": dict(compiled.rejected),
            "methods": {name: {k: r.get(k) for k in ("feasible", "params", "max", "mean", "cost", "default")}
                        for name, r in compiled.results.items()},
-           "blinn_baseline": _baseline(compiled)}
+           "conventional_baseline": _baseline(compiled, "conventional"),
+           "blinn_baseline": _baseline(compiled, "blinn")}
     if best is not None:
         config = runs.build(best["method"], best["params"], compiled.analysis)
         block = get_block(runs.block_name(best["method"]), config=config)

@@ -5,6 +5,7 @@ import json
 import os
 import re
 
+import numpy as np
 import pytest
 
 from phongfx.cli import main
@@ -12,6 +13,7 @@ from phongfx.core.registry import get_block
 from phongfx.explore.compile.compiler import SceneEval, compile_scene, width_params
 from phongfx.explore.compile.emit import submodules
 from phongfx.explore.compile.run import block_name, build
+from phongfx.explore.compile.run import frame_inputs as run_frame_inputs
 from phongfx.hdl.emit import verilog
 from phongfx.scene.file import load_scene, parse_scene
 
@@ -168,10 +170,11 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,blinn", "--quiet"]) == 0
     data = json.loads((out / "manifest.json").read_text())
     for key in ("scene", "analysis", "chosen", "block", "formats", "latency", "ports", "error", "cost",
-                "cost_model", "rejected", "minimality_proof", "default_widths", "blinn_baseline",
+                "cost_model", "rejected", "minimality_proof", "default_widths", "blinn_baseline", "conventional_baseline",
                 "rtl_check", "blocks", "widths"):
         assert key in data, key
-    assert data["cost_model"] == "proxy" and data["chosen"] == "fig7"
+    assert data["cost_model"] == "ecp5-proxy" and data["chosen"] == "fig7"
+    assert data["cost"]["unit"] == "LUT-eq" and data["cost"]["cost"] == data["cost"]["lut_eq"]
     assert all(re.fullmatch(r"S?\d+\.\d+", f) for f in data["formats"].values())
     check = data["rtl_check"]
     spec = load_scene(str(path))
@@ -244,4 +247,35 @@ def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
     monkeypatch.setattr(synth_module, "synth", broken)
     compiled = compile_scene(_torus(), methods=["fig7"], synth=True)
     assert compiled.chosen == "fig7" and compiled.cost_model == "ecp5-synth"
-    assert compiled.best["cost"] == {"lut_eq": None, "why": "Yosys did not finish (exit code 1); log x:"}
+    assert compiled.best["cost"] == {"cost": None, "why": "Yosys did not finish (exit code 1); log x:"}
+
+
+def test_the_conventional_unit_meets_phong_where_blinn_cannot():
+    compiled = compile_scene(_torus(), methods=["conventional", "blinn"])
+    # Phong's own (R·V)^n against true Phong: within a level below its default widths;
+    # Blinn's (N·H)^(4n) stands for it only approximately, at any width
+    assert compiled.chosen == "conventional" and compiled.best["max"] <= 1.0
+    assert compiled.results["blinn"]["feasible"] is False and compiled.results["blinn"]["max"] > 1.0
+    params = compiled.best["params"]
+    assert set(params) == {"vec_frac", "rsqrt_addr", "table_addr"} and params["vec_frac"] < 15
+    config = build("conventional", params, compiled.analysis)
+    assert (config.local_light, config.local_viewer, config.n_max) == (False, False, 16)
+    g, n = compiled.scene.renders[0]
+    raw = run_frame_inputs("conventional", config, g, n)
+    assert len(raw["n"]) == len(g) and set(raw["n"].tolist()) == {16}  # n itself, not 4n
+
+
+def test_the_conventional_unit_normalizes_a_point_light_and_a_local_viewer():
+    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["conventional"])
+    assert "conventional" not in compiled.rejected
+    assert compiled.chosen == "conventional" and 0 < compiled.best["max"] <= 1.0
+    config, instances = _instances(compiled)
+    assert (config.local_light, config.local_viewer, config.n_max) == (True, True, 32)
+    # a normalizer of its own for L and V: three seed ROMs with N's
+    text = verilog(get_block("conventional", config=config).component(), "top", emit_src=False)
+    assert {"rsqrt", "light_rsqrt", "view_rsqrt"} <= set(re.findall(r"\b\w*rsqrt\b", text))
+    # fed the interpolated, un-normalized L and V of the span ends
+    g, n = compiled.scene.renders[0]
+    raw = run_frame_inputs("conventional", config, g, n)
+    lengths = np.linalg.norm(raw["light"] * config.fmt("vec").lsb, axis=-1)
+    assert lengths.min() < 0.999 and lengths.max() <= 1.0 + 2.0 ** -10
