@@ -11,7 +11,7 @@ STAMP := $(VENV)/.installed-stamp
 DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035
 DEBIAN_STAMP := $(VENV)/.debian-stamp
 
-.PHONY: sim test test-all synth sweep report bench identity clean
+.PHONY: sim test test-all synth sweep sweep-asic report bench identity clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -49,6 +49,10 @@ synth: $(STAMP)
 # the small default sweep: error and cost per width point, resumable (build/sweep)
 sweep: $(STAMP)
 	$(VENV)/bin/phongfx sweep sweeps/default.toml --out build/sweep
+
+# the same trade on standard cells: error against area (µm², osu018) and Mpixel/s (build/sweep-asic)
+sweep-asic: $(STAMP) $(DEBIAN_STAMP)
+	$(VENV)/bin/phongfx sweep sweeps/asic.toml --out build/sweep-asic
 
 # build/report/index.md: the papers' tables beside ours, the sweep's Pareto plots
 report: $(STAMP)

@@ -121,8 +121,9 @@ def reciprocal_sqrt(config, m):
 
 
 def cosine(config, d, j, y1, fmt):
-    """``max(d, 0)/sqrt(q)`` clamped to 1 in ``fmt``: ``d·2^(j-h)`` rounded to ``config.dot``,
-    times ``y1``."""
+    """``max(d, 0)/sqrt(q)`` clamped to 1 in an unsigned ``fmt`` (``d/sqrt(q)`` clamped to 1 in
+    a signed one: the conventional unit's cosines and unit vectors): ``d·2^(j-h)`` rounded to
+    ``config.dot``, times ``y1``."""
     cfg = config
     shift = cfg.q.width // 2 - 1
     wide = Format.covering(d.fmt.min_raw << shift, d.fmt.max_raw << shift,

@@ -1,22 +1,19 @@
 """The Blinn–Phong baseline: table-plus-Newton normalization and ``t^n`` by log/exp
 tables (what Lyon 1993, "Background", says direct designs need)."""
 
-from amaranth.hdl import Const, Mux
-from amaranth.lib.memory import Memory
-
 from phongfx.config import BlinnConfig
-from phongfx.core.format import Format
-from phongfx.golden.blinn import exp2_tables, log2_tables, rsqrt_table
 
 from .block import PipelinedBlock
-from .fixed import FixedValue, delay, stage
+from .fixed import delay, stage
+from .tables import (COSINE_STAGES, POWER_STAGES, RSQRT_STAGES, cosine, even_shift, power, reciprocal_sqrt,
+                     scaled)
 
 __all__ = ["Blinn", "LATENCY"]
 
 #: Registered stages: dot products; even shift; seed read and scaled dot products; y0²;
 #: m·y0²; y1; cosines; log normalization; log tables; log2 t; n·log2 t; exp tables; 2^f;
-#: shift and round.
-LATENCY = 14
+#: shift and round (:mod:`phongfx.hdl.tables`: 7 to the cosines, 7 of the power).
+LATENCY = COSINE_STAGES + POWER_STAGES
 
 
 class Blinn(PipelinedBlock):
@@ -35,7 +32,8 @@ class Blinn(PipelinedBlock):
     Every multiplier reads registers and feeds a register, so the latency is a constant:
     :data:`LATENCY` = 14 for every config (one stage per step listed there).  The ROM
     words come from the golden model's own table functions; formats, rounding and error
-    bounds are as in :func:`phongfx.golden.blinn.blinn`.
+    bounds are as in :func:`phongfx.golden.blinn.blinn`; the stages are those of
+    :mod:`phongfx.hdl.tables`, shared with the conventional Phong unit.
 
     Ports: ``i.payload`` = ``normal``, ``light``, ``half`` (3 × ``config.vec``), ``n``
     (``config.n``); ``o.payload`` = ``diffuse``, ``specular`` (``config.out``).
@@ -48,101 +46,20 @@ class Blinn(PipelinedBlock):
     def latency(self):
         return LATENCY
 
-    def _rom(self, m, name, words, fmt, address):
-        memory = Memory(shape=fmt.shape(), depth=len(words), init=[int(w) for w in words])
-        m.submodules[name] = memory
-        port = memory.read_port(domain="comb")
-        m.d.comb += port.addr.eq(address)
-        return FixedValue(port.data, fmt)
-
-    def _interpolate(self, m, name, tables, code, bits, addr_bits, fmt, cycle):
-        """``V + D·phi`` from registers holding the two words at the top ``addr_bits`` of
-        ``code`` and its low bits ``phi`` (one stage); ``cycle``: that stage's output cycle."""
-        low = bits - addr_bits
-        value = stage(m, self._rom(m, f"{name}_value", tables[0], fmt, code[low:]), f"{name}_v")
-        slope = stage(m, self._rom(m, f"{name}_slope", tables[1], tables[2], code[low:]), f"{name}_d")
-        phi = stage(m, FixedValue(code[:low], Format(0, low)), f"{name}_phi")
-        step = (slope * phi).shift(-addr_bits).tagged(cycle, m)
-        return value + step.quantize(fmt, self.config.rounding, "error")
-
     def datapath(self, m, i):
         cfg = self.config
-        rounding, qfmt = cfg.rounding, cfg.q
         normal = i["normal"]
-        q = stage(m, normal.dot(normal).tagged(0, m).quantize(qfmt, "truncate", "error"), "q")
+        q = stage(m, normal.dot(normal).tagged(0, m).quantize(cfg.q, "truncate", "error"), "q")
         dots = [stage(m, normal.dot(i[name]), f"d_{name}") for name in ("light", "half")]
+        j, mant = even_shift(m, cfg, q)
+        dots = [stage(m, d, f"d{index}") for index, d in enumerate(dots)]
+        # the dot products scaled by 2^(j - h) beside the seed read
+        s = []
+        y1 = reciprocal_sqrt(m, cfg, mant, between=lambda: s.extend(
+            scaled(m, cfg, d, j, f"s_{name}") for d, name in zip(dots, ("light", "half"))))
+        s = [delay(m, value, RSQRT_STAGES - 1, f"s{index}") for index, value in enumerate(s)]
 
-        # even shift: j leading all-zero bit pairs (a priority encoder), M = Q << 2j
-        pairs = qfmt.width // 2
-        j = Const(pairs - 1, range(pairs))
-        for k in range(pairs):
-            j = Mux(q.value[2 * k:2 * k + 2].any(), pairs - 1 - k, j)
-        mant = FixedValue((q.value << (j << 1))[:qfmt.width], Format(0, qfmt.width))
-        mant = stage(m, mant.quantize(cfg.m, rounding, "saturate"), "m")
-        j, dots = stage(m, j, "j"), [stage(m, d, f"d{index}") for index, d in enumerate(dots)]
-
-        # seed read; the dot products scaled by 2^(j - h) meanwhile
-        mfmt = cfg.fmt("m")
-        y0 = stage(m, self._rom(m, "rsqrt", rsqrt_table(cfg), cfg.fmt("y"),
-                                mant.value[mfmt.frac_bits - cfg.rsqrt_addr:]), "y0")
-        shift = qfmt.width // 2 - 1
-        scaled = []
-        for d, name in zip(dots, ("light", "half")):
-            wide = Format.covering(d.fmt.min_raw << shift, d.fmt.max_raw << shift,
-                                   d.fmt.frac_bits + qfmt.int_bits // 2)
-            value = FixedValue((d.value << j)[:wide.width], wide)
-            scaled.append(stage(m, value.quantize(cfg.dot, rounding, "saturate"), f"s_{name}"))
-        mant = stage(m, mant, "m_d")
-
-        # one Newton–Raphson step y1 = y0·(3 - m·y0²)/2
-        square = stage(m, (y0 * y0).quantize(cfg.nr, rounding, "saturate"), "y0sq")
-        y0, mant = stage(m, y0, "y0_d1"), stage(m, mant, "m_d2")
-        p = stage(m, (mant * square).quantize(cfg.nr, rounding, "saturate"), "p")
-        y0 = stage(m, y0, "y0_d2")
-        r = (FixedValue.const(3, "2.0") - p).shift(-1)
-        y1 = stage(m, (y0 * r).quantize(cfg.y, rounding, "saturate"), "y1")
-        scaled = [delay(m, s, 3, f"s{index}") for index, s in enumerate(scaled)]
-
-        cosines = []
-        for s, fmt in zip(scaled, (cfg.fmt("out"), cfg.fmt("t"))):
-            t = (s * y1).quantize(fmt, rounding, "saturate")
-            cosines.append(stage(m, t.where(t < 1, FixedValue.const(1, fmt)), "cos"))
-        diffuse, t = cosines
-        n = delay(m, i["n"], 7, "n")
-        return {"diffuse": delay(m, diffuse, LATENCY - 7, "diffuse"),
-                "specular": self._power(m, t, n)}
-
-    def _power(self, m, t, n):
-        """``t^n`` (stages 8–14): the golden :func:`~phongfx.golden.blinn.power`."""
-        cfg = self.config
-        frac = t.fmt.frac_bits
-        s = Const(frac, range(frac + 1))
-        for k in range(frac + 1):  # leading zeros of t's code, up to its 2^0 bit
-            s = Mux(t.value[k], frac - k, s)
-        mantissa = stage(m, (t.value << s)[:frac], "mantissa")
-        s = stage(m, s, "s")
-        zero = delay(m, t.value == 0, 6, "zero")
-        n = delay(m, n, 3, "n_log")
-
-        log = self._interpolate(m, "log", log2_tables(cfg), mantissa, frac, cfg.log_addr,
-                                cfg.fmt("log"), cycle=9)
-        s = FixedValue(stage(m, s, "s_d"), Format.covering(0, frac, 0))
-        lam = stage(m, log - s, "lam")
-        x = stage(m, n * lam, "x")
-
-        xf = x.fmt.frac_bits
-        floor = x.value[xf:].as_signed()
-        # the left shift flush - clip(-floor, 0, flush) that places 2^f·2^floor
-        v = floor + cfg.flush
-        lsh = stage(m, Mux(v < 0, 0, Mux(v > cfg.flush, cfg.flush, v))[:cfg.flush.bit_length()], "lsh")
-        keep = stage(m, v >= 0, "keep")
-        e = self._interpolate(m, "exp", exp2_tables(cfg), x.value[:xf], xf, cfg.exp_addr,
-                              cfg.fmt("exp"), cycle=12)
-        e = stage(m, e, "e")
-        lsh, keep = stage(m, lsh, "lsh_d"), stage(m, keep, "keep_d")
-
-        wide = Format(e.fmt.int_bits, e.fmt.frac_bits + cfg.flush)
-        spec = FixedValue((e.value << lsh)[:wide.width], wide, LATENCY - 1, m)
-        spec = spec.quantize(cfg.out, cfg.rounding, "error")
-        spec = spec.where(keep & ~zero, FixedValue.const(0, cfg.out))
-        return stage(m, spec, "specular")
+        diffuse, t = (cosine(m, cfg, value, y1, fmt) for value, fmt in zip(s, (cfg.out, cfg.t)))
+        n = delay(m, i["n"], COSINE_STAGES, "n")
+        return {"diffuse": delay(m, diffuse, POWER_STAGES, "diffuse"),
+                "specular": power(m, cfg, t, n, COSINE_STAGES)}

@@ -2,8 +2,9 @@
 
 A setting names a field of the block's config dataclass (``out=S1.12``) or, inside a
 composite block, a field of one of its sub-configs (``shape.k=1``); the value is parsed
-as the field's type (an integer for an ``int`` field, the text itself otherwise: the
-config's own checks parse formats and names and refuse bad ones).  A config may also
+as the field's type (``true`` or ``false``, in any case, for a ``bool`` field such as
+``local_light``; an integer for an ``int`` field; the text itself otherwise: the config's
+own checks parse formats and names and refuse bad ones).  A config may also
 take derived settings (its ``DERIVED_SETTINGS``, integers): ``vec_frac=12`` on a
 datapath sets every connected direction-vector format at once.  They are applied after
 the field settings, whatever their order on the command line, so that a field such as
@@ -41,6 +42,13 @@ def _integer(name, text, path):
         raise ValueError(f"--set {path}: {name} must be an integer, not {text!r}") from None
 
 
+def _boolean(name, text, path):
+    word = text.strip().lower()
+    if word not in ("true", "false"):
+        raise ValueError(f"--set {path}: {name} must be true or false, not {text!r}")
+    return word == "true"
+
+
 def _set(config, parts, text, path):
     names = [f.name for f in dataclasses.fields(config)]
     if parts[0] not in names:
@@ -58,7 +66,9 @@ def _set(config, parts, text, path):
         if not dataclasses.is_dataclass(current):
             raise ValueError(f"--set {path}: {parts[0]} has no sub-fields")
         value = _set(current, parts[1:], text, path)
-    elif isinstance(current, bool) or not isinstance(current, int):
+    elif isinstance(current, bool):
+        value = _boolean(parts[0], text, path)
+    elif not isinstance(current, int):
         value = text
     else:
         value = _integer(parts[0], text, path)

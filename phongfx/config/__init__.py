@@ -26,6 +26,7 @@ May import: ``phongfx.core``.
 
 from .base import MAX_PIPELINE, BlockConfig
 from .blinn import BlinnConfig
+from .conventional import ConventionalConfig
 from .datapath import SPECULAR_UNITS, DatapathConfig, fig7_config, fig8_config, halfway_config
 from .difference import DifferenceConfig
 from .diffuse import DiffuseConfig
@@ -43,7 +44,7 @@ from .spherical import SphericalConfig
 __all__ = [
     "BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
     "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
-    "EulerConfig", "GouraudConfig", "BlinnConfig",
+    "EulerConfig", "GouraudConfig", "BlinnConfig", "ConventionalConfig",
     "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
     "MAX_PIPELINE",
 ]

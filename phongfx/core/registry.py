@@ -133,6 +133,7 @@ REGISTRY = {entry.name: entry for entry in (
     _("euler", "EulerConfig", "Euler"),
     _("gouraud", "GouraudConfig", "Gouraud"),
     _("blinn", "BlinnConfig", "Blinn"),
+    _("conventional", "ConventionalConfig", "Conventional"),
     # the three datapaths of Lyon's Figures 7, 8 and 5: one component, three configs
     _("fig7", "fig7_config", "Datapath", module="datapath"),
     _("fig8", "fig8_config", "Datapath", module="datapath"),

@@ -1,4 +1,5 @@
-"""A tool-free cost estimate of a block in LUT-equivalents, read from its RTLIL.
+"""Tool-free cost estimates of a block, read from its RTLIL: LUT-equivalents for the FPGA
+flow, and µm² of standard cells for the ASIC flow (:func:`proxy_area`).
 
 When synthesis is not asked for (``phongfx compile`` without ``--synth``) the compiler
 still has to rank designs.  :func:`proxy_cost` elaborates the block's Amaranth
@@ -21,6 +22,13 @@ Checked against ECP5 synthesis of the defaults: the DSP counts of Figure 7 (39),
 the spherical unit (4) match; the Blinn–Phong baseline's 26 against 20 synthesized;
 LUTs run high (Yosys folds much of the rounding and saturation logic).
 
+On standard cells (:func:`proxy_area`) every bit costs area, so the estimate counts bits
+by kind (:func:`rtlil_features`): a variable multiplier by the product of its operand
+widths, adders, comparators, multiplexers and logic by their width, ROMs by words ×
+bits, registers by their width; one coefficient per kind and library
+(:data:`AREA_COEFFICIENTS`), fitted to the real flow over the registry's blocks
+(``phongfx tables proxy``, which also states the error).
+
 Identical cells (same inputs) count once, as Yosys merges them.  It is a ranking
 device, not a synthesis result: the manifest says
 ``"cost_model": "proxy"`` and the ``--synth`` result replaces it.
@@ -37,9 +45,15 @@ DSP_LUT_EQ = 958
 FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
 #: µm² per bit of each feature on each library, fitted by
 #: :func:`phongfx.explore.proxy_table.fit` to the standard-cell flow (``phongfx tables proxy``).
+#: The fit puts the area on multipliers and registers: adders, comparators and
+#: multiplexers as the RTL writes them predict little, since Yosys trims the unused bits
+#: of wide intermediate results (the root unit's 2,916 adder bits synthesize smaller
+#: than the difference unit's 465), so the non-negative fit gives them 0.
 AREA_COEFFICIENTS = {
-    "osu018": dict.fromkeys(FEATURES, 100.0),
-    "osu035": dict.fromkeys(FEATURES, 400.0),
+    "osu018": {"mul_bits": 159.8, "add_bits": 0.0, "cmp_bits": 0.0, "mux_bits": 0.0, "logic_bits": 0.0,
+               "rom_bits": 1.5, "ff_bits": 225.8},
+    "osu035": {"mul_bits": 159.8 * 3.8, "add_bits": 0.0, "cmp_bits": 0.0, "mux_bits": 0.0, "logic_bits": 0.0,
+               "rom_bits": 1.5 * 3.8, "ff_bits": 225.8 * 3.8},
 }
 _CONST = re.compile(r"^\d+'[01xz-]+$")
 _ADD = {"$add", "$sub", "$neg", "$lt", "$le", "$gt", "$ge", "$eq", "$ne", "$alu"}

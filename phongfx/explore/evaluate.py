@@ -7,7 +7,7 @@ Bengtsson §5, and a coarse UV sphere as Szirmay-Kalos et al. §6), one directio
 
 * Per-pixel datapaths (Lyon 1993 Figures 7, 8 and the halfway unit of Figure 5) get the
   span end normals ``N0``, ``N1`` and ``a = k/(length-1)``, as their LIRP needs; Schlick's
-  unit gets ``t = N̂·H`` and the Blinn–Phong baseline the interpolated ``N``
+  unit gets ``t = N̂·H``, the Blinn–Phong and conventional Phong units the interpolated ``N``
   (:mod:`phongfx.scene.span_inputs`); the scanline units (Hast's Euler and Gouraud units,
   Szirmay-Kalos's spherical unit) get their per-span setup streams.
 * The quantity compared is the **specular** term, except for ``euler`` and ``gouraud``,
@@ -16,11 +16,12 @@ Bengtsson §5, and a coarse UV sphere as Szirmay-Kalos et al. §6), one directio
   (``N̂``): ``"phong"`` is per-pixel Phong of the same quantity — ``(R·L)^n`` for fig7 and
   fig8 (Lyon's reflection form), ``(N̂·H)^(4n)`` for the halfway datapath (Lyon's Blinn row
   5: the appendix scales its ``n`` by 4), ``(N̂·H)^n`` for spherical, schlick and
-  blinn, ``max(N̂·L, 0)`` for euler and gouraud.  ``"self"`` is the method's own
-  float form: Lyon's ``f_k`` rows (:mod:`phongfx.golden.reference`; Figure 8 at
-  ``n = m²``), ``A^n·cos²(a·x)`` (Szirmay-Kalos eq. 19, :mod:`phongfx.render.mesh`
+  blinn, Phong's own ``(R·V)^n`` for conventional, ``max(N̂·L, 0)`` for euler and
+  gouraud.  ``"self"`` is the method's own float form: Lyon's ``f_k`` rows
+  (:mod:`phongfx.golden.reference`; Figure 8 at ``n = m²``), ``A^n·cos²(a·x)`` (Szirmay-Kalos eq. 19, :mod:`phongfx.render.mesh`
   ``cos2``), the float corrected Euler curve (Hast eqs. 16–17), the float chord, Schlick's
-  ``t/(n - n·t + t)`` on the float ``t``, and float Phong for the Blinn–Phong baseline.
+  ``t/(n - n·t + t)`` on the float ``t``, float Phong for the Blinn–Phong baseline, and
+  float Phong with its backside test (0 where ``N̂·L <= 0``) for the conventional unit.
 
 Metrics are in 8-bit levels, ``e = 255·|fixed - float|`` over the visible pixels
 (:func:`error_metrics`).  The datapaths are evaluated with one light (the lights are

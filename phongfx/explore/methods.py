@@ -17,8 +17,8 @@ from phongfx.golden import euler_setup
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import LIGHT, shade
 from phongfx.scene import mesh as meshes
-from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, decode, euler_inputs, gouraud_inputs,
-                                       halfway, schlick_inputs, spherical_inputs)
+from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, conventional_inputs, decode, euler_inputs,
+                                       gouraud_inputs, halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
 __all__ = ["MethodSpec", "METHODS", "Scene", "SCENES"]
@@ -105,10 +105,15 @@ def _build_schlick(p):
     return REGISTRY["schlick"].default_config().replace(t=f"1.{p['t_frac']}", out=f"1.{p['out_frac']}")
 
 
-def _build_blinn(p):
-    return REGISTRY["blinn"].default_config().replace(
-        vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"], log_addr=p["table_addr"],
-        exp_addr=p["table_addr"])
+def _tables(block):
+    """Builder of a unit on the tables of :mod:`phongfx.golden.blinn` (``blinn``,
+    ``conventional``): ``vec`` at ``vec_frac`` fraction bits, the seed ROM's and the log and
+    exp ROMs' address bits."""
+    def build(p):
+        return REGISTRY[block].default_config().replace(
+            vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"], log_addr=p["table_addr"],
+            exp_addr=p["table_addr"])
+    return build
 
 
 # --- scenes ------------------------------------------------------------------------------
@@ -219,6 +224,18 @@ def _run_blinn(spec, config, p, scene):
     return decode("blinn", out, config, "spec"), {"phong": phong, "self": phong}
 
 
+def _run_conventional(spec, config, p, scene):
+    """Phong's own ``(R·V)^n`` on the interpolated ``N``; its float form is Phong with the
+    backside test (0 where ``N̂·L <= 0``), which on these frames is Phong (lights in front of
+    the viewer: ``R·V < 0`` wherever ``N̂·L < 0`` and ``N̂·V >= 0``)."""
+    d, n = scene.data, p["n"]
+    raw = conventional_inputs(d["spans"], d["light"], n, config)
+    out = get_block("conventional", config=config).golden(raw)
+    phong = specular("phong", d["normal"], d["light"], VIEWER, n)
+    own = np.where(d["normal"] @ d["light"] > 0, phong, 0.0)
+    return decode("conventional", out, config, "spec"), {"phong": phong, "self": own}
+
+
 _VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)
 METHODS = {spec.name: spec for spec in (
     MethodSpec("fig7", "fig7", {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
@@ -244,5 +261,8 @@ METHODS = {spec.name: spec for spec in (
                {"t_frac": (2, 30), "out_frac": (2, 30), "n": _N}, _build_schlick, _run_schlick),
     MethodSpec("blinn", "blinn", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
                {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
-               _build_blinn, _run_blinn),
+               _tables("blinn"), _run_blinn),
+    MethodSpec("conventional", "conventional", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
+               {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
+               _tables("conventional"), _run_conventional),
 )}

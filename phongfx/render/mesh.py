@@ -26,7 +26,12 @@ directional light and the viewer at infinity (``H`` constant).  Methods:
   products, not the end intensities as ``gouraud`` does);
 * ``blinn``: the 16-bit Blinn–Phong baseline (:mod:`phongfx.golden.blinn`:
   reciprocal square root by table and Newton step, ``t^n`` by log2/exp2 tables) on the
-  interpolated normal of every pixel, fed by :func:`phongfx.scene.span_inputs.blinn_inputs`.
+  interpolated normal of every pixel, fed by :func:`phongfx.scene.span_inputs.blinn_inputs`;
+* ``conventional``: the 16-bit conventional Phong unit (:mod:`phongfx.golden.conventional`: the
+  same normalizer and power, Phong's own ``(R·V)^n``) on the interpolated normal of every
+  pixel, fed by :func:`phongfx.scene.span_inputs.conventional_inputs`.  Its specular is
+  Phong's reflection lobe, not the ``(N·H)^n`` of ``phong`` here, so against ``phong`` it
+  shows the difference of the two highlights (``(R·V)^n`` is about ``(N·H)^(4n)``).
 
 Errors are ``255·|I - I_phong|`` over the visible pixels (8-bit levels, as Hast's
 Table 2), for the composite and for each term.
@@ -43,14 +48,14 @@ from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
 from phongfx.golden import euler_setup, spherical_setup
 from phongfx.scene import mesh as meshes
-from phongfx.scene.span_inputs import (blinn_inputs, decode, euler_inputs, gouraud_inputs, halfway,
-                                       spherical_inputs)
+from phongfx.scene.span_inputs import (blinn_inputs, conventional_inputs, decode, euler_inputs,
+                                       gouraud_inputs, halfway, spherical_inputs)
 
 __all__ = ["METHODS", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
            "shade", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
 METHODS = ("phong", "gouraud", "euler", "corrected-euler", "cosn", "cos2", "spherical",
-           "euler-unit", "gouraud-unit", "blinn")
+           "euler-unit", "gouraud-unit", "blinn", "conventional")
 MESHES = ("torus", "sphere")
 #: Up, left and towards the viewer, so the highlight sits on the visible side.
 LIGHT = (-0.4, 0.5, 0.77)
@@ -132,11 +137,12 @@ def shade(spans, method, *, light=LIGHT, n=20, addr_bits=6, rom_bits=6):
         curve = [decode(unit, block.golden(feed(spans, v, block.config)), block.config)
                  for v in (light, h)]
         return curve[0], _power(curve[1], n)
-    if method == "blinn":
-        block = get_block("blinn")
-        out = block.golden(blinn_inputs(spans, light, n, block.config))
-        return (decode("blinn", out, block.config, "diff"),
-                decode("blinn", out, block.config, "spec"))
+    if method in ("blinn", "conventional"):
+        block = get_block(method)
+        feed = blinn_inputs if method == "blinn" else conventional_inputs
+        out = block.golden(feed(spans, light, n, block.config))
+        return (decode(method, out, block.config, "diff"),
+                decode(method, out, block.config, "spec"))
     config = SphericalConfig(addr_bits=addr_bits, rom=f"0.{rom_bits}")
     block = get_block("spherical", addr_bits=addr_bits, rom=f"0.{rom_bits}")
     raw = spherical_inputs(spans, light, n, config)

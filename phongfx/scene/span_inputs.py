@@ -15,6 +15,9 @@ Schlick's unit (Schlick 1994) is stateless: it takes per pixel ``t = max(N·H, 0
 with ``N`` the interpolated normal renormalized (Phong's own per-pixel work), so its
 stream is that of an exact Phong shader fed to the rational specular term.
 
+The Blinn–Phong and conventional Phong units are stateless too: they take the
+interpolated normal as it is (they normalize it) and unit ``L`` and ``H`` or ``V``.
+
 Lights are directional and the viewer at infinity (``V = (0, 0, 1)``), so the halfway
 vector ``H = normalize(L + V)`` is one per frame (Blinn's form, which Schlick and
 Szirmay-Kalos both use).
@@ -22,18 +25,26 @@ Szirmay-Kalos both use).
 
 import numpy as np
 
-from phongfx.config import BlinnConfig, EulerConfig, GouraudConfig, SchlickConfig, SphericalConfig
+from phongfx.config import (BlinnConfig, ConventionalConfig, EulerConfig, GouraudConfig, SchlickConfig,
+                            SphericalConfig)
 from phongfx.golden import euler_setup, spherical_setup
 from phongfx.golden.fixed import Fixed
 
 __all__ = ["VIEWER", "UNITS", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",
-           "spherical_inputs", "schlick_inputs", "blinn_inputs", "blinn_codes", "inputs", "decode"]
+           "spherical_inputs", "schlick_inputs", "blinn_inputs", "blinn_codes", "conventional_inputs",
+           "conventional_codes", "inputs", "decode"]
 
 #: Viewer direction in eye space (orthographic view along -z, viewer at infinity).
 VIEWER = np.array([0.0, 0.0, 1.0])
 
 #: The units with a per-pixel input stream built here.
-UNITS = ("euler", "gouraud", "spherical", "schlick", "blinn")
+UNITS = ("euler", "gouraud", "spherical", "schlick", "blinn", "conventional")
+
+
+def _check_n(n, config):
+    if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or not 1 <= n <= config.n_max:
+        raise ValueError(f"n must be an integer in 1..{config.n_max}, not {n!r}")
+    return int(n)
 
 
 def _unit(name, vector):
@@ -150,8 +161,7 @@ def schlick_inputs(spans, light, n, config=SchlickConfig()):
     """Raw inputs of Schlick's unit: per pixel ``t = max(N·H, 0)``, ``N`` the interpolated
     normal renormalized, rounded half up to ``config.t`` (saturated at 1), and ``n``.
     Returns ``{t, n}``."""
-    if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or not 1 <= n <= config.n_max:
-        raise ValueError(f"n must be an integer in 1..{config.n_max}, not {n!r}")
+    _check_n(n, config)
     first_pixels(spans)  # refuses an empty frame, as the stateful units do
     h = halfway(light)
     normals = spans.interpolated_normals()
@@ -165,8 +175,7 @@ def blinn_inputs(spans, light, n, config=BlinnConfig()):
     ``N`` as it is (the unit normalizes it), unit ``L`` and ``H``, all rounded half up to
     ``config.vec`` (saturated: a component of exactly 1 is the largest code), and ``n``.
     Returns ``{normal, light, half, n}``."""
-    if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or not 1 <= n <= config.n_max:
-        raise ValueError(f"n must be an integer in 1..{config.n_max}, not {n!r}")
+    _check_n(n, config)
     _, count = first_pixels(spans)
     light = np.broadcast_to(_unit("light", light), (count, 3))
     return blinn_codes(spans.interpolated_normals(), light, np.broadcast_to(halfway(light[0]), (count, 3)),
@@ -177,10 +186,34 @@ def blinn_codes(normals, lights, halves, n, config=BlinnConfig()):
     """:func:`blinn_inputs` from per-pixel (P, 3) ``normals`` (as interpolated),
     unit ``lights`` and ``halves`` (a local light or viewer: one of each per pixel) and
     integer ``n`` (P,)."""
-    def codes(vectors):
-        return Fixed.from_float(vectors, config.vec, "round_half_up", "saturate").raw.astype(np.int64)
-    return {"normal": codes(normals), "light": codes(lights), "half": codes(halves),
-            "n": np.asarray(n, dtype=np.int64)}
+    return _codes(config, n, normal=normals, light=lights, half=halves)
+
+
+def conventional_inputs(spans, light, n, config=ConventionalConfig()):
+    """Raw inputs of the conventional Phong unit: per pixel the interpolated normal ``N`` as
+    it is (the unit normalizes it), the unit ``L`` and the viewer ``V`` (:data:`VIEWER`), all
+    rounded half up to ``config.vec`` (saturated), and ``n``.  Returns ``{normal, light,
+    view, n}``."""
+    _check_n(n, config)
+    _, count = first_pixels(spans)
+    light = np.broadcast_to(_unit("light", light), (count, 3))
+    return conventional_codes(spans.interpolated_normals(), light, np.broadcast_to(VIEWER, (count, 3)),
+                              np.full(count, int(n), dtype=np.int64), config)
+
+
+def conventional_codes(normals, lights, views, n, config=ConventionalConfig()):
+    """:func:`conventional_inputs` from per-pixel (P, 3) ``normals`` (as interpolated),
+    ``lights`` and ``views`` (unit, or un-normalized where the config's ``local_light`` /
+    ``local_viewer`` has the unit normalize them) and integer ``n`` (P,)."""
+    return _codes(config, n, normal=normals, light=lights, view=views)
+
+
+def _codes(config, n, **vectors):
+    """``{port: raw codes}`` of float (P, 3) ``vectors`` in ``config.vec`` (rounded half up,
+    saturated), then ``n``."""
+    out = {name: Fixed.from_float(v, config.vec, "round_half_up", "saturate").raw.astype(np.int64)
+           for name, v in vectors.items()}
+    return {**out, "n": np.asarray(n, dtype=np.int64)}
 
 
 def inputs(unit, spans, light, *, n=32, config=None):
@@ -195,13 +228,15 @@ def inputs(unit, spans, light, *, n=32, config=None):
         return schlick_inputs(spans, light, n, config or SchlickConfig())
     if unit == "blinn":
         return blinn_inputs(spans, light, n, config or BlinnConfig())
+    if unit == "conventional":
+        return conventional_inputs(spans, light, n, config or ConventionalConfig())
     raise ValueError(f"unit must be one of {', '.join(UNITS)}, not {unit!r}")
 
 
 def decode(block_name, outputs, config, part="spec"):
     """Float per-pixel intensity from raw outputs: ``p`` (Euler, Gouraud; negative
     clamped to 0), ``spec`` (Schlick), ``spec`` or ``diff`` ``(P, 3)`` (spherical, ``part``),
-    ``specular`` or ``diffuse`` (blinn, ``part`` ``spec`` or ``diff``)."""
+    ``specular`` or ``diffuse`` (blinn, conventional: ``part`` ``spec`` or ``diff``)."""
     ports = config.outputs
     if block_name in ("euler", "gouraud"):
         return np.maximum(np.asarray(outputs["p"]) * ports["p"][0].lsb, 0.0)
@@ -211,7 +246,7 @@ def decode(block_name, outputs, config, part="spec"):
         if part not in ("spec", "diff"):
             raise ValueError(f"part must be one of spec, diff, not {part!r}")
         return np.asarray(outputs[part]) * ports[part][0].lsb
-    if block_name == "blinn":
+    if block_name in ("blinn", "conventional"):
         name = {"spec": "specular", "diff": "diffuse"}.get(part)
         if name is None:
             raise ValueError(f"part must be one of spec, diff, not {part!r}")

@@ -1,3 +1,4 @@
+import json
 import os
 import subprocess
 import sys
@@ -68,16 +69,18 @@ def test_bool_settings_parse_true_and_false():
     config = apply_settings(get_block("conventional").config, ["local_light=true", "local_viewer=False"])
     assert config.local_light is True and config.local_viewer is False
     assert apply_settings(fig7_config(), ["local_viewer=TRUE", "lights=1"]).local_viewer is True
-    with pytest.raises(ValueError, match=r"^--set local_light: local_light must be true or false, not 'yes'$"):
+    with pytest.raises(ValueError, match=r"^--set local_light: local_light must be true or false, "
+                                         r"not 'yes'$"):
         apply_settings(config, ["local_light=yes"])
 
 
 def test_bool_setting_on_the_command_line(capsys):
     # the local light's normalizer is built and checked against the golden model
-    assert main(["sim", "conventional", "--set", "local_light=true", "--vectors", "20", "--backend", "amaranth"]) == 0
+    argv = ["sim", "conventional", "--set", "local_light=true", "--vectors", "20", "--backend", "amaranth"]
+    assert main(argv) == 0
     assert main(["sim", "conventional", "--set", "local_light=1"]) == 2
-    assert capsys.readouterr().err == ("phongfx: error: --set local_light: local_light must be true or false, "
-                                       "not '1'\n")
+    err = capsys.readouterr().err
+    assert err.endswith("phongfx: error: --set local_light: local_light must be true or false, not '1'\n")
 
 
 def test_nested_settings():
@@ -147,7 +150,34 @@ def test_synth_prints_the_table_and_refuses_a_bad_target(monkeypatch, capsys):
     assert "| shape | ecp5 | 45k | 17 | 35 | 22 | 1 |" in capsys.readouterr().out
     monkeypatch.undo()
     assert main(["synth", "shape", "--target", "nope", "--quiet"]) == 2
-    assert capsys.readouterr().err == "phongfx: error: target must be one of 'ecp5', 'ice40', not 'nope'\n"
+    assert capsys.readouterr().err == "phongfx: error: target must be one of 'ecp5', 'ice40', 'asic', not 'nope'\n"
+
+
+def test_synth_asic_prints_area_and_json(tmp_path, capsys, asic_tools):
+    work = str(tmp_path / "w")
+    assert main(["synth", "shape", "--set", "t=1.7", "--target", "asic", "--library", "osu035", "--quiet",
+                 "--workdir", work]) == 0
+    text = capsys.readouterr().out
+    assert text.startswith("| block | library | area µm² | cells | FF | Fmax MHz |")
+    assert "| shape | osu035 |" in text and "worst path" in text
+    assert main(["synth", "shape", "--set", "t=1.7", "--target", "asic", "--device", "osu035", "--json",
+                 "--workdir", work]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["cached"] is True and result["library"] == "osu035" and result["area_um2"] > 0
+    assert result["fmax_mhz"] == pytest.approx(1000 / result["critical_path"]["ns"])
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--library", "osu018"], "--library applies to --target asic only, not to 'ecp5' (use --device for an "
+                              "FPGA part)"),
+    (["--target", "asic", "--library", "osu018", "--device", "osu035"],
+     "--device 'osu035' and --library 'osu018' disagree; give one"),
+    (["--target", "asic", "--library", "tsmc7"], "library must be one of 'osu018', 'osu035' for asic, not 'tsmc7'"),
+])
+def test_synth_bad_library_options(argv, message, capsys, tmp_path):
+    assert main(["synth", "shape", *argv, "--quiet", "--workdir", str(tmp_path)]) == 2
+    assert capsys.readouterr().err == f"phongfx: error: {message}\n"
+    assert not any(tmp_path.iterdir())
 
 
 def test_sweep_writes_csv_plot_and_summary_and_resumes(tmp_path, capsys):

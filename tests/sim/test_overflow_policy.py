@@ -99,7 +99,7 @@ def test_every_quantize_names_its_overflow_policy():
     assert not problems, "\n".join(problems)
     # the scan sees every block's narrowing steps, not an empty set
     narrowing = ("lirp", "normalize", "reflect", "difference", "shape", "diffuse", "root",
-                 "halfway", "schlick", "spherical", "euler", "gouraud", "blinn")
+                 "halfway", "schlick", "spherical", "euler", "gouraud", "blinn", "conventional")
     missing = [f"{side}/{name}" for side in ("golden", "hdl") for name in narrowing
                if not counts.get(f"{side}/{name}")]
     assert not missing, missing

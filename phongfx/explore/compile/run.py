@@ -20,6 +20,13 @@ drives), and what diffuse and specular amounts per light do its raw outputs stan
   ``"phong"`` error includes that approximation and ``"self"`` is float ``(N̂·H)^(4n)``
   (spherical: Szirmay-Kalos's ``A^n'·cos²``).  ``spherical`` also needs mesh spans and
   one ``n`` (its per-span setup holds it).
+* ``conventional`` computes Phong's own ``(R·V)^n`` with ``n`` itself (no ``4n``), one copy
+  per light, fed per pixel the interpolated ``N`` and ``L``, ``V``: the exact unit vectors
+  of the pixel, or, for point lights (``local_light``) and a local viewer
+  (``local_viewer``), the un-normalized ``(1-a)·X0 + a·X1`` of the span ends' unit vectors
+  toward the light or viewer (what a Phong shader interpolates, Lyon 1993 Figure 1, and
+  what the datapaths' L and V LIRPs are fed), which the unit normalizes itself.  Its
+  ``"self"`` is float Phong with its backside test (0 where ``N̂·L <= 0``).
 * ``schlick`` has no diffuse path and ``euler``/``gouraud`` no specular one (they
   interpolate ``N·L``, Hast et al.): rejected for scenes that need the missing term.
 """
@@ -31,7 +38,7 @@ from phongfx.explore.methods import METHODS
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import shade as mesh_shade
 from phongfx.scene.mesh import unit
-from phongfx.scene.span_inputs import VIEWER, blinn_codes, decode, spherical_inputs
+from phongfx.scene.span_inputs import VIEWER, blinn_codes, conventional_codes, decode, spherical_inputs
 from phongfx.sim.stimulus.datapath import encode
 
 __all__ = ["DATAPATHS", "EXTRA", "K_MAX", "rejection", "build", "frame_inputs", "frame_terms", "own_specular",
@@ -45,6 +52,8 @@ EXTRA = {name: {"order": (2, (1, 2))} for name in DATAPATHS}
 #: the compiler searches ``k`` too, since ``f_k(n·D²/2)`` is ``(R·L)^n`` exactly at ``2^k = n``.
 K_MAX = 4
 _BLINN = ("blinn", "spherical")
+#: The units fed the visible pixels only, each with its own vectors (one stream per light).
+_PER_PIXEL = ("blinn", "conventional")
 
 
 def _n_hi(analysis, method):
@@ -97,9 +106,11 @@ def build(method, params, analysis):
         config = (config.replace(root=config.root.replace(k=k)) if method == "fig8"
                   else config.replace(shape=config.shape.replace(k=k)))
     if method not in DATAPATHS:
-        if method == "blinn":
+        if method in _PER_PIXEL:
             top = _n_hi(analysis, method)
             config = config.replace(n=f"{top.bit_length()}.0", n_max=top)
+        if method == "conventional":
+            config = config.replace(local_light=analysis.local_lights, local_viewer=analysis.local_viewer)
         return config
     norm = config.normalize.replace(order=params.get("order", 2))
     config = config.replace(normalize=norm, direction_normalize=norm,
@@ -128,6 +139,11 @@ def frame_inputs(method, config, geometry, n):
     if method == "blinn":  # visible pixels only, each with its own L and H
         streams = [blinn_codes(geometry.interpolated, light, unit(light + geometry.viewer),
                                       (4 * n).astype(np.int64), config) for light in geometry.light]
+    elif method == "conventional":  # visible pixels only; a local L or V as interpolated
+        view = _lirp(geometry, geometry.v0, geometry.v1) if config.local_viewer else geometry.viewer
+        lights = _lirp(geometry, geometry.l0, geometry.l1) if config.local_light else geometry.light
+        streams = [conventional_codes(geometry.interpolated, light, view, n.astype(np.int64), config)
+                   for light in lights]
     else:  # one copy of the unit per light: their streams in a row
         lo = int(4 * n.min())
         streams = [spherical_inputs(geometry.spans, light, lo, config) for light in geometry.light[:, 0]]
@@ -142,7 +158,7 @@ def frame_terms(method, config, outputs, geometry):
         return tuple(np.stack([outputs[f"{part}{i}"] * ports[f"{part}{i}"][0].lsb for i in lights])
                      for part in ("diff", "spec"))
     lights = len(geometry.light)
-    visible = slice(None) if method == "blinn" else geometry.spans.visible
+    visible = slice(None) if method in _PER_PIXEL else geometry.spans.visible
     diff = decode(method, outputs, config, "diff")
     diff = diff[:, 0] if diff.ndim > 1 else diff
     spec = decode(method, outputs, config, "spec")
@@ -155,6 +171,10 @@ def own_specular(method, config, params, geometry, n):
     if method == "spherical":
         return np.stack([mesh_shade(geometry.spans, "cos2", light=light, n=4 * float(n[0]))[1][
             geometry.spans.visible] for light in lights[:, 0]])
+    if method == "conventional":  # Phong with the unit's backside test
+        normal, viewer = geometry.normal, geometry.viewer
+        return np.stack([np.where(np.sum(normal * light, -1) > 0, specular("phong", normal, light, viewer, n), 0.0)
+                         for light in lights])
     if method == "blinn":
         form = "blinn"
     elif method == "halfway":
@@ -166,6 +186,12 @@ def own_specular(method, config, params, geometry, n):
         n = np.broadcast_to(m * m, n.shape).astype(np.float64)
     normal = geometry.normal
     return np.stack([specular(form, normal, light, geometry.viewer, n) for light in lights])
+
+
+def _lirp(geometry, start, end):
+    """``(1-a)·start + a·end`` at every pixel (``start``, ``end``: (..., P, 3) span-end vectors)."""
+    a = np.asarray(geometry.a, dtype=np.float64)[:, None]
+    return (1 - a) * start + a * end
 
 
 def copies(method, analysis):

@@ -16,6 +16,7 @@ from phongfx.explore.compile.run import block_name, build
 from phongfx.explore.compile.run import frame_inputs as run_frame_inputs
 from phongfx.hdl.emit import verilog
 from phongfx.scene.file import load_scene, parse_scene
+from phongfx.sim.stimulus import codes
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes")
 
@@ -269,13 +270,15 @@ def test_the_conventional_unit_normalizes_a_point_light_and_a_local_viewer():
     compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["conventional"])
     assert "conventional" not in compiled.rejected
     assert compiled.chosen == "conventional" and 0 < compiled.best["max"] <= 1.0
-    config, instances = _instances(compiled)
+    config = build("conventional", compiled.best["params"], compiled.analysis)
     assert (config.local_light, config.local_viewer, config.n_max) == (True, True, 32)
     # a normalizer of its own for L and V: three seed ROMs with N's
     text = verilog(get_block("conventional", config=config).component(), "top", emit_src=False)
     assert {"rsqrt", "light_rsqrt", "view_rsqrt"} <= set(re.findall(r"\b\w*rsqrt\b", text))
-    # fed the interpolated, un-normalized L and V of the span ends
+    # fed the interpolated, un-normalized L and V of the span ends, not the pixel's unit ones
     g, n = compiled.scene.renders[0]
     raw = run_frame_inputs("conventional", config, g, n)
-    lengths = np.linalg.norm(raw["light"] * config.fmt("vec").lsb, axis=-1)
-    assert lengths.min() < 0.999 and lengths.max() <= 1.0 + 2.0 ** -10
+    a = g.a[:, None]
+    for port, start, end, exact in (("light", g.l0[0], g.l1[0], g.light[0]), ("view", g.v0, g.v1, g.viewer)):
+        np.testing.assert_array_equal(raw[port], codes((1 - a) * start + a * end, config.vec))
+        assert np.any(raw[port] != codes(exact, config.vec))
