@@ -249,8 +249,9 @@ def cmd_compile(args):
     print(f"chosen {data['chosen']} ({data['module']}): max {data['error']['max']:.3f} levels, "
           f"mean {data['error']['mean']:.4f}, {_cost(data['cost'])}, latency {data['latency']}")
     default = data["default_widths"]
+    misses = default["max"] > spec.requirement.max_error_levels
     print(f"  against its default widths: max {_levels(default['max'])}, {_cost(default['cost'])}"
-          f"{_saving(data['cost'], default['cost'])}")
+          + (" (the defaults miss the requirement)" if misses else _saving(data['cost'], default['cost'])))
     baseline = data["conventional_baseline"]
     if "why_not" in baseline:
         print(f"  against conventional Phong: {baseline['why_not']}")
@@ -261,8 +262,6 @@ def cmd_compile(args):
         print(f"  conventional Phong misses the requirement: max {_levels(baseline['max'])} even at "
               f"{baseline['params']}")
     check = data["rtl_check"]
-    print(f"chosen {data['chosen']} ({data['module']}): max {data['error']['max']:.3f} levels, "
-          f"mean {data['error']['mean']:.4f}, LUT-eq {data['cost']['lut_eq']}, latency {data['latency']}")
     if check is None:
         return 0
     print(f"RTL check frame {check['frame']}: {check['pixels']} pixels, {check['cycles']} cycles, "

@@ -1,7 +1,10 @@
 """Exploring the trade of cost and speed for accuracy.
 
 * :mod:`.synth`: synthesis, place and route (yowasp Yosys + nextpnr, ECP5 and iCE40),
-  cached; :mod:`.cost_proxy`: a tool-free cost estimate from the elaborated RTLIL;
+  cached; :mod:`.asic`: standard-cell synthesis (Yosys onto the OSU Liberty cells) and
+  static timing (OpenSTA); :mod:`.toolrun`: what both flows share (tool runs, logs,
+  the cache); :mod:`.cost_proxy`: tool-free cost estimates from the elaborated RTLIL
+  (LUT-eq, and µm² fitted to the standard-cell flow: :mod:`.proxy_table`);
 * :mod:`.methods`: the sweepable methods (block, width parameters, how to build and run
   them) and the reference scenes; :mod:`.evaluate`: one method at one width point;
 * :mod:`.sweep_spec`, :mod:`.sweep`: TOML grids run on a process pool or Dask, resumable;

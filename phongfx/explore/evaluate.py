@@ -33,12 +33,14 @@ import numpy as np
 
 from .methods import METHODS, SCENES, MethodSpec, Scene
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "COST_KEYS",
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "COST_KEYS", "ASIC_COST_KEYS",
            "error_metrics", "evaluate"]
 
 STATS = ("max", "mean", "psnr", "pct_over1")
 REFERENCES = ("phong", "self")
 COST_KEYS = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "mpixels_per_s", "latency")
+#: The cost of a standard-cell synthesis (``target = "asic"``): area in µm², cells, area × delay.
+ASIC_COST_KEYS = ("area_um2", "cell_count", "ff", "fmax_mhz", "mpixels_per_s", "area_delay", "latency")
 _SYNTH_OPTIONS = ("target", "freq", "device", "seed", "workdir")
 
 
@@ -67,9 +69,10 @@ def _cost(block, config, options):
     if unknown:
         raise ValueError(f"synth option {unknown[0]!r} is not one of {', '.join(_SYNTH_OPTIONS)}")
     result = synth_module.synth(block, config=config, **options)
-    cost = {key: result[key] for key in COST_KEYS if key != "mpixels_per_s"}
+    keys = ASIC_COST_KEYS if options.get("target") == "asic" else COST_KEYS
+    cost = {key: result[key] for key in keys if key != "mpixels_per_s"}
     cost["mpixels_per_s"] = result["pixels_per_second"] / 1e6
-    return {key: cost[key] for key in COST_KEYS}
+    return {key: cost[key] for key in keys}
 
 
 def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):

@@ -9,7 +9,7 @@
 * :mod:`.geometry`: one frame of a scene file as the datapaths see it (span ends of N,
   L and V, interpolation amounts);
 * :mod:`.span_inputs`: the per-span setups of the scanline units (Euler, Gouraud,
-  spherical, Schlick, blinn) laid out as per-pixel input streams.
+  spherical, Schlick, Blinn–Phong, Phong) laid out as per-pixel input streams.
 
 May import: ``phongfx.core``, ``phongfx.config``, ``phongfx.golden``.
 """

@@ -118,8 +118,8 @@ def test_osu035_is_larger_and_slower(tmp_path, asic_tools):
     config = get_block("shape", k=1, t="1.7").config
     small = synth("shape", config=config, target="asic", device="osu018", workdir=tmp_path)
     large = synth("shape", config=config, target="asic", device="osu035", workdir=tmp_path)
-    # (0.35 / 0.18)² ≈ 3.8 in area; the OSU cells are drawn alike in both
-    assert 2.5 < large["area_um2"] / small["area_um2"] < 6
+    # the OSU cells are drawn to scalable rules: every osu035 cell is 4 times its osu018 twin
+    assert large["area_um2"] / small["area_um2"] == pytest.approx(4, rel=0.02)
     assert large["fmax_mhz"] < small["fmax_mhz"]
 
 

@@ -282,3 +282,21 @@ def test_the_conventional_unit_normalizes_a_point_light_and_a_local_viewer():
     for port, start, end, exact in (("light", g.l0[0], g.l1[0], g.light[0]), ("view", g.v0, g.v1, g.viewer)):
         np.testing.assert_array_equal(raw[port], codes((1 - a) * start + a * end, config.vec))
         assert np.any(raw[port] != codes(exact, config.vec))
+
+
+def test_asic_target_prices_in_square_microns_beside_the_phong_baseline(tmp_path, capsys):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    out = tmp_path / "out"
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,conventional", "--target", "asic",
+                 "--library", "osu035", "--no-check", "--quiet"]) == 0
+    data = json.loads((out / "manifest.json").read_text())
+    assert data["cost_model"] == "asic-proxy"
+    cost = data["cost"]
+    assert (cost["unit"], cost["target"], cost["device"], cost["model"]) == ("µm²", "asic", "osu035", "asic-proxy")
+    assert cost["cost"] == cost["area_um2"] > 0 and "lut_eq" not in cost
+    baseline = data["conventional_baseline"]
+    assert baseline["feasible"] and baseline["max"] <= 1.0 and baseline["cost"]["unit"] == "µm²"
+    text = capsys.readouterr().out
+    assert f"area {cost['cost']:,.0f} µm²" in text and "against conventional Phong meeting the same requirement" in text
+    assert "against its default widths" in text
