@@ -75,7 +75,21 @@ def _cost(block, config, options):
     return {key: cost[key] for key in keys}
 
 
-def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):
+def _proxy(block, config, target):
+    """The tool-free cost of ``block`` at ``config`` on ``target``: µm² on ``"asic"`` (osu018),
+    else LUT-eq; ``model`` says it is a proxy."""
+    from phongfx.core.registry import get_block
+
+    from .cost_proxy import proxy_area, proxy_cost
+
+    built = get_block(block, config)
+    if target == "asic":
+        return {"area_um2": proxy_area(built), "model": "asic-proxy"}
+    cost = proxy_cost(built)
+    return {"lut_eq": cost["lut_eq"], "dsp": cost["dsp"], "model": f"{target}-proxy"}
+
+
+def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=None):
     """Error (and, with ``synth``, cost) of ``method`` at ``params`` (module docstring).
 
     Parameters
@@ -89,6 +103,9 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):
     synth : dict, optional
         Options of :func:`phongfx.explore.synth.synth` (``target``, ``freq``, ``device``, ``seed``,
         ``workdir``); None skips synthesis.
+    proxy : str, optional
+        Without ``synth``: a target (``"ecp5"``, ``"ice40"``, ``"asic"``) whose tool-free
+        proxy gives the ``cost`` (``lut_eq`` or ``area_um2``, and ``model``).
 
     Returns
     -------
@@ -121,5 +138,8 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):
         for ref in REFERENCES:
             for stat, value in error_metrics(fixed, floats[ref], scene.data["visible"]).items():
                 metrics[f"{name}.{ref}.{stat}"] = value
-    cost = None if synth is None else _cost(spec.block, config, synth)
+    if synth is not None:
+        cost = _cost(spec.block, config, synth)
+    else:
+        cost = None if proxy is None else _proxy(spec.block, config, proxy)
     return {"metrics": metrics, "cost": cost}

@@ -16,7 +16,7 @@ Speed is ``cost["mpixels_per_s"]`` (one pixel per clock), where higher is better
 import math
 import os
 
-__all__ = ["DSP_LUT_WEIGHT", "MAXIMIZE", "INVISIBLE", "load", "value", "cost_key", "lut_equivalent", "pareto", "BASELINES",
+__all__ = ["DSP_LUT_WEIGHT", "MAXIMIZE", "INVISIBLE", "load", "value", "cost_key", "is_proxy", "lut_equivalent", "pareto", "BASELINES",
            "cheapest_invisible", "pareto_plot", "summary_markdown", "build_report"]
 
 #: LUT4s one MULT18X18D stands for (Booth 18×18 signed soft multiplier, Yosys 0.70, ECP5).
@@ -31,6 +31,11 @@ INVISIBLE = 1.0
 _COST_LABEL = {"lut_eq": f"cost (LUT4 + {DSP_LUT_WEIGHT}·DSP LUT-equivalents)",
                "area_um2": "area (µm², standard cells)",
                "mpixels_per_s": "Mpixel/s (Fmax at 1 pixel/clock)"}
+
+
+def is_proxy(record):
+    """Whether a record's cost is a tool-free proxy's estimate, not a synthesis result."""
+    return str((record.get("cost") or {}).get("model", "")).endswith("-proxy")
 
 
 def cost_key(records):
@@ -58,6 +63,8 @@ def load(path):
 
 def lut_equivalent(cost, dsp_weight=DSP_LUT_WEIGHT):
     """``lut4 + dsp_weight·dsp`` of a record's ``cost``, or ``None`` when not synthesized."""
+    if cost and cost.get("lut4") is None and cost.get("lut_eq") is not None:
+        return float(cost["lut_eq"])  # a proxy's estimate
     if not cost or cost.get("lut4") is None:
         return None
     return float(cost["lut4"]) + dsp_weight * float(cost.get("dsp") or 0)
@@ -153,13 +160,17 @@ def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LU
         result["plotted"] = max(result["plotted"], len(usable))
         result["skipped"] = max(result["skipped"], len(ok) - len(usable))
         for method in methods:
-            pts = [r for r in usable if r["method"] == method]
-            if pts:
-                colour, marker = style[method]
-                ax.scatter([value(r, key, dsp_weight) for r in pts],
-                           [max(value(r, error_key), floor) if log else value(r, error_key) for r in pts],
-                           color=colour, marker=marker, s=30, alpha=0.75, label=method)
-        front = pareto(usable, error_key, key, dsp_weight=dsp_weight)
+            for proxy in (False, True):  # proxy-costed points hollow: estimates, not synthesis
+                pts = [r for r in usable if r["method"] == method and is_proxy(r) == proxy]
+                if pts:
+                    colour, marker = style[method]
+                    ax.scatter([value(r, key, dsp_weight) for r in pts],
+                               [max(value(r, error_key), floor) if log else value(r, error_key) for r in pts],
+                               marker=marker, s=30, alpha=0.75, label=f"{method}{' (proxy cost)' if proxy else ''}",
+                               **({"facecolors": "none", "edgecolors": colour} if proxy else {"color": colour}))
+        # the front over synthesized points where there are any: proxies only estimate
+        synthesized = [r for r in usable if not is_proxy(r)]
+        front = pareto(synthesized or usable, error_key, key, dsp_weight=dsp_weight)
         result[key] = front
         if front:
             xs = [value(r, key, dsp_weight) for r in front]
@@ -217,15 +228,15 @@ def cheapest_invisible(records, error_key="torus.phong.max", *, dsp_weight=DSP_L
     """``label -> (record, invisible)``: per group of :func:`_groups`, the cheapest ``ok`` record
     with error <= :data:`INVISIBLE` (``invisible`` True), else the lowest-error one (False).
     Cheapest = fewest LUT-equivalents (µm² on standard cells: :func:`cost_key`);
-    unsynthesized records rank after synthesized ones."""
+    records costed by a proxy rank after synthesized ones, records without cost last."""
     ok = [r for r in records if r.get("status") == "ok" and value(r, error_key) is not None]
     key = cost_key(ok)
     picks = {}
     for label, group in _groups(ok).items():
         good = [r for r in group if value(r, error_key) <= INVISIBLE]
-        if good:
-            cost = [(value(r, key, dsp_weight), value(r, error_key), r) for r in good]
-            best = min(cost, key=lambda c: (c[0] is None, c[0] or 0.0, c[1]))[2]
+        if good:  # synthesized costs first, then the proxy's estimates, then none
+            cost = [(is_proxy(r), value(r, key, dsp_weight), value(r, error_key), r) for r in good]
+            best = min(cost, key=lambda c: (c[1] is None, c[0], c[1] or 0.0, c[2]))[3]
             picks[label] = (best, True)
         else:
             picks[label] = (min(group, key=lambda r: value(r, error_key)), False)

@@ -114,7 +114,7 @@ def _run_point(evaluate, point):
     start = time.perf_counter()
     try:
         result = evaluate(point["method"], dict(point["params"]), scenes=tuple(point["scenes"]),
-                          synth=point["synth"])
+                          synth=point["synth"], proxy=point.get("proxy"))
         metrics = {key: float(value) for key, value in result["metrics"].items()}
         cost = result.get("cost")
         cost = None if cost is None else {key: _plain(value) for key, value in cost.items()}

@@ -1,6 +1,7 @@
 """Sweep specs: TOML (see ``sweeps/README.md``) to the list of points to evaluate.
 
-A spec names reference scenes, optional synthesis options, and ``[[grid]]`` tables
+A spec names reference scenes, optional synthesis options, the target whose tool-free
+cost proxy prices the points that are not synthesized (``proxy``), and ``[[grid]]`` tables
 (the cartesian product of their lists) or ``[[points]]`` tables (one point each)
 over the methods of :mod:`phongfx.explore.evaluate`.  Everything is checked when the spec is
 read, each point against its method's ranges, so a bad spec fails before anything
@@ -16,7 +17,7 @@ import tomllib
 
 __all__ = ["SweepSpecError", "load_spec", "expand", "point_id", "is_int"]
 
-_TOP_KEYS = ("scenes", "synth", "grid", "points")
+_TOP_KEYS = ("scenes", "synth", "proxy", "grid", "points")
 _SYNTH_KEYS = ("target", "freq", "device", "seed")
 
 
@@ -87,7 +88,7 @@ def _check_value(value, default, where):
     return value
 
 
-def _entry(table, where, kind, methods, scenes, synth, known_scenes):
+def _entry(table, where, kind, methods, scenes, synth, known_scenes, proxy=None):
     """The points of one ``[[grid]]`` or ``[[points]]`` table."""
     if not isinstance(table, dict):
         raise SweepSpecError(f"{where} must be a table, not {table!r}")
@@ -129,7 +130,7 @@ def _entry(table, where, kind, methods, scenes, synth, known_scenes):
             spec.config(params)
         except ValueError as error:
             raise SweepSpecError(f"{where} ({name}, {_brief(dict(zip(axes, combo)))}): {error}") from None
-        points.append(_point(name, params, scenes, synth))
+        points.append(_point(name, params, scenes, synth, proxy))
     return points
 
 
@@ -144,9 +145,23 @@ def point_id(method, params, scenes, synth):
     return hashlib.sha256(key.encode()).hexdigest()[:16]
 
 
-def _point(method, params, scenes, synth):
+def _point(method, params, scenes, synth, proxy=None):
+    # the proxy is not part of the identity: a point's error does not depend on it
     return {"id": point_id(method, params, scenes, synth), "method": method, "params": params,
-            "scenes": list(scenes), "synth": synth}
+            "scenes": list(scenes), "synth": synth, "proxy": None if synth else proxy}
+
+
+def _check_proxy(value, where, synth):
+    """The target whose tool-free proxy costs the points that are not synthesized: ``value``
+    (a target, or false for none), by default the ``[synth]`` target, else ``ecp5``."""
+    from .synth import ALL_TARGETS
+    if value is None:
+        return (synth or {}).get("target", "ecp5")
+    if value is False:
+        return None
+    if value not in ALL_TARGETS:
+        raise SweepSpecError(f"{where} must be one of {', '.join(ALL_TARGETS)} or false, not {value!r}")
+    return value
 
 
 def load_spec(spec):
@@ -179,6 +194,7 @@ def load_spec(spec):
             raise SweepSpecError(f"{where}: unknown key {key!r}; keys: {', '.join(_TOP_KEYS)}")
     scenes = _check_scenes(data.get("scenes", ["torus", "sphere"]), f"{where}: scenes", known_scenes)
     synth = _check_synth(data["synth"], f"{where}: synth") if "synth" in data else None
+    proxy = _check_proxy(data.get("proxy"), f"{where}: proxy", synth)
     points = {}
     for kind in ("grid", "points"):
         tables = data.get(kind, [])
@@ -186,11 +202,11 @@ def load_spec(spec):
             raise SweepSpecError(f"{where}: {kind} must be an array of tables ([[{kind}]]), not {tables!r}")
         for index, table in enumerate(tables):
             for point in _entry(table, f"{where}: {kind}[{index}]", kind, methods, scenes, synth,
-                                known_scenes):
+                                known_scenes, proxy):
                 points.setdefault(point["id"], point)
     if not points:
         raise SweepSpecError(f"{where}: no points; add a [[grid]] or [[points]] table")
-    return {"scenes": scenes, "synth": synth, "points": list(points.values())}
+    return {"scenes": scenes, "synth": synth, "proxy": proxy, "points": list(points.values())}
 
 
 def expand(spec):

@@ -28,7 +28,7 @@ STUB_METHODS = {"alpha": StubMethod({"a": 4, "b": 2, "n": 20}), "beta": StubMeth
 STUB_SCENES = ("torus", "sphere")
 
 
-def stub_evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):
+def stub_evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=None):
     """Metrics that are simple functions of the params; a == 13 fails, a == 7 is a Ctrl-C."""
     count = os.environ.get("SWEEP_TEST_COUNT")
     if count:
@@ -41,6 +41,8 @@ def stub_evaluate(method, params, *, scenes=("torus", "sphere"), synth=None):
     value = params.get("a", 0) + params.get("b", 0) / 10 + params.get("c", 0) * 100
     metrics = {f"{scene}.phong.max": value + i for i, scene in enumerate(scenes)}
     cost = None if synth is None else {"lut4": 10 * value, "fmax_mhz": float(synth["freq"])}
+    if synth is None and proxy is not None:
+        cost = {"lut_eq": 11 * value, "model": f"{proxy}-proxy"}
     return {"metrics": metrics, "cost": cost}
 
 
@@ -76,6 +78,19 @@ def test_expand_fills_defaults_and_dedupes(stub):
     other = load_spec({**spec, "scenes": ["sphere"]})["points"]
     synth = load_spec({**spec, "synth": {"target": "ecp5", "freq": 100}})["points"]
     assert len({p["id"] for p in points + other + synth}) == 6  # scenes and synth are in the id
+
+
+def test_proxy_prices_the_points_not_synthesized(stub):
+    spec = {"synth": {"target": "asic", "freq": 100}, "grid": [{"method": "alpha", "a": [1, 2], "synth": False},
+                                                             {"method": "beta"}]}
+    assert [p["proxy"] for p in load_spec(spec)["points"]] == ["asic", "asic", None]
+    assert [p["proxy"] for p in load_spec({**spec, "proxy": False})["points"]] == [None, None, None]
+    assert load_spec({"grid": [{"method": "beta"}]})["points"][0]["proxy"] == "ecp5"
+    with pytest.raises(SweepSpecError, match=r"^sweep spec: proxy must be one of ecp5, ice40, asic or false, "
+                                             r"not 'xc7'$"):
+        load_spec({**spec, "proxy": "xc7"})
+    # the proxy is not in a point's identity: its error does not depend on it
+    assert [p["id"] for p in load_spec(spec)["points"]] == [p["id"] for p in load_spec({**spec, "proxy": False})["points"]]
 
 
 def test_per_entry_synth_switch(stub):
@@ -200,7 +215,7 @@ SPEC_ERRORS = [
      r"scenes: torus, sphere$"),
     ({"grid": [{"method": "beta", "synth": True}]},
      r"^sweep spec: grid\[0\]\.synth = true needs a top-level \[synth\] table"),
-    ({"grids": [{"method": "beta"}]}, r"^sweep spec: unknown key 'grids'; keys: scenes, synth, grid, points$"),
+    ({"grids": [{"method": "beta"}]}, r"^sweep spec: unknown key 'grids'; keys: scenes, synth, proxy, grid, points$"),
     ({"grid": {"method": "beta"}}, r"^sweep spec: grid must be an array of tables \(\[\[grid\]\]\), not "),
     ({"scenes": ["torus"]}, r"^sweep spec: no points; add a \[\[grid\]\] or \[\[points\]\] table$"),
 ]
@@ -234,7 +249,8 @@ def _real_columns():
     metrics = [f"sphere.{ref}.{stat}" for ref in ("phong", "self")
                for stat in ("max", "mean", "psnr", "pct_over1")]
     return (["id", "method", "status", "error", "seconds", "param.addr_bits", "param.rom_bits",
-             "param.theta_frac", "param.n", "param.t_frac", "param.out_frac"] + metrics)
+             "param.theta_frac", "param.n", "param.t_frac", "param.out_frac"] + metrics
+            + ["cost.lut_eq", "cost.dsp", "cost.model"])  # no synthesis asked: the ECP5 proxy
 
 
 def _check_real(out):
@@ -244,8 +260,10 @@ def _check_real(out):
     by = {(r["method"], r["param.addr_bits"] or r["param.t_frac"]): r for r in table}
     # Szirmay-Kalos et al. 2000, Fig. 11: more ROM address bits, a smaller table error
     assert float(by["spherical", "8"]["sphere.self.max"]) < float(by["spherical", "4"]["sphere.self.max"])
-    direct = evaluate("schlick", {"t_frac": 8}, scenes=("sphere",))["metrics"]
-    assert {k: float(by["schlick", "8"][k]) for k in direct} == pytest.approx(direct)
+    direct = evaluate("schlick", {"t_frac": 8}, scenes=("sphere",), proxy="ecp5")
+    assert {k: float(by["schlick", "8"][k]) for k in direct["metrics"]} == pytest.approx(direct["metrics"])
+    assert float(by["schlick", "8"]["cost.lut_eq"]) == direct["cost"]["lut_eq"] > 0
+    assert by["schlick", "8"]["cost.model"] == "ecp5-proxy"
 
 
 def test_real_sweep_on_the_local_pool(tmp_path):
