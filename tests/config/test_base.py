@@ -2,7 +2,7 @@ import dataclasses
 
 import pytest
 
-from phongfx.config import (BlockConfig, BlinnConfig, DatapathConfig, DifferenceConfig, DiffuseConfig,
+from phongfx.config import (BlinnConfig, BlockConfig, DatapathConfig, DifferenceConfig, DiffuseConfig,
                             EulerConfig, GouraudConfig, HalfwayConfig, LirpConfig, NormalizeConfig,
                             ReflectConfig, RootConfig, SchlickConfig, ShapeConfig, SphericalConfig)
 from phongfx.config.base import (MAX_PIPELINE, MAX_VEC_FRAC, check_format, check_fraction_format, check_int,

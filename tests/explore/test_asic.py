@@ -10,6 +10,7 @@ import pytest
 from phongfx.core.registry import get_block
 from phongfx.explore import asic as asic_module
 from phongfx.explore import synth as synth_module
+from phongfx.explore import toolrun
 from phongfx.explore.asic import LIBRARIES, Library, parse_timing
 from phongfx.explore.synth import SynthError, markdown, synth
 
@@ -107,7 +108,8 @@ def test_smoke_shape_osu018(tmp_path, monkeypatch, asic_tools):
 
     def fail(*args):
         raise AssertionError("a tool ran on a cache hit")
-    monkeypatch.setattr(asic_module, "run", fail)
+    for module in (asic_module, toolrun):
+        monkeypatch.setattr(module, "run", fail)
     again = synth("shape", config=get_block("shape", k=1).config, target="asic", freq=500,
                   workdir=tmp_path)
     assert again["cached"] is True and again["freq"] == 500 and again["met"] is (again["fmax_mhz"] >= 500)

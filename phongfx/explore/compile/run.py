@@ -33,7 +33,6 @@ drives), and what diffuse and specular amounts per light do its raw outputs stan
 
 import numpy as np
 
-from phongfx.core.registry import get_block
 from phongfx.explore.methods import METHODS
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import shade as mesh_shade
