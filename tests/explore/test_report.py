@@ -192,3 +192,25 @@ def test_build_report_embeds_table_markdown_and_plots(tmp_path):
     assert "## Figure 1, measured" in text  # the module's heading, one level down
     assert "![schlick figure1.png](schlick/figure1.png)" in text
     assert (tmp_path / "r" / "schlick" / "figure1.png").read_bytes()[:8] == PNG
+
+
+def _asic(id, method, err, area, mpix=None, model=None):
+    cost = {"area_um2": area, "cell_count": int(area // 30), "area_delay": area * 10.0,
+            "fmax_mhz": mpix, "mpixels_per_s": mpix}
+    if model:
+        cost = {"area_um2": area, "model": model}
+    return {"id": id, "method": method, "params": {"vec_frac": 10}, "status": "ok", "error": None,
+            "seconds": 0.1, "metrics": {KEY: err}, "cost": cost, "synth": {"target": "asic", "device": "osu035"}}
+
+
+def test_standard_cell_records_are_compared_in_square_microns(tmp_path):
+    records = [_asic("A", "fig7", 0.9, 1_600_000.0, 100.0), _asic("B", "fig8", 0.8, 1_300_000.0, 105.0),
+               _asic("C", "fig8", 0.7, 900_000.0, model="asic-proxy")]  # cheaper, but only an estimate
+    assert report.cost_key(records) == "area_um2"
+    picks = cheapest_invisible(records)
+    assert picks["fig8"][0]["id"] == "B"  # a synthesized cost before a proxy's
+    text = summary_markdown(records)
+    assert "cost = area on asic osu035" in text and "| fig8 | vec_frac=10 | 0.800 | 1,300,000 | 43333 |" in text
+    front = pareto_plot(records, tmp_path / "p.png")
+    assert ids(front["area_um2"]) == ["B"]  # the front over synthesized points only
+    assert front["plotted"] == 3 and (tmp_path / "p.png").read_bytes().startswith(PNG)
