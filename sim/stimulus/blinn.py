@@ -6,7 +6,7 @@ import numpy as np
 from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
 from .extreme import Extreme, all_of, exactly, vectors_at_shininess_ends, zero
 
-__all__ = ["stimulus", "directed", "edge_n", "highlights", "extremes"]
+__all__ = ["stimulus", "mixed", "directed", "edge_n", "highlights", "extremes"]
 
 
 def edge_n(config):
@@ -58,18 +58,33 @@ def highlights(config, count, generator):
             "half": codes(h, vec), "n": n}
 
 
-def stimulus(config, count=1000, seed=0):
-    """Raw codes: :func:`directed`, then ``count`` random: half :func:`highlights`, a quarter
-    random unit ``L``, ``H`` and ``N`` of length 0.5..1, a quarter random codes everywhere."""
+def mixed(config, count, seed, directed_rows, highlights, spread):
+    """Raw codes of a baseline unit (this one's or the Phong unit's): ``directed_rows``, then
+    ``count`` random: half ``highlights(config, count, generator)``, a quarter
+    ``spread(config, count, generator)`` (raw vector codes by port) with random ``n``, a
+    quarter random codes on every port.  The generator is drawn in that order: spread,
+    the junk quarter, then the highlights."""
     vec, g = config.fmt("vec"), rng(seed)
     half, quarter = count // 2, count // 4
     rest = count - half - quarter
-    spread = {"normal": codes(unit_vectors(quarter, g) * g.uniform(0.5, 1, (quarter, 1)), vec),
-              "light": codes(unit_vectors(quarter, g), vec), "half": codes(unit_vectors(quarter, g), vec),
-              "n": random_codes(config.fmt("n"), quarter, g, 1, config.n_max)}
-    junk = {name: random_codes(vec, (rest, 3), g) for name in ("normal", "light", "half")}
+    rows = spread(config, quarter, g)
+    rows["n"] = random_codes(config.fmt("n"), quarter, g, 1, config.n_max)
+    junk = {name: random_codes(vec, (rest, 3), g) for name in rows if name != "n"}
     junk["n"] = random_codes(config.fmt("n"), rest, g, 1, config.n_max)
-    return concat(directed(config), highlights(config, half, g), spread, junk)
+    return concat(directed_rows, highlights(config, half, g), rows, junk)
+
+
+def _spread(config, count, g):
+    vec = config.fmt("vec")
+    return {"normal": codes(unit_vectors(count, g) * g.uniform(0.5, 1, (count, 1)), vec),
+            "light": codes(unit_vectors(count, g), vec), "half": codes(unit_vectors(count, g), vec)}
+
+
+def stimulus(config, count=1000, seed=0):
+    """Raw codes (:func:`mixed`): :func:`directed`, then ``count`` random: half
+    :func:`highlights`, a quarter random unit ``L``, ``H`` and ``N`` of length 0.5..1, a
+    quarter random codes everywhere."""
+    return mixed(config, count, seed, directed(config), highlights, _spread)
 
 
 def _rows(c, normal, light, half):

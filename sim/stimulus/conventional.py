@@ -5,7 +5,7 @@ highlights (``R`` near ``V``) and, where the config normalizes them, non-unit ``
 import numpy as np
 
 from . import AXES, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
-from .blinn import edge_n
+from .blinn import edge_n, mixed
 from .extreme import Extreme, all_of, exactly, vectors_at_shininess_ends, zero
 
 __all__ = ["stimulus", "directed", "highlights", "extremes"]
@@ -78,21 +78,19 @@ def highlights(config, count, generator, n=None):
             "view": codes(view * length_v, vec), "n": n}
 
 
+def _spread(config, count, g):
+    vec = config.fmt("vec")
+    length_l, length_v = _lengths(config, count, g)
+    return {"normal": codes(unit_vectors(count, g) * g.uniform(0.5, 1, (count, 1)), vec),
+            "light": codes(unit_vectors(count, g) * length_l, vec),
+            "view": codes(unit_vectors(count, g) * length_v, vec)}
+
+
 def stimulus(config, count=1000, seed=0):
-    """Raw codes: :func:`directed`, then ``count`` random: half :func:`highlights`, a quarter
-    random ``L``, ``V`` (lengths by :func:`_lengths`) and ``N`` of length 0.5..1, a quarter
-    random codes everywhere."""
-    vec, g = config.fmt("vec"), rng(seed)
-    half, quarter = count // 2, count // 4
-    rest = count - half - quarter
-    length_l, length_v = _lengths(config, quarter, g)
-    spread = {"normal": codes(unit_vectors(quarter, g) * g.uniform(0.5, 1, (quarter, 1)), vec),
-              "light": codes(unit_vectors(quarter, g) * length_l, vec),
-              "view": codes(unit_vectors(quarter, g) * length_v, vec),
-              "n": random_codes(config.fmt("n"), quarter, g, 1, config.n_max)}
-    junk = {name: random_codes(vec, (rest, 3), g) for name in ("normal", "light", "view")}
-    junk["n"] = random_codes(config.fmt("n"), rest, g, 1, config.n_max)
-    return concat(directed(config), highlights(config, half, g), spread, junk)
+    """Raw codes (:func:`~phongfx.sim.stimulus.blinn.mixed`): :func:`directed`, then ``count``
+    random: half :func:`highlights`, a quarter random ``L``, ``V`` (lengths by
+    :func:`_lengths`) and ``N`` of length 0.5..1, a quarter random codes everywhere."""
+    return mixed(config, count, seed, directed(config), highlights, _spread)
 
 
 def _rows(c, normal, light, view):
