@@ -14,7 +14,8 @@ This flow measures them where they count:
    script, no delay target, so the netlist does not depend on the clock asked for),
    ``stat -liberty`` for the block's area in µm² and its cells;
 3. OpenSTA (Debian's ``opensta``) on the mapped netlist: the worst register-to-register
-   path of the whole design, its end registers and its delay (clock-to-Q, logic, setup).
+   path of the whole design, its end registers (named by their ``Q`` nets; ``in_shift``
+   and ``out_shift`` are the harness' own) and its delay (clock-to-Q, logic, setup).
    The clock is ideal and there is no wire-load model, placement or routing: these are
    pre-layout figures, for comparing designs with each other, not sign-off timing.
 
