@@ -29,6 +29,7 @@ design, library file, flow version and tool versions, but not the clock: a resul
 the minimum period, and ``freq`` only decides ``met``.
 """
 
+import functools
 import re
 import shutil
 import subprocess
@@ -77,9 +78,19 @@ def _sta():
     return tool("sta", "OpenSTA: apt-get install opensta")
 
 
+@functools.lru_cache(maxsize=None)
 def _sta_version():
+    # asked once per process: every cache key names it, and a sweep asks for thousands
     out = subprocess.run([_sta(), "-version"], capture_output=True, text=True, stdin=subprocess.DEVNULL)
     return out.stdout.strip() or out.stderr.strip()
+
+
+@functools.lru_cache(maxsize=None)
+def _file_digest(path, mtime_ns):
+    """Digest of the Liberty file at ``path``, read again only when it changes."""
+    from phongfx.sim.build_cache import digest
+
+    return digest([Path(path).read_text(errors="replace")])
 
 
 def _tool_versions():
@@ -160,11 +171,10 @@ def parse_timing(report, netlist=""):
             "ns": round(float(arrival.group(1)) + setup_ns, 3), "setup_ns": round(setup_ns, 3)}
 
 
-def _flow(block, module, library, work, progress):
+def _flow(block, module, library, source, work, progress):
     from phongfx.hdl.emit import payload_widths, write_verilog
     from phongfx.hdl.overflow import overflow_checks
 
-    source = library_file(library)
     component = block.component()
     progress("verilog")
     with overflow_checks(False):  # the overflow field stays 0: no logic, no registers
@@ -228,7 +238,7 @@ def asic_synth(block, module, *, library=DEFAULT_LIBRARY, freq=150, workdir="bui
     source = library_file(library)
     progress = progress or (lambda stage: None)
     key = digest(["asic", FLOW_VERSION, block.name, repr(block.config), library,
-                  digest([source.read_text(errors="replace")]), design_rtlil(block, module),
+                  _file_digest(str(source), source.stat().st_mtime_ns), design_rtlil(block, module),
                   *_tool_versions()])
-    result = cached_run(workdir, key, lambda work: _flow(block, module, library, work, progress))
+    result = cached_run(workdir, key, lambda work: _flow(block, module, library, source, work, progress))
     return {**result, "freq": freq, "met": bool(result["fmax_mhz"] >= freq)}

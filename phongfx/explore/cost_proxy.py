@@ -37,8 +37,8 @@ device, not a synthesis result: the manifest says
 import math
 import re
 
-__all__ = ["DSP_LUT_EQ", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "rtlil_cost",
-           "rtlil_features", "rtlil_of"]
+__all__ = ["DSP_LUT_EQ", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
+           "rtlil_cost", "rtlil_features", "rtlil_of"]
 
 DSP_LUT_EQ = 958
 #: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
@@ -103,9 +103,39 @@ def _tiles(width):
     return width // 18 + (width % 18 >= 2)
 
 
-def _mul_const_adders(conns, a, b, const_a):
-    literal, other = (conns["A"], b) if const_a else (conns["B"], a)
-    return max(_ones(literal) - 1, 0) * other
+def _parts(text):
+    """``(kind, amounts)`` of every distinct cell of RTLIL ``text``, in the terms both
+    prices use: ``("mul", a, b)`` a variable multiplier; ``("add", bits)`` an adder (a
+    constant multiply as its shift-and-add adders); ``("cmp", bits)``; ``("mux", bits)`` (a
+    variable shift as its multiplexers); ``("logic", bits)``; ``("reduce", input bits)``;
+    ``("rom", word bits, address bits)``; ``("ff", bits)``."""
+    for kind, params, conns in _cells(text):
+        a, b, y = _int(params, "A_WIDTH"), _int(params, "B_WIDTH"), _int(params, "Y_WIDTH")
+        const_a, const_b = (bool(_CONST.match(conns.get(p, ""))) for p in ("A", "B"))
+        if kind == "$mul":
+            if const_a or const_b:
+                literal, other = (conns["A"], b) if const_a else (conns["B"], a)
+                yield "add", max(_ones(literal) - 1, 0) * other
+            else:
+                yield "mul", a, b
+        elif kind in ("$add", "$sub", "$neg", "$alu"):
+            yield "add", y
+        elif kind in _ADD:
+            yield "cmp", max(a, b, 1)
+        elif kind in ("$mux", "$bmux"):
+            yield "mux", _int(params, "WIDTH")
+        elif kind == "$pmux":
+            yield "mux", _int(params, "WIDTH") * _int(params, "S_WIDTH", 1)
+        elif kind in _SHIFT:
+            yield "mux", 0 if const_b else y * min(b, max(y, 2).bit_length())
+        elif kind in _LOGIC:
+            yield "logic", y
+        elif kind.startswith("$reduce"):
+            yield "reduce", a
+        elif kind in ("$memrd_v2", "$memrd"):
+            yield "rom", _int(params, "WIDTH"), _int(params, "ABITS")
+        elif kind.endswith("dff") or kind.endswith("dffe"):
+            yield "ff", _int(params, "WIDTH")
 
 
 def rtlil_features(text):
@@ -116,73 +146,62 @@ def rtlil_features(text):
     (bitwise logic and reductions), ``rom_bits`` (words × bits of every ROM) and
     ``ff_bits`` (registers)."""
     f = dict.fromkeys(FEATURES, 0)
-    for kind, params, conns in _cells(text):
-        a, b, y = _int(params, "A_WIDTH"), _int(params, "B_WIDTH"), _int(params, "Y_WIDTH")
-        const_a, const_b = (bool(_CONST.match(conns.get(p, ""))) for p in ("A", "B"))
-        if kind == "$mul":
-            if const_a or const_b:
-                f["add_bits"] += _mul_const_adders(conns, a, b, const_a)
-            else:
-                f["mul_bits"] += a * b
-        elif kind in ("$add", "$sub", "$neg", "$alu"):
-            f["add_bits"] += y
-        elif kind in _ADD:
-            f["cmp_bits"] += max(a, b, 1)
-        elif kind in ("$mux", "$bmux"):
-            f["mux_bits"] += _int(params, "WIDTH")
-        elif kind == "$pmux":
-            f["mux_bits"] += _int(params, "WIDTH") * _int(params, "S_WIDTH", 1)
-        elif kind in _SHIFT:
-            f["mux_bits"] += 0 if const_b else y * min(b, max(y, 2).bit_length())
-        elif kind in _LOGIC:
-            f["logic_bits"] += y
-        elif kind.startswith("$reduce"):
-            f["logic_bits"] += a
-        elif kind in ("$memrd_v2", "$memrd"):
-            f["rom_bits"] += _int(params, "WIDTH") * 2 ** _int(params, "ABITS")
-        elif kind.endswith("dff") or kind.endswith("dffe"):
-            f["ff_bits"] += _int(params, "WIDTH")
+    for kind, *n in _parts(text):
+        if kind == "mul":
+            f["mul_bits"] += n[0] * n[1]
+        elif kind == "rom":
+            f["rom_bits"] += n[0] * 2 ** n[1]
+        else:
+            f["logic_bits" if kind == "reduce" else f"{kind}_bits"] += n[0]
     return f
 
 
 def rtlil_cost(text):
     """``{lut_eq, lut, dsp, carry_bits, ff_bits}`` of RTLIL ``text`` (module docstring)."""
     lut = dsp = carry = ff = 0
-    for kind, params, conns in _cells(text):
-        a, b, y = _int(params, "A_WIDTH"), _int(params, "B_WIDTH"), _int(params, "Y_WIDTH")
-        const_a, const_b = (bool(_CONST.match(conns.get(p, ""))) for p in ("A", "B"))
-        if kind == "$mul":
-            if const_a or const_b:
-                carry += _mul_const_adders(conns, a, b, const_a)
-            else:
-                dsp += _tiles(a) * _tiles(b)
-        elif kind in _ADD:
-            carry += y if kind in ("$add", "$sub", "$neg") else max(a, b, 1)
-        elif kind in ("$mux", "$bmux"):
-            lut += _int(params, "WIDTH")
-        elif kind == "$pmux":
-            lut += _int(params, "WIDTH") * _int(params, "S_WIDTH", 1)
-        elif kind in _SHIFT:
-            lut += 0 if const_b else y * min(b, max(y, 2).bit_length())
-        elif kind in _LOGIC:
-            lut += y
-        elif kind.startswith("$reduce"):
-            lut += math.ceil(a / 4)
-        elif kind in ("$memrd_v2", "$memrd"):
-            lut += _int(params, "WIDTH") * math.ceil(2 ** _int(params, "ABITS") / 16)
-        elif kind.endswith("dff") or kind.endswith("dffe"):
-            ff += _int(params, "WIDTH")
+    for kind, *n in _parts(text):
+        if kind == "mul":
+            dsp += _tiles(n[0]) * _tiles(n[1])
+        elif kind in ("add", "cmp"):
+            carry += n[0]
+        elif kind in ("mux", "logic"):
+            lut += n[0]
+        elif kind == "reduce":
+            lut += math.ceil(n[0] / 4)
+        elif kind == "rom":
+            lut += n[0] * math.ceil(2 ** n[1] / 16)
+        else:
+            ff += n[0]
     return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff}
+
+
+def _coefficients(library):
+    if library not in AREA_COEFFICIENTS:
+        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))}, not {library!r}")
+    return AREA_COEFFICIENTS[library]
+
+
+def price(features, library="osu018"):
+    """µm² of :func:`rtlil_features` ``features`` on ``library`` (:data:`AREA_COEFFICIENTS`)."""
+    coefficients = _coefficients(library)
+    return float(sum(coefficients[k] * features[k] for k in FEATURES))
 
 
 def proxy_area(block, library="osu018"):
     """Estimated standard-cell area (µm²) of ``block`` on ``library``: the
     :func:`rtlil_features` priced by :data:`AREA_COEFFICIENTS`, fitted to the real flow
     (:mod:`phongfx.explore.asic`) over the registry's blocks."""
-    if library not in AREA_COEFFICIENTS:
-        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))}, not {library!r}")
-    features = rtlil_features(rtlil_of(block))
-    return float(sum(AREA_COEFFICIENTS[library][k] * features[k] for k in FEATURES))
+    _coefficients(library)  # a bad library is refused before the elaboration
+    return price(rtlil_features(rtlil_of(block)), library)
+
+
+def proxy_estimate(block, target, library=None):
+    """The tool-free cost of ``block`` on ``target`` as the compiler and the sweeps record
+    it: ``{"area_um2"}`` on ``"asic"`` (``library``, default ``osu018``), else
+    :func:`proxy_cost`'s ``lut_eq`` with its parts; ``model`` says it is a proxy."""
+    if target == "asic":
+        return {"area_um2": proxy_area(block, library or "osu018"), "model": "asic-proxy"}
+    return {**proxy_cost(block), "model": f"{target}-proxy"}
 
 
 def rtlil_of(block):

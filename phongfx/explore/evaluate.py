@@ -76,17 +76,15 @@ def _cost(block, config, options):
 
 
 def _proxy(block, config, target):
-    """The tool-free cost of ``block`` at ``config`` on ``target``: µm² on ``"asic"`` (osu018),
-    else LUT-eq; ``model`` says it is a proxy."""
+    """The tool-free cost of ``block`` at ``config`` on ``target``
+    (:func:`~phongfx.explore.cost_proxy.proxy_estimate`): µm² on ``"asic"`` (osu018), else
+    LUT-eq and DSP tiles; ``model`` says it is a proxy."""
     from phongfx.core.registry import get_block
 
-    from .cost_proxy import proxy_area, proxy_cost
+    from .cost_proxy import proxy_estimate
 
-    built = get_block(block, config)
-    if target == "asic":
-        return {"area_um2": proxy_area(built), "model": "asic-proxy"}
-    cost = proxy_cost(built)
-    return {"lut_eq": cost["lut_eq"], "dsp": cost["dsp"], "model": f"{target}-proxy"}
+    estimate = proxy_estimate(get_block(block, config), target)
+    return {k: estimate[k] for k in ("area_um2", "lut_eq", "dsp", "model") if k in estimate}
 
 
 def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=None):

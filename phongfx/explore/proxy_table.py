@@ -19,7 +19,7 @@ import numpy as np
 
 from phongfx.core.registry import block_names, get_block
 
-from .cost_proxy import AREA_COEFFICIENTS, FEATURES, proxy_area, rtlil_features, rtlil_of
+from .cost_proxy import AREA_COEFFICIENTS, FEATURES, price, rtlil_features, rtlil_of
 from .synth import synth
 
 __all__ = ["TABLES", "POINTS", "DATAPATHS", "fit", "calibration_rows", "proxy_table", "run_table", "markdown",
@@ -79,7 +79,7 @@ def calibration_rows(points=POINTS, *, library="osu018", workdir="build/synth", 
         block = get_block(name, config(name) if callable(config) else config)
         result = synth(name, config=block.config, target="asic", device=library, workdir=workdir)
         features = rtlil_features(rtlil_of(block))
-        proxy = proxy_area(block, library)
+        proxy = price(features, library)
         rows.append({"label": label, "block": name, "features": features, "area_um2": result["area_um2"],
                      "fmax_mhz": result["fmax_mhz"], "proxy_um2": proxy,
                      "error": proxy / result["area_um2"] - 1})

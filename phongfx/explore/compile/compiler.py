@@ -231,8 +231,8 @@ def cost(method, config, synth=False, copies=1, *, target="ecp5", device=None, f
              "seed": seed if synth and target != "asic" else None,
              "model": f"{target}-synth" if synth else f"{target}-proxy", "unit": unit_name}
     if not synth:
-        from phongfx.explore.cost_proxy import proxy_area, proxy_cost
-        unit = {"area_um2": proxy_area(block, device)} if target == "asic" else proxy_cost(block)
+        from phongfx.explore.cost_proxy import proxy_estimate
+        unit = proxy_estimate(block, target, device)
     else:
         from phongfx.explore.synth import synth as run_synth
         result = run_synth(block.name, config=config, target=target, device=device, freq=freq, seed=seed)
