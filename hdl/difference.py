@@ -6,7 +6,8 @@ from phongfx.config import DifferenceConfig
 from phongfx.core.format import Format
 
 from .block import PipelinedBlock
-from .fixed import cut, quantize_cut, split_product, stage
+from .dsp import product, registered, split_product
+from .fixed import cut, quantize_cut, stage
 
 __all__ = ["Difference", "const_product", "signed_digits"]
 
@@ -62,7 +63,9 @@ class Difference(PipelinedBlock):
     tree gives ``D·D``, and one 13×22 multiplier scales it by ``n``.  Bit growth and
     saturation are as in :func:`phongfx.golden.difference.difference`.
 
-    Latency: ``4 + [pipeline ≥ 1] + 2·[pipeline ≥ 2] + 3·[pipeline ≥ 3]`` (4, 5, 7, 10).  Depth 0: squares
+    Latency: ``4 + [pipeline ≥ 1] + 2·[pipeline ≥ 2] + 3·[pipeline ≥ 3] + 4·[pipeline ≥ 4]``
+    (4, 5, 7, 10, 14); depth 4 registers both multiplier levels' inputs and products once
+    more (so the DSPs meet only registers) and clamps by bit tests.  Depth 0: squares
     ``D_i²``; the saturated ``D·D``; the product ``n·D·D``; the rounded, saturated
     ``2x``: each multiplier level is registered before the adder or rounder behind
     it.  Depth 1 registers ``D`` before the squarers; depth 2 also cuts the
@@ -82,19 +85,20 @@ class Difference(PipelinedBlock):
     @cached_property
     def latency(self):
         depth = self.config.pipeline
-        return 4 + (depth >= 1) + 2 * (depth >= 2) + 3 * (depth >= 3)
+        return 4 + (depth >= 1) + 2 * (depth >= 2) + 3 * (depth >= 3) + 4 * (depth >= 4)
 
     def datapath(self, m, i):
         cfg, depth = self.config, self.config.pipeline
         d = cut(m, i["r"] - i["l"], depth >= 2, "dsub").quantize(cfg.d, cfg.rounding, "saturate")
         d = cut(m, d, depth >= 1, "d")
-        squares = stage(m, d * d, "squares")
+        squares = product(m, d, d, name="squares", isolate=depth >= 4)
         total = cut(m, squares.sum(), depth >= 2, "total")
-        dd = stage(m, quantize_cut(m, total, cfg.dd, cfg.rounding, "saturate", depth >= 3, "dd_round"),
+        dd = stage(m, quantize_cut(m, total, cfg.dd, cfg.rounding, "saturate", depth >= 3, "dd_round", depth >= 4),
                    "dd")
         if cfg.n_const:
-            p = const_product(m, dd, cfg.n_const, cfg.n, depth >= 3, "p")
+            p = const_product(m, registered(dd)[0] if depth >= 4 else dd, cfg.n_const, cfg.n, depth >= 3, "p")
+            p = cut(m, p, depth >= 4, "p_out")  # as a multiplier's isolated product
         else:
-            p = split_product(m, i["n"], dd, depth >= 3, "p")
+            p = split_product(m, i["n"], dd, depth >= 3, "p", depth >= 4)
         return {"x2": stage(m, quantize_cut(m, p, cfg.x2, cfg.rounding, "saturate", depth >= 3,
-                                            "x2_round"), "x2")}
+                                            "x2_round", depth >= 4), "x2")}

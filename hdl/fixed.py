@@ -15,8 +15,9 @@ block that does not use tags) is taken as valid at any cycle.  :func:`stage` add
 one; an operator whose operands sit at different cycles first delays the earlier
 one to the later (:meth:`FixedValue.at`; registers are shared between uses of the
 same value).  So a block only marks where its registers go (:func:`cut` for the
-optional ones of a pipeline depth, :func:`quantize_cut` and :func:`split_product`
-for the deepest cuts) and every parallel path is padded to match by construction;
+optional ones of a pipeline depth, :func:`quantize_cut` and
+:func:`~phongfx.hdl.dsp.split_product` for the deepest cuts) and every parallel path is
+padded to match by construction;
 :class:`~phongfx.hdl.block.PipelinedBlock` records the cycle each output leaves at,
 for tests to hold against the block's ``latency`` formula.  Comparisons give plain
 1-bit values (no tag): a flag that must wait alongside the data is made with
@@ -34,11 +35,11 @@ from phongfx.core.format import Format, check_overflow, check_rounding
 
 from .overflow import collecting_overflow, report_overflow
 
-__all__ = ["FixedValue", "FixedVector", "quantize", "overflowed", "stage", "delay", "cut", "align",
-           "quantize_cut", "split_product", "DSP_BITS"]
+__all__ = ["FixedValue", "FixedVector", "fit", "quantize", "overflowed", "stage", "delay", "cut", "align",
+           "quantize_cut"]
 
 
-def _fit(value, fmt):
+def fit(value, fmt):
     """``value`` extended by its own signedness (or truncated) to exactly ``fmt``'s shape.
 
     Slicing alone cannot widen: ``value[:n]`` of a narrower value keeps its width, so an
@@ -90,6 +91,25 @@ def _out_of_range(value, to):
             value > to.max_raw if highest > to.max_raw else None)
 
 
+def _out_of_range_bits(value, to):
+    """:func:`_out_of_range` as bit tests: every limit of a format is a power of two (less one
+    above), so ``value`` is out of range exactly when its bits from ``to``'s top bit up are
+    not all copies of its sign (signed ``to``) or not all 0 (unsigned): LUTs, no carry chain."""
+    low, high = _out_of_range(value, to)
+    signed = value.shape().signed
+    top = to.width - 1 if to.signed else to.width  # the first bit ``to`` cannot hold freely
+    sign = value[-1] if signed else Const(0, 1)
+    upper = value[top:len(value) - 1] if signed else value[top:]
+    if to.signed:
+        rest = value[top:]  # sign bit of ``to`` and above: all equal when in range
+        low = None if low is None else sign & ~rest.all()
+        high = None if high is None else ~sign & rest.any()
+    else:
+        low = None if low is None else sign
+        high = None if high is None else ~sign & upper.any()
+    return low, high
+
+
 def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
     """Narrow ``value`` (raw codes of ``frm``) to ``to``; twin of ``golden.fixed.quantize_raw``.
 
@@ -98,15 +118,19 @@ def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
     :meth:`FixedValue.quantize` raises a simulation-only flag (see
     :func:`~phongfx.hdl.overflow.overflow_flags`).
     ``parallel_clamp`` compares with both limits side by side rather than the upper
-    one behind the lower one's multiplexer: the same codes, one comparator deep.
+    one behind the lower one's multiplexer: the same codes, one comparator deep;
+    ``"bits"`` does so with bit tests instead of comparators (:func:`_out_of_range_bits`).
     """
     frm, to = Format.parse(frm), Format.parse(to)
     check_rounding(rounding)
     check_overflow(overflow)
     value = _rounded(value, frm, to, rounding)
     if overflow == "saturate":
-        low, high = _out_of_range(value, to)
-        if parallel_clamp and low is not None and high is not None:
+        low, high = (_out_of_range_bits if parallel_clamp == "bits" else _out_of_range)(value, to)
+        if parallel_clamp == "bits":
+            value = Mux(high, to.max_raw, value) if high is not None else value
+            value = Mux(low, to.min_raw, value) if low is not None else value
+        elif parallel_clamp and low is not None and high is not None:
             value = Mux(low, to.min_raw, Mux(high, to.max_raw, value))
         else:
             if low is not None:
@@ -114,7 +138,7 @@ def quantize(value, frm, to, rounding, overflow, parallel_clamp=False):
             if high is not None:
                 # compared behind the first multiplexer (the depth-0..2 designs keep this form)
                 value = Mux(value > to.max_raw, to.max_raw, value)
-    return _fit(value, to)
+    return fit(value, to)
 
 
 def overflowed(value, frm, to, rounding):
@@ -129,6 +153,11 @@ class FixedValue:
 
     ``module`` is where delay registers for this value go (set by :func:`stage`;
     any value at a cycle above 0 has one); ``name`` names those registers.
+
+    ``pre``: for a register's output (:func:`stage`), the value it holds one clock later,
+    i.e. its input (a function of a register's output, such as a :meth:`shift`, has the
+    same function of that input).  A DSP takes an operand from there into its own input
+    register (:mod:`phongfx.hdl.dsp`); None for anything else.
     """
 
     def __init__(self, value, fmt, cycle=None, module=None, name=None):
@@ -139,6 +168,7 @@ class FixedValue:
         self.cycle = cycle
         self.module = module
         self.name = name
+        self.pre = None
         self._delayed = [self]  # self delayed by 0, 1, 2 ... cycles, built on demand
 
     def at(self, cycle):
@@ -175,7 +205,7 @@ class FixedValue:
     def _result(self, expr, fmt, *others):
         # cast to exactly the format's width (Format's result holds every exact value)
         module = next((v.module for v in (self, *others) if v.module is not None), None)
-        return FixedValue(_fit(expr, fmt), fmt, _latest(self, *others), module)
+        return FixedValue(fit(expr, fmt), fmt, _latest(self, *others), module)
 
     def __add__(self, other):
         a, b = align(self, other)
@@ -199,7 +229,9 @@ class FixedValue:
 
     def shift(self, amount):
         """Exact multiply by ``2**amount``: moves the point, not the bits."""
-        return self._result(self.value << self.fmt.shift_raw(amount), self.fmt.shift(amount))
+        result = self._result(self.value << self.fmt.shift_raw(amount), self.fmt.shift(amount))
+        result.pre = None if self.pre is None else self.pre.shift(amount)
+        return result
 
     def __lshift__(self, amount):
         return self.shift(amount)
@@ -317,7 +349,9 @@ def stage(m, x, name=None):
                            for a, axis in zip(x, "xyz"))
     if isinstance(x, FixedValue):
         cycle = None if x.cycle is None else x.cycle + 1
-        return FixedValue(stage(m, x.value, name), x.fmt, cycle, m, name)
+        out = FixedValue(stage(m, x.value, name), x.fmt, cycle, m, name)
+        out.pre = x
+        return out
     x = Value.cast(x)
     reg = Signal(x.shape(), name=name)
     m.d.sync += reg.eq(x)
@@ -336,45 +370,21 @@ def cut(m, x, on, name=None):
     return stage(m, x, name) if on else x
 
 
-def quantize_cut(m, x, to, rounding, overflow, on, name=None):
+def quantize_cut(m, x, to, rounding, overflow, on, name=None, bits=False):
     """``x.quantize(to, rounding, overflow)``, with a register between its rounding adder and
     its clamp (comparators) if ``on``: the same codes, one clock later.
 
     The rounded value is held exactly in ``to``'s fraction bits and one integer bit more
     than ``x`` has (rounding up can carry that far), so the clamp behind the register sees
-    what the one-step quantize would have clamped; it compares with both limits in parallel.
+    what the one-step quantize would have clamped; it compares with both limits in parallel,
+    by bit tests rather than comparators if ``bits`` (no carry chain before the multiplexer).
     """
     if not on:
         return x.quantize(to, rounding, overflow)
     to = Format.parse(to)
     mid = Format(x.fmt.int_bits + 1, to.frac_bits, x.fmt.signed)
-    return stage(m, x.quantize(mid, rounding, "wrap"), name).quantize(to, rounding, overflow, True)
-
-
-#: Unsigned bits of a MULT18X18D operand part (18-bit signed inputs hold 17 unsigned bits).
-DSP_BITS = 17
-
-
-def split_product(m, a, b, on, name="product"):
-    """``a * b`` registered; if ``on``, in two clocks: the products of ``a`` with the low
-    :data:`DSP_BITS` bits of the wider operand and with the rest, each registered, then
-    their sum.  Yosys splits a multiplier wider than a MULT18X18D the same way, but
-    with the adder right behind the DSPs, in the same stage.  Same codes either way.
-    """
-    if not on:
-        return stage(m, a * b, name)
-    a, b = align(a, b)
-    if a.fmt.width > b.fmt.width:
-        a, b = b, a
-    fmt = a.fmt.mul(b.fmt)
-    if b.fmt.width <= DSP_BITS + 1:  # one DSP: a second register keeps the latency
-        return stage(m, stage(m, a * b, name), f"{name}_sum")
-    low = stage(m, a.value * b.value[:DSP_BITS], f"{name}_lo")
-    high = b.value[DSP_BITS:]
-    high = stage(m, a.value * (high.as_signed() if b.fmt.signed else high), f"{name}_hi")
-    cycle = None if a.cycle is None else a.cycle + 1
-    total = FixedValue(_fit((high << DSP_BITS) + low, fmt), fmt, cycle, m)
-    return stage(m, total, f"{name}_sum")
+    return stage(m, x.quantize(mid, rounding, "wrap"), name).quantize(to, rounding, overflow,
+                                                                      "bits" if bits else True)
 
 
 def align(*values):

@@ -5,6 +5,7 @@ from functools import cached_property
 from phongfx.config import HalfwayConfig
 
 from .block import PipelinedBlock, unbuilt
+from .dsp import product
 from .fixed import cut, delay, quantize_cut, stage
 from .normalize import Normalize
 
@@ -22,7 +23,7 @@ class Halfway(PipelinedBlock):
     doubling of d1/d2 with ``h = "sum"`` is a shift.  Formats, bit growth and error
     bounds are as in :func:`phongfx.golden.halfway.halfway`.
 
-    Latency: ``front + 4 + [pipeline ≥ 1] + [pipeline ≥ 2] + 2·[pipeline ≥ 3]`` for d1,
+    Latency: ``front + 4 + [pipeline ≥ 1] + [pipeline ≥ 2] + 2·[pipeline ≥ 3] + 4·[pipeline ≥ 4]`` for d1,
     d2, d3, g2proj (products; the rounded dot; products ``dot × N_i``; the rounded ``p``)
     and ``front + 1 + [pipeline ≥ 3]`` for g2 (the rounded ``q``).  ``front`` is
     ``2·[pipeline ≥ 2] + [pipeline ≥ 3]`` (the sum ``V + L``, its rounding and its
@@ -57,7 +58,7 @@ class Halfway(PipelinedBlock):
         depth = self.config.pipeline
         if self.config.variant == "g2":
             return self._front + 1 + (depth >= 3)
-        return self._front + 4 + (depth >= 1) + (depth >= 2) + 2 * (depth >= 3)
+        return self._front + 4 + (depth >= 1) + (depth >= 2) + 2 * (depth >= 3) + 4 * (depth >= 4)
 
     def datapath(self, m, i):
         cfg, depth = self.config, self.config.pipeline
@@ -65,7 +66,7 @@ class Halfway(PipelinedBlock):
         h = cut(m, v + l, depth >= 2, "hsum")
         if cfg.h == "mean":
             h = h.shift(-1)
-        h = quantize_cut(m, h, cfg.hvec, cfg.rounding, "saturate", depth >= 3, "h_round")
+        h = quantize_cut(m, h, cfg.hvec, cfg.rounding, "saturate", depth >= 3, "h_round", depth >= 4)
         h = cut(m, h, depth >= 2, "h")
         valid = delay(m, self.i.valid, h.cycle, "valid_h")
         if self._normalize is not None:
@@ -74,7 +75,7 @@ class Halfway(PipelinedBlock):
             # the normalizer's valid pipeline serves this block too: no second one
             h, valid = self._normalize.results()["n"], self._normalize.o.valid
         # rounded before waiting for p: its registers hold out's bits, not hvec's
-        q = quantize_cut(m, h, cfg.out, cfg.rounding, "saturate", depth >= 3, "q_round")
+        q = quantize_cut(m, h, cfg.out, cfg.rounding, "saturate", depth >= 3, "q_round", depth >= 4)
         if cfg.variant == "g2":
             # N waits in vec and widens to out (exactly) at the port
             q = stage(m, q, "q")
@@ -82,12 +83,12 @@ class Halfway(PipelinedBlock):
                     "valid": delay(m, valid, q.cycle - h.cycle, "valid")}
         x = {"d1": v, "d2": l}.get(cfg.variant, h)
         n_in = cut(m, n, depth >= 1, "n_in")
-        products = stage(m, cut(m, x, depth >= 1, "x_in") * n_in, "products")
+        products = product(m, cut(m, x, depth >= 1, "x_in"), n_in, name="products", isolate=depth >= 4)
         total = cut(m, products.sum(), depth >= 2, "total")
-        dot = stage(m, quantize_cut(m, total, cfg.dot, cfg.rounding, "saturate", depth >= 3, "dot_round"),
+        dot = stage(m, quantize_cut(m, total, cfg.dot, cfg.rounding, "saturate", depth >= 3, "dot_round", depth >= 4),
                     "dot")
         if cfg.variant in ("d1", "d2") and cfg.h == "sum":
             dot = dot << 1  # the paper's 2V (2L); "mean" halves it away
-        p = stage(m, quantize_cut(m, stage(m, n_in * dot, "np"), cfg.out, cfg.rounding, "saturate",
-                                  depth >= 3, "p_round"), "p")
+        p = stage(m, quantize_cut(m, product(m, n_in, dot, name="np", isolate=depth >= 4), cfg.out, cfg.rounding, "saturate",
+                                  depth >= 3, "p_round", depth >= 4), "p")
         return {"p": p, "q": q.at(p.cycle), "valid": delay(m, valid, p.cycle - h.cycle, "valid")}

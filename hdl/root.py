@@ -9,6 +9,7 @@ from phongfx.core.format import Format
 
 from .block import PipelinedBlock, unbuilt
 from .difference import const_product
+from .dsp import product, registered
 from .fixed import FixedValue, FixedVector, cut, delay, stage
 from .shape import Shape
 
@@ -25,7 +26,8 @@ class Root(PipelinedBlock):
     a :class:`~phongfx.hdl.shape.Shape` submodule built from :attr:`RootConfig.shape`.
     Formats, rounding and the error bound are as in :func:`phongfx.golden.root.root`.
 
-    Latency: ``3 + [pipeline ≥ 1] + 2·[pipeline ≥ 2] + shape``, ``shape`` being the
+    Latency: ``3 + [pipeline ≥ 1] + 2·[pipeline ≥ 2] + 4·[pipeline ≥ 4] + shape`` (depth 4
+    registers both multiplier levels' inputs and products once more, so the DSPs meet only registers), ``shape`` being the
     Shape latency at the same depth (``1 + k`` at depth 0).  Depth 0: the products
     ``m|D_i|``; the squares and the comparator flag; their sum ``2x``; then the shape.
     Each multiplier level is registered before the adder behind it, as in Figure 7c.
@@ -54,7 +56,7 @@ class Root(PipelinedBlock):
     @cached_property
     def latency(self):
         depth = self.config.pipeline
-        return 3 + (depth >= 1) + 2 * (depth >= 2) + self._shape.latency
+        return 3 + (depth >= 1) + 2 * (depth >= 2) + 4 * (depth >= 4) + self._shape.latency
 
     def datapath(self, m, i):
         cfg, depth = self.config, self.config.pipeline
@@ -63,14 +65,17 @@ class Root(PipelinedBlock):
         d = cut(m, d, depth >= 2, "d")
         magnitude = cut(m, FixedVector(_rectify(di, cfg.rounding) for di in d), depth >= 1, "abs")
         if cfg.m_const:
+            if depth >= 4:
+                magnitude = registered(magnitude)[0]
             md = FixedVector(const_product(m, mi, cfg.m_const, cfg.m, False, f"md_{axis}")
                              for mi, axis in zip(magnitude, "xyz"))
+            md = cut(m, md, depth >= 4, "md_out")  # as a multiplier's isolated product
         else:
-            md = stage(m, magnitude * cut(m, i["m"], depth >= 1, "m_in"), "md")
+            md = product(m, magnitude, cut(m, i["m"], depth >= 1, "m_in"), name="md", isolate=depth >= 4)
         u = md.shift(-cfg.shift)
         big = md[0].flag(Cat(*(ui >= 1 for ui in u)).any(), "big")
         frac = u.quantize(cfg.frac, "truncate", "wrap")
-        squares = stage(m, frac * frac, "squares")
+        squares = product(m, frac, frac, name="squares", isolate=depth >= 4)
         x2 = stage(m, squares.sum(), "sum").shift(2 * cfg.shift)
         self._shape.feed(m, delay(m, self.i.valid, x2.cycle, "valid"), {"x2": x2})
         return {"spec": FixedValue.const(0, cfg.t).where(big, self._shape.results()["spec"]),

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from phongfx.hdl.block import unbuilt
+from phongfx.hdl.dsp import MODEL as DSP_MODEL
+from phongfx.hdl.dsp import dsp_target
 from phongfx.hdl.emit import verilog
 
 __all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "seed_runtime",
@@ -170,7 +172,8 @@ def _config_key(cls, config, module, top_text, waves):
     return _design_key(cls(config), module, top_text, waves)
 
 
-def cached_build(component, module, top, top_text, compile_, *, root, waves=False, executable=None):
+def cached_build(component, module, top, top_text, compile_, *, root, waves=False, executable=None,
+                 design=None):
     """Find or make the build of ``component`` under top ``top`` in the cache ``root``.
 
     The shared half of :func:`phongfx.sim.verilator_backend.build` and of other
@@ -193,19 +196,31 @@ def cached_build(component, module, top, top_text, compile_, *, root, waves=Fals
     waves : bool
     executable : str, optional
         The file the build must make (default ``top``).
+    design : str, optional
+        Verilog to simulate instead of the component's own, defining module ``module`` with
+        the component's ports (a synthesized netlist and its cell models); the key hashes it.
+        Without it, a component elaborated under :func:`~phongfx.hdl.dsp.dsp_mapping` comes
+        with the DSP's behavioural model (:data:`~phongfx.hdl.dsp.MODEL`).
 
     Returns
     -------
     Build
     """
-    final = root / _key(component, module, top_text, waves)
+    if design is None and dsp_target() is not None:
+        # the component instantiates DSP primitives: their behavioural model goes with it
+        top_text = top_text + DSP_MODEL.read_text()
+    if design is None:
+        final = root / _key(component, module, top_text, waves)
+    else:
+        unbuilt(component)  # simulated through its netlist, not elaborated here
+        final = root / digest([design, top_text, f"waves={bool(waves)}", *BUILD_ARGS, *_tool_versions()])
     if (final / _MARKER).is_file():
         return Build(final, top, built=False)
 
     root.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
     source = work / f"{top}.v"
-    source.write_text(verilog(component, module, emit_src=False) + top_text)
+    source.write_text((verilog(component, module, emit_src=False) if design is None else design) + top_text)
     log = work / "build.log"
     try:
         compile_(work, source, log)

@@ -115,8 +115,9 @@ module {module}_fast(clk, i_word, o_word);
 """
 
 
-def build(component, *, build_dir=None):
-    """Compile ``component`` with the C++ checker, or find it in the cache.
+def build(component, *, build_dir=None, design=None):
+    """Compile ``component`` (or ``design``, Verilog of a module with its ports: a
+    synthesized netlist with its cell models) with the C++ checker, or find it in the cache.
 
     Returns
     -------
@@ -151,7 +152,7 @@ def build(component, *, build_dir=None):
         keep_runtime(root, work, False, flavour)
 
     return cached_build(component, module, top, top_text, compile_, root=root,
-                        executable=EXECUTABLE)
+                        executable=EXECUTABLE, design=design)
 
 
 def _execute(compiled, header, arrays):
@@ -206,7 +207,7 @@ def stream(block, inputs, expected, slots, latency, seed):
 
 
 def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, count=1000,
-                max_report=10, build_dir=None):
+                max_report=10, build_dir=None, design=None):
     """:func:`check`, also returning the seconds spent in each step.
 
     Returns
@@ -229,7 +230,7 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
     start = time.perf_counter()
     component = block.component()
     latency = component.latency
-    compiled = build(component, build_dir=build_dir)
+    compiled = build(component, build_dir=build_dir, design=design)
     times["build"] = time.perf_counter() - start
 
     start = time.perf_counter()
@@ -269,14 +270,14 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
 
 
 def check(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, count=1000,
-          max_report=10, build_dir=None):
+          max_report=10, build_dir=None, design=None):
     """:func:`phongfx.sim.harness.check` on the fast path; same arguments and :class:`Result`.
 
     ``Result.seconds`` covers writing the stream and the compiled simulate-and-compare
     run, not the golden model, packing or the build (see :func:`check_timed`).
     """
     return check_timed(block, inputs, expected=expected, bubbles=bubbles, seed=seed,
-                       count=count, max_report=max_report, build_dir=build_dir)[0]
+                       count=count, max_report=max_report, build_dir=build_dir, design=design)[0]
 
 
 def run(component, in_valid, in_payload, cycles, *, build_dir=None):

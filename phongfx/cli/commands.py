@@ -48,8 +48,26 @@ def cmd_sim(args):
     options = {"vcd": args.vcd} if args.vcd else {}
     if args.vcd and args.backend != "amaranth":
         raise ValueError("--vcd is written by the amaranth back end; add --backend amaranth")
-    result = check(block, backend=args.backend, count=args.vectors, seed=args.seed,
-                   bubbles=args.bubbles, **options)
+    if args.device and not args.netlist:
+        raise ValueError("--device chooses the synthesis of --netlist; add --netlist ecp5|ice40")
+    if args.netlist and args.dsp:
+        raise ValueError("--netlist already maps the products as synthesis does; drop --dsp")
+    if args.netlist and args.backend != "verilator-fast":
+        raise ValueError(f"--netlist is simulated by the verilator-fast back end, not {args.backend}")
+    if args.dsp and args.backend == "amaranth":
+        raise ValueError("--dsp instantiates DSP primitives, which only the Verilator back ends simulate")
+    if args.netlist:
+        from phongfx.explore.netlist import check_netlist
+
+        print(f"synthesizing {args.name} for {args.netlist} ...", file=sys.stderr, flush=True)
+        result = check_netlist(block, args.netlist, args.device, count=args.vectors, seed=args.seed,
+                               bubbles=args.bubbles)
+    else:
+        from phongfx.hdl.dsp import dsp_mapping
+
+        with dsp_mapping(args.dsp):
+            result = check(block, backend=args.backend, count=args.vectors, seed=args.seed,
+                           bubbles=args.bubbles, **options)
     print(result.describe())
     print(f"{result.cycles_per_second:.0f} cycles/s")
     return 0 if result.ok else 1

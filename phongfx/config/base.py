@@ -17,7 +17,7 @@ __all__ = ["BlockConfig", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_fo
            "check_fraction_format", "check_step_formats"]
 
 #: Deepest ``pipeline`` of a block (:class:`BlockConfig`).
-MAX_PIPELINE = 3
+MAX_PIPELINE = 4
 
 #: Widest vector width ``f`` of :meth:`BlockConfig.with_vec_frac`: at 24 the halfway
 #: datapath's exact ``4n·D·D`` (``17.2f``) no longer fits the golden model's int64.
@@ -84,9 +84,12 @@ class BlockConfig:
     latency.  0 is the original design; 1 registers every multiplier's inputs
     and outputs; 2 also cuts the carry chains, so that no stage holds more than one
     multiplier or one long carry chain; 3 also puts a register between each
-    saturating quantize's rounding adder and its clamp.  Only the latency changes with it (each
-    component's docstring gives the formula); the function does not.  Both fields are
-    checked here, for every class that has them.
+    saturating quantize's rounding adder and its clamp; 4 also registers every multiplier's
+    inputs and product once more, so that a DSP (an ECP5 MULT18X18D, whose own registers
+    take the ones around it) meets only registers, and clamps by bit tests instead of
+    comparators.  Only the latency changes with it (each component's docstring gives the
+    formula); the function does not.  Both fields are checked here, for every class that
+    has them.
 
     A class declares its ports in :attr:`INPUTS` and :attr:`OUTPUTS` and overrides
     :attr:`inputs` only where a port is conditional.

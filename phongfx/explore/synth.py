@@ -31,12 +31,14 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from phongfx.hdl.dsp import DSP_INTERNAL_NS
+
 from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
 from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "harness", "synth", "markdown"]
 
-FLOW_VERSION = "1"  # bump when the scripts or parsing change what a cached result means
+FLOW_VERSION = "2"  # bump when the scripts or parsing change what a cached result means
 
 
 @dataclass(frozen=True)
@@ -76,6 +78,11 @@ TARGETS = {
 
 ALL_TARGETS = (*TARGETS, "asic")
 
+#: Targets whose products are mapped onto DSP instances by :mod:`phongfx.hdl.dsp` (with
+#: the pipeline's registers inside them) rather than left to Yosys: ECP5, where no Yosys
+#: pass packs registers into MULT18X18D.  Yosys' ``ice40_dsp`` packs SB_MAC16 registers itself.
+DSP_MAPPING = {"ecp5": "ecp5"}
+
 
 def _tool_versions(target):
     from importlib.metadata import version
@@ -88,7 +95,7 @@ def _key(block, module, target, device, freq, seed):
     from phongfx.sim.build_cache import digest
 
     return digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
-                   str(seed), design_rtlil(block, module), *_tool_versions(target)])
+                   str(seed), design_rtlil(block, module, DSP_MAPPING.get(target)), *_tool_versions(target)])
 
 
 def _count(cells, names):
@@ -111,6 +118,17 @@ def _utilization(stat, target, log):
             "cells": dict(sorted(cells.items()))}
 
 
+def _untimed_dsps(netlist):
+    """MULT18X18D cells of a Yosys JSON netlist with both input and output registers on: the
+    multiply between them is a path nextpnr does not time."""
+    def on(cell, name):  # a clock name (CLK0..CLK3), else "NONE"
+        return str(cell.get("parameters", {}).get(name, "NONE")).strip().startswith("CLK")
+
+    return sum(1 for module in netlist.get("modules", {}).values()
+               for cell in module.get("cells", {}).values()
+               if cell.get("type") == "MULT18X18D" and on(cell, "REG_INPUTA_CLK") and on(cell, "REG_OUTPUT_CLK"))
+
+
 _OVERUSE = re.compile(r"^Info:\s+(\S+):\s+(\d+)/\s*(\d+)\s+\d+%", re.M)
 
 
@@ -123,8 +141,11 @@ def _fit_error(log, device):
 
 
 def _critical_path(report):
-    """Worst routed path of the report: end cells and its logic / routing split in ns."""
-    paths = [path["path"] for path in report.get("critical_paths", []) if path.get("path")]
+    """Worst routed register-to-register path of the report (the one Fmax comes from; the
+    pin-to-register paths of the harness' ``si`` and ``load`` are not timed against the
+    clock): end cells and its logic / routing split in ns."""
+    paths = [path["path"] for path in report.get("critical_paths", [])
+             if path.get("path") and "<async>" not in (path.get("from"), path.get("to"))]
     if not paths:
         return None
     path = max(paths, key=lambda steps: sum(step["delay"] for step in steps))
@@ -158,15 +179,17 @@ def _yosys_script(module, target, options):
 
 def _flow(block, module, target, device, freq, seed, work, progress):
     """Run the tools in ``work``; returns the result (without ``cached``, ``directory``)."""
+    from phongfx.hdl.dsp import dsp_mapping
     from phongfx.hdl.emit import payload_widths, write_verilog
     from phongfx.hdl.overflow import overflow_checks
 
     info = TARGETS[target]
     part, flag, package, options = info.devices[device]
-    component = block.component()
-    in_width, out_width = payload_widths(component)
     progress("verilog")
-    with overflow_checks(False):  # the overflow field stays 0: no logic, no registers
+    # the overflow field stays 0: no logic, no registers
+    with overflow_checks(False), dsp_mapping(DSP_MAPPING.get(target)):
+        component = block.component()
+        in_width, out_width = payload_widths(component)
         write_verilog(component, module, work / f"{module}.v", emit_src=False)
     (work / "harness.v").write_text(harness(module, in_width, out_width))
     (work / "synth.ys").write_text(_yosys_script(module, target, options))
@@ -175,7 +198,7 @@ def _flow(block, module, target, device, freq, seed, work, progress):
     yosys_seconds = run_yosys(work, "synth.ys")
     log = work / "yosys.log"
     result = _utilization(read_json(work / "stat.json", "Yosys statistics", log), target, log)
-    read_json(work / "netlist.json", "Yosys netlist", log)
+    result["dsp_untimed"] = _untimed_dsps(read_json(work / "netlist.json", "Yosys netlist", log))
 
     progress("nextpnr")
     start = time.monotonic()
@@ -194,11 +217,13 @@ def _flow(block, module, target, device, freq, seed, work, progress):
     if not achieved or not all(isinstance(f, (int, float)) and f > 0 for f in achieved):
         raise SynthError(f"nextpnr report holds no maximum frequency; log {log}:\n{tail(log)}")
     fmax = float(min(achieved))
+    # the multiply between a DSP's own input and output registers is not in nextpnr's timing
+    bound = 1000 / DSP_INTERNAL_NS if result["dsp_untimed"] else float("inf")
     result["critical_path"] = _critical_path(report)
     latency = block.latency
     result.update({
         "block": block.name, "target": target, "device": device, "part": part, "package": package,
-        "freq": freq, "fmax_mhz": fmax, "met": fmax >= freq,
+        "freq": freq, "fmax_mhz": fmax, "met": fmax >= freq, "fmax_bound_mhz": min(fmax, bound),
         "pixels_per_second": fmax * 1e6, "latency": latency, "latency_ns": latency * 1e3 / fmax,
         "placed": {name: [u["used"], u["available"]] for name, u in
                    sorted(report.get("utilization", {}).items()) if u.get("used")},
@@ -300,6 +325,10 @@ def markdown(results):
             parts.append(_table(group, columns))
     paths = [f"* {r['block']} ({r['device']}): worst path {p['from']} → {p['to']}, {p['ns']:.2f} ns"
              for r in results for p in [r.get("critical_path")] if p]
+    paths += [f"* {r['block']} ({r['device']}): {r['dsp_untimed']} MULT18X18D with input and output registers "
+              f"on; nextpnr does not time the multiply between them (up to {DSP_INTERNAL_NS} ns), so the "
+              f"DSPs bound the clock at {1000 / DSP_INTERNAL_NS:.0f} MHz: Fmax "
+              f"{r['fmax_bound_mhz']:.1f} MHz at most" for r in results if r.get("dsp_untimed")]
     if paths:
         parts.append("\n".join(paths) + "\n")
     return "\n".join(parts)

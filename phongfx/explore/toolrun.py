@@ -117,16 +117,18 @@ endmodule
 """
 
 
-def design_rtlil(block, module):
+def design_rtlil(block, module, dsp=None):
     """RTLIL of ``block`` (a :class:`~phongfx.core.registry.Block`) emitted as ``module``, as
     the flows' cache keys hash it: without source locations, and without the
     simulation-only overflow flags (they cost nothing in a netlist, and the flows
-    synthesize without them)."""
+    synthesize without them); its products mapped onto ``dsp``'s DSPs
+    (:func:`~phongfx.hdl.dsp.dsp_mapping`) when given."""
     from amaranth.back import rtlil
 
+    from phongfx.hdl.dsp import dsp_mapping
     from phongfx.hdl.overflow import overflow_checks
 
-    with overflow_checks(False):
+    with overflow_checks(False), dsp_mapping(dsp):
         return rtlil.convert(block.component(), name=module, emit_src=False)
 
 

@@ -29,6 +29,31 @@ def test_sim_passes_and_reports(capsys):
     assert "0 mismatching cycle(s)" in capsys.readouterr().out
 
 
+@pytest.mark.verilator
+def test_sim_of_the_ecp5_netlist_and_of_the_dsp_mapped_rtl(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # build/synth and build/verilator under the test's folder
+    assert main(["sim", "lirp", "--set", "pipeline=1", "--netlist", "ecp5", "--vectors", "50"]) == 0
+    out = capsys.readouterr().out
+    assert "lirp on ecp5 netlist (45k, verilator-fast): " in out and "0 mismatching cycle(s)" in out
+    assert main(["sim", "lirp", "--set", "pipeline=1", "--dsp", "ecp5", "--vectors", "50"]) == 0
+    assert "0 mismatching cycle(s)" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--device", "45k"], "--device chooses the synthesis of --netlist; add --netlist ecp5|ice40"),
+    (["--netlist", "ecp5", "--dsp", "ecp5"], "--netlist already maps the products as synthesis does; drop --dsp"),
+    (["--netlist", "ice40", "--backend", "amaranth"],
+     "--netlist is simulated by the verilator-fast back end, not amaranth"),
+    (["--dsp", "ecp5", "--backend", "amaranth"],
+     "--dsp instantiates DSP primitives, which only the Verilator back ends simulate"),
+    (["--netlist", "ecp5", "--device", "up5k"], "device must be one of '25k', '45k', '85k' for ecp5, not 'up5k'"),
+])
+def test_sim_netlist_options_are_checked(argv, message, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["sim", "lirp", "--vectors", "5", *argv]) == 2
+    assert capsys.readouterr().err.endswith(f"phongfx: error: {message}\n")
+
+
 def test_vcd_is_written(tmp_path):
     path = tmp_path / "lirp.vcd"
     assert main(["sim", "lirp", "--vectors", "5", "--backend", "amaranth", "--vcd", str(path)]) == 0

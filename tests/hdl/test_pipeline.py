@@ -12,25 +12,27 @@ from phongfx.config import (DatapathConfig, HalfwayConfig, LirpConfig, Normalize
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
 from phongfx.golden.fixed import quantize_raw
-from phongfx.hdl.fixed import FixedValue, align, quantize_cut, split_product, stage
+from phongfx.hdl.dsp import split_product
+from phongfx.hdl.fixed import FixedValue, align, quantize_cut, stage
 from phongfx.hdl.lirp import Lirp
 from phongfx.sim.harness import check
 
 # latency per depth 0..3, counted from the registers each depth adds (docstrings):
 # depth 0 is the original design's, which the other hdl tests pin as well
 LATENCY = {
-    "lirp": (2, 3, 4, 4),         # + inputs (1), + sum (2), no clamp to cut (3)
-    # + N', y, y·y, g·N' less the y² register (1); + Σ, z, y², y+y² (2); + 4 roundings (3)
-    "normalize": (4, 7, 11, 15),
-    "reflect": (4, 5, 7, 9),      # + N, V (1); + Σ, 2(N·V)N - V (2); + 2 roundings (3)
-    "difference": (4, 5, 7, 10),  # + D (1); + R - L, Σ (2); + 2 roundings, n·D·D split (3)
-    "shape": (3, 5, 5, 5),        # k = 2: + each product (1); nothing more (2, 3)
-    "diffuse": (2, 3, 4, 5),      # + N, L (1); + Σ (2); + the rounding (3)
-    "root": (5, 7, 9, 9),         # k = 1 shape (2, 3, 3, 3) + 3, + |D|, m (1), + R - L, D (2)
-    # g2proj: normalizer + 4, + inputs (1), + V+L, H, Σ (2), + H, dot, p roundings (3)
-    "halfway": (8, 12, 19, 26),
+    "lirp": (2, 3, 4, 4, 6),         # + inputs (1), + sum (2), no clamp to cut (3), + inputs, products (4)
+    # + N', y, y·y, g·N' less the y² register (1); + Σ, z, y², y+y² (2); + 4 roundings (3);
+    # + the inputs and products of 3 multiplier levels (4)
+    "normalize": (4, 7, 11, 15, 21),
+    "reflect": (4, 5, 7, 9, 13),      # + N, V (1); + Σ, 2(N·V)N - V (2); + 2 roundings (3); + 2 levels (4)
+    "difference": (4, 5, 7, 10, 14),  # + D (1); + R - L, Σ (2); + 2 roundings, n·D·D split (3); + 2 levels (4)
+    "shape": (3, 5, 5, 5, 9),         # k = 2: + each product (1); nothing more (2, 3); + 2 × 2 (4)
+    "diffuse": (2, 3, 4, 5, 7),       # + N, L (1); + Σ (2); + the rounding (3); + N, L, N·L again (4)
+    "root": (5, 7, 9, 9, 15),         # k = 1 shape (2, 3, 3, 3, 5) + 3, + |D|, m (1), + R - L, D (2), + 2 × 2 (4)
+    # g2proj: normalizer + 4, + inputs (1), + V+L, H, Σ (2), + H, dot, p roundings (3), + 2 × 2 (4)
+    "halfway": (8, 12, 19, 26, 36),
 }
-DEPTHS = [0, 1, 2, 3]
+DEPTHS = [0, 1, 2, 3, 4]
 
 
 def _sample(block, rows, seed):
