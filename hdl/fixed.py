@@ -96,17 +96,18 @@ def _out_of_range_bits(value, to):
     above), so ``value`` is out of range exactly when its bits from ``to``'s top bit up are
     not all copies of its sign (signed ``to``) or not all 0 (unsigned): LUTs, no carry chain."""
     low, high = _out_of_range(value, to)
+    if low is None and high is None:
+        return low, high
     signed = value.shape().signed
     top = to.width - 1 if to.signed else to.width  # the first bit ``to`` cannot hold freely
     sign = value[-1] if signed else Const(0, 1)
-    upper = value[top:len(value) - 1] if signed else value[top:]
     if to.signed:
         rest = value[top:]  # sign bit of ``to`` and above: all equal when in range
         low = None if low is None else sign & ~rest.all()
         high = None if high is None else ~sign & rest.any()
     else:
         low = None if low is None else sign
-        high = None if high is None else ~sign & upper.any()
+        high = None if high is None else ~sign & value[top:len(value) - signed].any()
     return low, high
 
 

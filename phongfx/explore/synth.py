@@ -36,7 +36,8 @@ from phongfx.hdl.dsp import DSP_INTERNAL_NS
 from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
 from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
 
-__all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "harness", "synth", "markdown"]
+__all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "dsp_mapping_of", "harness", "synth",
+           "markdown"]
 
 FLOW_VERSION = "2"  # bump when the scripts or parsing change what a cached result means
 
@@ -80,8 +81,17 @@ ALL_TARGETS = (*TARGETS, "asic")
 
 #: Targets whose products are mapped onto DSP instances by :mod:`phongfx.hdl.dsp` (with
 #: the pipeline's registers inside them) rather than left to Yosys: ECP5, where no Yosys
-#: pass packs registers into MULT18X18D.  Yosys' ``ice40_dsp`` packs SB_MAC16 registers itself.
+#: pass packs registers into MULT18X18D.  (Yosys' ``ice40_dsp`` packs SB_MAC16 registers
+#: itself, but only reset-less ones.)
 DSP_MAPPING = {"ecp5": "ecp5"}
+
+
+def dsp_mapping_of(block, target):
+    """The :func:`~phongfx.hdl.dsp.dsp_mapping` target under which ``block`` is synthesized
+    for ``target``: the DSP target where there is one and the block is pipelined (depth
+    ≥ 1; depth 0, the original design, keeps Yosys' own mapping, so its figures stand),
+    else None."""
+    return DSP_MAPPING.get(target) if getattr(block.config, "pipeline", 0) >= 1 else None
 
 
 def _tool_versions(target):
@@ -95,7 +105,7 @@ def _key(block, module, target, device, freq, seed):
     from phongfx.sim.build_cache import digest
 
     return digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
-                   str(seed), design_rtlil(block, module, DSP_MAPPING.get(target)), *_tool_versions(target)])
+                   str(seed), design_rtlil(block, module, dsp_mapping_of(block, target)), *_tool_versions(target)])
 
 
 def _count(cells, names):
@@ -187,7 +197,7 @@ def _flow(block, module, target, device, freq, seed, work, progress):
     part, flag, package, options = info.devices[device]
     progress("verilog")
     # the overflow field stays 0: no logic, no registers
-    with overflow_checks(False), dsp_mapping(DSP_MAPPING.get(target)):
+    with overflow_checks(False), dsp_mapping(dsp_mapping_of(block, target)):
         component = block.component()
         in_width, out_width = payload_widths(component)
         write_verilog(component, module, work / f"{module}.v", emit_src=False)

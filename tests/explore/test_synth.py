@@ -10,7 +10,8 @@ import pytest
 from phongfx.core.registry import get_block
 from phongfx.explore import synth as synth_module
 from phongfx.explore import toolrun
-from phongfx.explore.synth import TARGETS, SynthError, markdown, synth
+from phongfx.explore.synth import TARGETS, SynthError, dsp_mapping_of, markdown, synth
+from phongfx.hdl.dsp import DSP_INTERNAL_NS
 
 # ---------------------------------------------------------------- argument checks
 
@@ -200,6 +201,22 @@ def test_smoke_shape_ecp5(tmp_path, monkeypatch):
     for module in (synth_module, toolrun):
         monkeypatch.setattr(module, "run", fail)
     assert synth("shape", config=block.config, workdir=tmp_path)["cached"] is True
+
+
+def test_pipelined_ecp5_products_are_dsps_with_their_registers(tmp_path):
+    """Figure 7d with k = 1 at depth 1: the squarer is a MULT18X18D with the t register as its
+    input registers and the product's as its output register; at depth 0 Yosys maps it."""
+    block = get_block("shape", k=1, pipeline=1)
+    assert dsp_mapping_of(block, "ecp5") == "ecp5" and dsp_mapping_of(block, "ice40") is None
+    assert dsp_mapping_of(get_block("shape", k=1), "ecp5") is None
+    result = synth("shape", config=block.config, workdir=tmp_path)
+    assert result["dsp"] == 1 and result["dsp_untimed"] == 1
+    assert result["latency"] == 3
+    # the DSP holds both registers: t (16 bits) and t·t (32) leave the fabric
+    plain = synth("shape", config=get_block("shape", k=1).config, workdir=tmp_path)
+    assert plain["dsp_untimed"] == 0 and plain["fmax_bound_mhz"] == plain["fmax_mhz"]
+    assert result["fmax_bound_mhz"] == min(result["fmax_mhz"], 1000 / DSP_INTERNAL_NS)
+    assert "nextpnr does not time the multiply between them" in markdown([result])
 
 
 @pytest.mark.slow

@@ -203,12 +203,16 @@ def _clocked(m, signals, rows, value):
 
 
 @pytest.mark.parametrize("rounding", ["round_half_up", "round_half_even", "truncate"])
-def test_quantize_cut_is_quantize_one_clock_later(rounding):
-    # every code of S3.4 to S1.2: rounding carries into the top, then the clamp
-    frm, to = Format(3, 4, True), Format(1, 2, True)
+@pytest.mark.parametrize("bits", [False, True])
+@pytest.mark.parametrize("fmts", [("S3.4", "S1.2"), ("S3.4", "1.2"), ("3.4", "S1.2"), ("3.4", "1.2"),
+                                  ("S2.3", "S4.1"), ("2.3", "3.3")])
+def test_quantize_cut_is_quantize_one_clock_later(rounding, bits, fmts):
+    # every code of the source format: rounding carries into the top, then the clamp, by
+    # comparators or (depth 4) by bit tests, to a signed or unsigned, narrower or wider format
+    frm, to = map(Format.parse, fmts)
     m = Module()
     a = Signal(frm.shape())
-    out = quantize_cut(m, FixedValue(a, frm, 0, m), to, rounding, "saturate", True)
+    out = quantize_cut(m, FixedValue(a, frm, 0, m), to, rounding, "saturate", True, bits=bits)
     assert out.cycle == 1
     codes = np.arange(frm.min_raw, frm.max_raw + 1)
     seen = _clocked(m, [a], [(code,) for code in codes.tolist()], out.value)
