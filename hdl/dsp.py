@@ -87,7 +87,7 @@ def product(m, a, b, output=True, name="product", isolate=False):
     ``isolate`` (pipeline depth 4) registers both operands once more before the multiplier
     and the product once more after it, two clocks more: a DSP then takes its operands
     register to register and hands its product to a register, with nothing but routing on
-    either side.  The routing between the fabric and the DSP rows takes 4–5 ns on
+    either side.  The routing between the fabric and the DSP rows takes 4–6 ns on
     LFE5U-45F, too much to share a clock with any logic at 150 MHz."""
     if isolate:
         a, b = registered(a, b)
@@ -106,7 +106,7 @@ def product(m, a, b, output=True, name="product", isolate=False):
     inner = output and len(parts) == 1  # a sum of parts needs the register after it
     total = _sum(fmt, [(shift, _mult18x18d(m, x, y, absorbed, inner, f"{name}_dsp{index}"))
                        for index, (shift, x, y) in enumerate(parts)])
-    result = FixedValue(total, fmt, _cycle(a, absorbed + inner), m, name)
+    result = FixedValue(total, fmt, a.cycle + absorbed + inner, m, name)
     return stage(m, result, name) if output and not inner else result
 
 
@@ -133,9 +133,8 @@ def split_product(m, a, b, on, name="product", isolate=False):
         a, b = b, a
     fmt = a.fmt.mul(b.fmt)
     if b.fmt.width <= DSP_BITS + 1:  # one DSP: a second register keeps the latency
-        return stage(m, product(m, a, b, True, name, isolate=False), f"{name}_sum"
-                     ) if not isolate else stage(m, stage(m, product(m, a, b, True, name), f"{name}_out"),
-                                                 f"{name}_sum")
+        p = product(m, a, b, True, name)
+        return stage(m, stage(m, p, f"{name}_out") if isolate else p, f"{name}_sum")
     mapped = _mapped(a, b)
     if mapped is not None:
         a, b, absorbed = mapped
@@ -143,7 +142,7 @@ def split_product(m, a, b, on, name="product", isolate=False):
                  for index, (shift, x, y) in enumerate(_parts(a, b))]
         if isolate:
             terms = [(shift, stage(m, value, f"{name}_out{index}")) for index, (shift, value) in enumerate(terms)]
-        total = FixedValue(_sum(fmt, terms), fmt, _cycle(a, absorbed + 1 + isolate), m)
+        total = FixedValue(_sum(fmt, terms), fmt, a.cycle + absorbed + 1 + isolate, m)
         return stage(m, total, f"{name}_sum")
     low = stage(m, a.value * b.value[:DSP_BITS], f"{name}_lo")
     high = b.value[DSP_BITS:]
@@ -160,9 +159,9 @@ def _items(x):
 
 
 def _mapped(a, b):
-    """``(a, b, registered)`` as the DSP takes them, or None where the product stays ``*``:
-    no mapping in force, or a constant operand.  ``registered``: both operands are register
-    outputs, replaced by what their registers hold."""
+    """``(a, b, absorbed)`` as the DSP takes them, or None where the product stays ``*``:
+    no mapping in force, or a constant operand.  ``absorbed``: both operands are register
+    outputs, replaced by what their registers hold (the DSP's input registers hold it)."""
     if dsp_target() is None:
         return None
     a, b = align(a, b)
@@ -171,10 +170,6 @@ def _mapped(a, b):
     if a.pre is not None and b.pre is not None:
         return a.pre, b.pre, True
     return a, b, False
-
-
-def _cycle(a, registers):
-    return a.cycle + registers
 
 
 def _chunks(value, fmt):
@@ -205,10 +200,11 @@ def _sum(fmt, terms):
     return fit(total, fmt)
 
 
-def _mult18x18d(m, a, b, registered, output, name):
-    """A MULT18X18D of two 18-bit signed operands; its 36-bit signed product."""
+def _mult18x18d(m, a, b, inputs, output, name):
+    """A MULT18X18D of two 18-bit signed operands, with its input and output registers if
+    asked; its 36-bit signed product."""
     p = Signal(36, name=name)
-    clock = "CLK0" if registered else "NONE"
+    clock = "CLK0" if inputs else "NONE"
     ports = {f"i_A{bit}": a[bit] for bit in range(18)}
     ports.update({f"i_B{bit}": b[bit] for bit in range(18)})
     ports.update({f"i_C{bit}": Const(0, 1) for bit in range(18)})

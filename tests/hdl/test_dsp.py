@@ -138,7 +138,7 @@ INSTANCES = {"lirp": 6, "normalize": 7, "reflect": 6, "difference": 5, "shape": 
 
 
 @pytest.mark.parametrize("name", sorted(INSTANCES))
-@pytest.mark.parametrize("depth", [1, 3])
+@pytest.mark.parametrize("depth", [1, 3, 4])
 def test_blocks_map_every_variable_product(name, depth):
     block = get_block(name, pipeline=depth)
     with dsp_mapping("ecp5"):
@@ -151,7 +151,8 @@ def test_blocks_map_every_variable_product(name, depth):
 
 
 @pytest.mark.verilator
-@pytest.mark.parametrize("name,depth", [("lirp", 1), ("difference", 3), ("normalize", 2), ("root", 1)])
+@pytest.mark.parametrize("name,depth", [("lirp", 1), ("difference", 3), ("normalize", 2), ("root", 1),
+                                        ("reflect", 4), ("difference", 4)])
 def test_mapped_blocks_match_golden(name, depth):
     block = get_block(name, pipeline=depth)
     with dsp_mapping("ecp5"):
@@ -162,7 +163,7 @@ def test_mapped_blocks_match_golden(name, depth):
 @pytest.mark.slow
 @pytest.mark.verilator
 @pytest.mark.parametrize("name", ["fig7", "fig8"])
-@pytest.mark.parametrize("depth", [1, 2, 3])
+@pytest.mark.parametrize("depth", [1, 2, 3, 4])
 def test_mapped_datapaths_match_golden(name, depth):
     block = get_block(name, pipeline=depth)
     with dsp_mapping("ecp5"):
