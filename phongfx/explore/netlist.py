@@ -18,8 +18,8 @@ Netlists are cached in ``<workdir>/<key>`` like synthesis results (:func:`.toolr
 import re
 from pathlib import Path
 
-from .synth import TARGETS, dsp_mapping_of
-from .toolrun import SynthError, cached_run, design_rtlil, read_json, run_yosys
+from .synth import TARGETS, dsp_mapping_of, run_yosys_abc9_fallback
+from .toolrun import SynthError, cached_run, design_rtlil, read_json
 
 __all__ = ["NETLIST_TARGETS", "synth_netlist", "cell_models", "check_netlist"]
 
@@ -97,14 +97,16 @@ def synth_netlist(block, target="ecp5", device=None, workdir="build/synth"):
         with overflow_checks(False), dsp_mapping(dsp):
             write_verilog(block.component(), module, work / f"{module}.v", emit_src=False)
         options = devices[device][3]
-        (work / "netlist.ys").write_text(
-            f"read_verilog {module}.v\n{TARGETS[target].synth}{options} -top {module}\n"
-            f"tee -q -o stat.json stat -json\nwrite_verilog -noattr netlist.v\n")
-        seconds = run_yosys(work, "netlist.ys", outputs=("netlist.v", "stat.json"))
+        seconds, abc = run_yosys_abc9_fallback(
+            work, "netlist.ys", lambda extra: f"read_verilog {module}.v\n{TARGETS[target].synth}{options}{extra} "
+                                              f"-top {module}\ntee -q -o stat.json stat -json\n"
+                                              f"write_verilog -noattr netlist.v\n",
+            outputs=("netlist.v", "stat.json"))
         stat = read_json(work / "stat.json", "Yosys statistics", work / "yosys.log")
         cells = next(iter(stat.get("modules", {}).values()), {}).get("num_cells_by_type", {})
         return {"block": block.name, "module": module, "target": target, "device": device,
-                "netlist": "netlist.v", "cells": dict(sorted(cells.items())), "seconds": round(seconds, 2)}
+                "netlist": "netlist.v", "cells": dict(sorted(cells.items())), "abc": abc,
+                "seconds": round(seconds, 2)}
 
     result = cached_run(workdir, key, flow)
     result["netlist"] = str(Path(result["directory"]) / result["netlist"])

@@ -37,7 +37,7 @@ from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
 from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "dsp_mapping_of", "harness", "synth",
-           "markdown"]
+           "markdown", "run_yosys_abc9_fallback"]
 
 FLOW_VERSION = "3"  # bump when the scripts or parsing change what a cached result means
 
@@ -143,6 +143,9 @@ def _untimed_dsps(netlist):
                if cell.get("type") == "MULT18X18D" and on(cell, "REG_INPUTA_CLK") and on(cell, "REG_OUTPUT_CLK"))
 
 
+#: What Yosys' log says when ABC9 fails its reintegration assertion.
+ABC9_ASSERT = "Assert `GetSize(conn.first) == GetSize(conn.second)' failed"
+
 _OVERUSE = re.compile(r"^Info:\s+(\S+):\s+(\d+)/\s*(\d+)\s+\d+%", re.M)
 
 
@@ -183,6 +186,22 @@ def _check(target, device, freq, seed):
         raise ValueError(f"seed must be a positive integer, not {seed!r}")
 
 
+def run_yosys_abc9_fallback(work, script, make_script, outputs=()):
+    """Run the Yosys script ``make_script("")`` as ``script`` in ``work``; where Yosys 0.70's
+    ABC9 fails its reintegration assertion (met on fig8 with local lights and on fig7 at
+    depth 2 with its DSPs mapped), run ``make_script(" -noabc9")`` instead: the classic ABC
+    flow maps the same design.  Returns (seconds, which ABC flow mapped it)."""
+    (work / script).write_text(make_script(""))
+    try:
+        return run_yosys(work, script, outputs), "abc9"
+    except SynthError:
+        if ABC9_ASSERT not in (work / "yosys.log").read_text(errors="replace"):
+            raise
+    (work / "yosys.log").rename(work / "yosys-abc9.log")
+    (work / script).write_text(make_script(" -noabc9"))
+    return run_yosys(work, script, outputs), "abc (ABC9 failed an assertion: yosys-abc9.log)"
+
+
 def _yosys_script(module, target, options):
     command = f"{TARGETS[target].synth}{options}"
     # The bare block first, for its own utilization; then the timing harness, to route.
@@ -206,12 +225,12 @@ def _flow(block, module, target, device, freq, seed, work, progress):
         in_width, out_width = payload_widths(component)
         write_verilog(component, module, work / f"{module}.v", emit_src=False)
     (work / "harness.v").write_text(harness(module, in_width, out_width))
-    (work / "synth.ys").write_text(_yosys_script(module, target, options))
-
     progress("yosys")
-    yosys_seconds = run_yosys(work, "synth.ys")
+    yosys_seconds, abc = run_yosys_abc9_fallback(work, "synth.ys",
+                                                 lambda extra: _yosys_script(module, target, options + extra))
     log = work / "yosys.log"
     result = _utilization(read_json(work / "stat.json", "Yosys statistics", log), target, log)
+    result["abc"] = abc
     result["dsp_untimed"] = _untimed_dsps(read_json(work / "netlist.json", "Yosys netlist", log))
 
     progress("nextpnr")

@@ -238,3 +238,27 @@ def test_lyon_datapaths_ecp5(name, tmp_path):
     assert result["dsp"] > 0 and result["ff"] > 0
     assert result["placed"]["TRELLIS_FF"][0] == result["ff"] + _harness_ffs(get_block(name))
     assert result["fmax_mhz"] > 1
+
+
+def test_abc9_assertion_falls_back_to_abc(tmp_path, monkeypatch):
+    scripts = []
+
+    def fake_run_yosys(work, script, outputs=()):
+        scripts.append((work / script).read_text())
+        if len(scripts) == 1:
+            (work / "yosys.log").write_text(f"5.46.14.7. Executing ABC_OPS_REINTEGRATE pass\nERROR: "
+                                            f"{synth_module.ABC9_ASSERT} in rtlil.cc:3091.\n")
+            raise SynthError("Yosys did not finish")
+        return 2.5
+    monkeypatch.setattr(synth_module, "run_yosys", fake_run_yosys)
+    seconds, abc = synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", lambda extra: f"synth_ecp5{extra}\n")
+    assert seconds == 2.5 and abc.startswith("abc (ABC9 failed an assertion")
+    assert scripts == ["synth_ecp5\n", "synth_ecp5 -noabc9\n"]
+    assert (tmp_path / "yosys-abc9.log").is_file()
+
+    def other_failure(work, script, outputs=()):
+        (work / "yosys.log").write_text("ERROR: Can't open input file\n")
+        raise SynthError("Yosys did not finish")
+    monkeypatch.setattr(synth_module, "run_yosys", other_failure)
+    with pytest.raises(SynthError):
+        synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", lambda extra: "synth_ecp5\n")
