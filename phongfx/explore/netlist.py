@@ -18,7 +18,7 @@ Netlists are cached in ``<workdir>/<key>`` like synthesis results (:func:`.toolr
 import re
 from pathlib import Path
 
-from .synth import TARGETS, dsp_mapping_of, run_yosys_abc9_fallback
+from .synth import TARGETS, dsp_mapping_of, run_yosys_abc9_fallback, synth_command
 from .toolrun import SynthError, cached_run, design_rtlil, read_json
 
 __all__ = ["NETLIST_TARGETS", "synth_netlist", "cell_models", "check_netlist"]
@@ -98,9 +98,8 @@ def synth_netlist(block, target="ecp5", device=None, workdir="build/synth"):
             write_verilog(block.component(), module, work / f"{module}.v", emit_src=False)
         options = devices[device][3]
         seconds, abc = run_yosys_abc9_fallback(
-            work, "netlist.ys", lambda extra: f"read_verilog {module}.v\n{TARGETS[target].synth}{options}{extra} "
-                                              f"-top {module}\ntee -q -o stat.json stat -json\n"
-                                              f"write_verilog -noattr netlist.v\n",
+            work, "netlist.ys", lambda abc9: f"read_verilog {module}.v\n{synth_command(target, options, module, abc9)}\n"
+                                             f"tee -q -o stat.json stat -json\nwrite_verilog -noattr netlist.v\n",
             outputs=("netlist.v", "stat.json"))
         stat = read_json(work / "stat.json", "Yosys statistics", work / "yosys.log")
         cells = next(iter(stat.get("modules", {}).values()), {}).get("num_cells_by_type", {})

@@ -37,7 +37,7 @@ from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
 from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "dsp_mapping_of", "harness", "synth",
-           "markdown", "run_yosys_abc9_fallback"]
+           "markdown", "synth_command", "run_yosys_abc9_fallback"]
 
 FLOW_VERSION = "3"  # bump when the scripts or parsing change what a cached result means
 
@@ -186,28 +186,44 @@ def _check(target, device, freq, seed):
         raise ValueError(f"seed must be a positive integer, not {seed!r}")
 
 
+def synth_command(target, options, top, abc9=True, json=None):
+    """The Yosys commands that synthesize ``top`` for ``target``: ``synth_ecp5`` /
+    ``synth_ice40`` with ``options``; without ``abc9`` (ECP5), the same script with the
+    classic ``abc -lut 4`` in place of its ``map_luts`` step (Yosys 0.70's synth_ecp5 has
+    no switch for it)."""
+    command = f"{TARGETS[target].synth}{options} -top {top}"
+    tail = f" -json {json}" if json else ""
+    if abc9:
+        return command + tail
+    if target != "ecp5":
+        raise ValueError(f"the classic ABC mapping is scripted for ecp5 only, not {target!r}")
+    return (f"{command} -run :map_luts\ntechmap -map +/lattice/latches_map.v\nabc -lut 4\nclean\n"
+            f"{command} -run map_cells:{tail}")
+
+
 def run_yosys_abc9_fallback(work, script, make_script, outputs=()):
-    """Run the Yosys script ``make_script("")`` as ``script`` in ``work``; where Yosys 0.70's
-    ABC9 fails its reintegration assertion (met on fig8 with local lights and on fig7 at
-    depth 2 with its DSPs mapped), run ``make_script(" -noabc9")`` instead: the classic ABC
-    flow maps the same design.  Returns (seconds, which ABC flow mapped it)."""
-    (work / script).write_text(make_script(""))
+    """Run the Yosys script ``make_script(True)`` as ``script`` in ``work``; where Yosys
+    0.70's ABC9 fails its reintegration assertion (met on fig8 with local lights and on
+    fig7 at depth 2 with its DSPs mapped) on ECP5, run ``make_script(False)``, the script
+    with the classic ABC mapping (:func:`synth_command`), instead.  Returns (seconds,
+    which ABC flow mapped it)."""
+    (work / script).write_text(make_script(True))
     try:
         return run_yosys(work, script, outputs), "abc9"
     except SynthError:
         if ABC9_ASSERT not in (work / "yosys.log").read_text(errors="replace"):
             raise
     (work / "yosys.log").rename(work / "yosys-abc9.log")
-    (work / script).write_text(make_script(" -noabc9"))
+    (work / script).write_text(make_script(False))
     return run_yosys(work, script, outputs), "abc (ABC9 failed an assertion: yosys-abc9.log)"
 
 
-def _yosys_script(module, target, options):
-    command = f"{TARGETS[target].synth}{options}"
+def _yosys_script(module, target, options, abc9=True):
     # The bare block first, for its own utilization; then the timing harness, to route.
-    return (f"read_verilog {module}.v\n{command} -top {module}\n"
+    return (f"read_verilog {module}.v\n{synth_command(target, options, module, abc9)}\n"
             f"tee -q -o stat.json stat -json\ndesign -reset\n"
-            f"read_verilog {module}.v harness.v\n{command} -top {module}_synth -json netlist.json\n")
+            f"read_verilog {module}.v harness.v\n"
+            f"{synth_command(target, options, f'{module}_synth', abc9, 'netlist.json')}\n")
 
 
 def _flow(block, module, target, device, freq, seed, work, progress):
@@ -227,7 +243,7 @@ def _flow(block, module, target, device, freq, seed, work, progress):
     (work / "harness.v").write_text(harness(module, in_width, out_width))
     progress("yosys")
     yosys_seconds, abc = run_yosys_abc9_fallback(work, "synth.ys",
-                                                 lambda extra: _yosys_script(module, target, options + extra))
+                                                 lambda abc9: _yosys_script(module, target, options, abc9))
     log = work / "yosys.log"
     result = _utilization(read_json(work / "stat.json", "Yosys statistics", log), target, log)
     result["abc"] = abc

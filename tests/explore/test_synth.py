@@ -251,9 +251,12 @@ def test_abc9_assertion_falls_back_to_abc(tmp_path, monkeypatch):
             raise SynthError("Yosys did not finish")
         return 2.5
     monkeypatch.setattr(synth_module, "run_yosys", fake_run_yosys)
-    seconds, abc = synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", lambda extra: f"synth_ecp5{extra}\n")
+    make = lambda abc9: synth_module.synth_command("ecp5", "", "top", abc9, "n.json")  # noqa: E731
+    seconds, abc = synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", make)
     assert seconds == 2.5 and abc.startswith("abc (ABC9 failed an assertion")
-    assert scripts == ["synth_ecp5\n", "synth_ecp5 -noabc9\n"]
+    assert scripts == ["synth_ecp5 -top top -json n.json",
+                       "synth_ecp5 -top top -run :map_luts\ntechmap -map +/lattice/latches_map.v\nabc -lut 4\n"
+                       "clean\nsynth_ecp5 -top top -run map_cells: -json n.json"]
     assert (tmp_path / "yosys-abc9.log").is_file()
 
     def other_failure(work, script, outputs=()):
@@ -261,4 +264,4 @@ def test_abc9_assertion_falls_back_to_abc(tmp_path, monkeypatch):
         raise SynthError("Yosys did not finish")
     monkeypatch.setattr(synth_module, "run_yosys", other_failure)
     with pytest.raises(SynthError):
-        synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", lambda extra: "synth_ecp5\n")
+        synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", lambda abc9: "synth_ecp5\n")
