@@ -256,9 +256,15 @@ def _flow(block, module, target, device, freq, seed, work, progress):
             "--json", "netlist.json", "--report", "report.json", "--seed", str(seed),
             "--timing-allow-fail", "-q", "-l", log.name]
     args.append("--lpf-allow-unconstrained" if target == "ecp5" else "--pcf-allow-unconstrained")
-    args += info.pnr_options
-    code = run(args, work, log)
+    code = run(args + list(info.pnr_options), work, log)
+    router = " ".join(info.pnr_options) or "default router"
+    if code != 0 and info.pnr_options and log.is_file() and "Failed to route" in log.read_text(errors="replace"):
+        # router2 has failed on the clock net (fig7 at depth 2, seed 3): router1 routes it
+        log.rename(work / "nextpnr-router2.log")
+        code = run(args, work, log)
+        router = "router1 (router2 failed: nextpnr-router2.log)"
     pnr_seconds = time.monotonic() - start
+    result["router"] = router
     if code != 0:
         reason = _fit_error(log, f"{part} ({device}, {package})") or f"nextpnr failed (exit code {code})"
         raise SynthError(f"{reason}; log {log}:\n{tail(log)}")
