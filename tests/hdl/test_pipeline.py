@@ -121,9 +121,9 @@ def test_pipeline_from_the_command_line_settings():
 
 
 @pytest.mark.parametrize("cls", [LirpConfig, NormalizeConfig, ShapeConfig, RootConfig, DatapathConfig])
-@pytest.mark.parametrize("bad", [-1, 4, True, "1"])
+@pytest.mark.parametrize("bad", [-1, 5, True, "1"])
 def test_pipeline_range(cls, bad):
-    with pytest.raises(ValueError, match=rf"^pipeline must be an integer in 0\.\.3, not {bad!r}$"):
+    with pytest.raises(ValueError, match=rf"^pipeline must be an integer in 0\.\.4, not {bad!r}$"):
         cls(pipeline=bad)
 
 
