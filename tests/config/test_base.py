@@ -73,7 +73,7 @@ def test_rounding_checked_for_every_block_that_has_it(cls):
                                  if "pipeline" in FIELD_NAMES[cls]])
 @pytest.mark.parametrize("depth", [-1, MAX_PIPELINE + 1, True])
 def test_pipeline_checked_for_every_block_that_has_it(cls, depth):
-    with pytest.raises(ValueError, match=rf"^pipeline must be an integer in 0\.\.3, not {depth!r}$"):
+    with pytest.raises(ValueError, match=rf"^pipeline must be an integer in 0\.\.{MAX_PIPELINE}, not {depth!r}$"):
         cls(pipeline=depth)
 
 
