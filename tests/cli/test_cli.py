@@ -32,7 +32,7 @@ def test_sim_passes_and_reports(capsys):
 @pytest.mark.verilator
 def test_sim_of_the_ecp5_netlist_and_of_the_dsp_mapped_rtl(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)  # build/synth and build/verilator under the test's folder
-    assert main(["sim", "lirp", "--set", "pipeline=1", "--netlist", "ecp5", "--vectors", "50"]) == 0
+    assert main(["sim", "lirp", "--set", "pipeline=3", "--netlist", "ecp5", "--vectors", "50"]) == 0
     out = capsys.readouterr().out
     assert "lirp on ecp5 netlist (45k, verilator-fast): " in out and "0 mismatching cycle(s)" in out
     assert main(["sim", "lirp", "--set", "pipeline=1", "--dsp", "ecp5", "--vectors", "50"]) == 0

@@ -204,11 +204,11 @@ def test_smoke_shape_ecp5(tmp_path, monkeypatch):
 
 
 def test_pipelined_ecp5_products_are_dsps_with_their_registers(tmp_path):
-    """Figure 7d with k = 1 at depth 1: the squarer is a MULT18X18D with the t register as its
-    input registers and the product's as its output register; at depth 0 Yosys maps it."""
-    block = get_block("shape", k=1, pipeline=1)
+    """Figure 7d with k = 1 at depth 3: the squarer is a MULT18X18D with the t register as its
+    input registers and the product's as its output register; below depth 3 Yosys maps it."""
+    block = get_block("shape", k=1, pipeline=3)
     assert dsp_mapping_of(block, "ecp5") == "ecp5" and dsp_mapping_of(block, "ice40") is None
-    assert dsp_mapping_of(get_block("shape", k=1), "ecp5") is None
+    assert dsp_mapping_of(get_block("shape", k=1, pipeline=2), "ecp5") is None
     result = synth("shape", config=block.config, workdir=tmp_path)
     assert result["dsp"] == 1 and result["dsp_untimed"] == 1
     assert result["latency"] == 3
