@@ -92,7 +92,7 @@ DSP_MAPPING = {"ecp5": "ecp5"}
 
 #: The shallowest pipeline depth synthesized with its products mapped by :mod:`phongfx.hdl.dsp`.
 #: Measured on LFE5U-45F (median of 3 seeds): at depth 2 the mapping costs fig7 85.1 →
-#: 47.7 MHz, because the register it moves into the DSP was fed by a rounding and a clamp,
+#: 52.7 MHz, because the register it moves into the DSP was fed by a rounding and a clamp,
 #: which then share a clock with the 7–14 ns route into the DSP; at depth 3 it gains
 #: (102.6 → 107.7), at depth 4 every DSP meets registers only (189.5 MHz).  Shallower
 #: depths keep Yosys' own mapping, so their figures stand.
