@@ -43,13 +43,17 @@ def _inlined(path):
     return _INCLUDE.sub(lambda match: _inlined(path.parent / match.group(1)), path.read_text())
 
 
+def _check_target(target):
+    if target not in NETLIST_TARGETS:
+        raise ValueError(f"netlist target must be one of {', '.join(map(repr, NETLIST_TARGETS))}, "
+                         f"not {target!r}")
+
+
 def cell_models(target):
     """Verilog text of every cell model a ``target`` netlist may instantiate."""
     from phongfx.hdl.dsp import MODEL
 
-    if target not in NETLIST_TARGETS:
-        raise ValueError(f"netlist target must be one of {', '.join(map(repr, NETLIST_TARGETS))}, "
-                         f"not {target!r}")
+    _check_target(target)
     texts = [_inlined(_share() / name) for name in NETLIST_TARGETS[target]]
     if target == "ecp5":
         texts.append(MODEL.read_text())
@@ -75,9 +79,7 @@ def synth_netlist(block, target="ecp5", device=None, workdir="build/synth"):
     """
     from phongfx.sim.build_cache import digest
 
-    if target not in NETLIST_TARGETS:
-        raise ValueError(f"netlist target must be one of {', '.join(map(repr, NETLIST_TARGETS))}, "
-                         f"not {target!r}")
+    _check_target(target)
     devices = TARGETS[target].devices
     device = TARGETS[target].default_device if device is None else device
     if device not in devices:

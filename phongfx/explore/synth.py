@@ -36,8 +36,8 @@ from phongfx.hdl.dsp import DSP_INTERNAL_NS
 from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
 from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
 
-__all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "DSP_MAPPING_DEPTH", "dsp_mapping_of", "harness", "synth",
-           "markdown", "synth_command", "run_yosys_abc9_fallback"]
+__all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "DSP_MAPPING_DEPTH", "dsp_mapping_of",
+           "harness", "synth", "markdown", "synth_command", "run_yosys_abc9_fallback"]
 
 FLOW_VERSION = "3"  # bump when the scripts or parsing change what a cached result means
 
