@@ -163,7 +163,11 @@ def _key(component, module, top_text, waves):
 def _design_key(component, module, top_text, waves):
     from amaranth.back import rtlil
 
-    design = rtlil.convert(component, name=module, emit_src=False)
+    return _text_key(rtlil.convert(component, name=module, emit_src=False), top_text, waves)
+
+
+def _text_key(design, top_text, waves):
+    """Cache key of a build of ``design`` (RTLIL or Verilog text) under ``top_text``."""
     return digest([design, top_text, f"waves={bool(waves)}", *BUILD_ARGS, *_tool_versions()])
 
 
@@ -213,7 +217,7 @@ def cached_build(component, module, top, top_text, compile_, *, root, waves=Fals
         final = root / _key(component, module, top_text, waves)
     else:
         unbuilt(component)  # simulated through its netlist, not elaborated here
-        final = root / digest([design, top_text, f"waves={bool(waves)}", *BUILD_ARGS, *_tool_versions()])
+        final = root / _text_key(design, top_text, waves)
     if (final / _MARKER).is_file():
         return Build(final, top, built=False)
 
