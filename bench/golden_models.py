@@ -22,7 +22,7 @@ __all__ = ["fig7_apytypes", "fig7_loop"]
 
 
 def _check(config):
-    if (config.specular != "fig7" or config.local_lights or config.local_viewer
+    if (config.specular != "fig7" or config.any_local
             or config.normalize.order != 2):
         raise ValueError("the rival models cover Figure 7 with lights and viewer at infinity "
                          "and the g2 normalizer only")

@@ -51,7 +51,7 @@ def datapath(config, **ports):
     out = {}
     for index in range(config.lights):
         light = (interpolated(ports[f"l{index}_0"], ports[f"l{index}_1"], config.direction_normalize)
-                 if config.local_lights else ports[f"l{index}"])
+                 if config.local_light(index) else ports[f"l{index}"])
         if config.specular == "fig7":
             x2 = difference(config.difference, r, light, shininess)["x2"]
             out[f"spec{index}"] = shape(config.shape, x2)["spec"]

@@ -47,7 +47,7 @@ class Datapath(PipelinedBlock):
         self._fronts = {"n": (Lirp(c.lirp), Normalize(c.normalize), "n0", "n1")}
         if c.local_viewer:
             self._fronts["v"] = (Lirp(c.lirp), Normalize(c.direction_normalize), "v0", "v1")
-        for index in range(c.lights if c.local_lights else 0):
+        for index in (i for i in range(c.lights) if c.local_light(i)):
             self._fronts[f"l{index}"] = (Lirp(c.lirp), Normalize(c.direction_normalize),
                                          f"l{index}_0", f"l{index}_1")
         self._reflect = Reflect(c.reflect) if c.specular in ("fig7", "fig8") else None

@@ -34,6 +34,9 @@ class DatapathConfig(BlockConfig):
     ``local_lights`` / ``local_viewer``: L / V are interpolated across the span with the
     same ``a`` and approximately normalized (``direction_normalize``, g1 or g2) like N;
     otherwise they are constant inputs and no LIRP or normalizer is built for them.
+    ``local_lights`` is one switch for every light (True / False) or a tuple with one per
+    light: a point light beside a directional one gets an interpolator and a normalizer,
+    the directional one stays a constant input (:meth:`local_light`).
     Blocks that depend on L are repeated per light.  All direction vectors after the
     normalizers share the format ``normalize.out``; connected formats must agree.
     ``replace(vec_frac=12)`` (:meth:`~BlockConfig.with_vec_frac`) sets all of them, with
@@ -58,7 +61,7 @@ class DatapathConfig(BlockConfig):
     halfway: HalfwayConfig = HalfwayConfig()
     diffuse: DiffuseConfig = DiffuseConfig()
     lights: int = 2
-    local_lights: bool = False
+    local_lights: object = False  # bool, or a tuple of one bool per light
     local_viewer: bool = False
     direction_normalize: NormalizeConfig = NormalizeConfig()
     pipeline: int = 0
@@ -83,15 +86,23 @@ class DatapathConfig(BlockConfig):
         if self.specular not in SPECULAR_UNITS:
             raise ValueError(f"specular must be one of {', '.join(SPECULAR_UNITS)}, not {self.specular!r}")
         check_int("lights", self.lights, 1, 8)
-        for name in ("local_lights", "local_viewer"):
-            if not isinstance(getattr(self, name), bool):
-                raise ValueError(f"{name} must be True or False, not {getattr(self, name)!r}")
+        if isinstance(self.local_lights, list):  # a list from a file or --set: a tuple stays hashable
+            object.__setattr__(self, "local_lights", tuple(self.local_lights))
+        local = self.local_lights
+        if isinstance(local, tuple):
+            if len(local) != self.lights or not all(isinstance(x, bool) for x in local):
+                raise ValueError(f"local_lights must be True, False or {self.lights} of them (one per "
+                                 f"light), not {local!r}")
+        elif not isinstance(local, bool):
+            raise ValueError(f"local_lights must be True or False, not {local!r}")
+        if not isinstance(self.local_viewer, bool):
+            raise ValueError(f"local_viewer must be True or False, not {self.local_viewer!r}")
         vec = ("normalize.out", self.normalize.out)
         links = [
             ("lirp.out", self.lirp.out, "normalize.vec", self.normalize.vec),
             (*vec, "diffuse.vec", self.diffuse.vec),
         ]
-        if self.local_lights or self.local_viewer:
+        if self.any_local:
             links += [("lirp.out", self.lirp.out, "direction_normalize.vec", self.direction_normalize.vec),
                       (*vec, "direction_normalize.out", self.direction_normalize.out)]
         if self.specular == "fig7":
@@ -122,9 +133,19 @@ class DatapathConfig(BlockConfig):
         """Names of the sub-configs the hardware uses: those of :attr:`UNITS` for
         ``specular``, and ``direction_normalize`` when L or V is interpolated."""
         names = self.UNITS[self.specular]
-        if self.local_lights or self.local_viewer:
+        if self.any_local:
             names += ("direction_normalize",)
         return names
+
+    def local_light(self, index):
+        """Whether light ``index`` is interpolated (a point light) rather than a constant input."""
+        local = self.local_lights
+        return local[index] if isinstance(local, tuple) else local
+
+    @property
+    def any_local(self):
+        """Whether some light or the viewer is interpolated (``direction_normalize`` is used)."""
+        return self.local_viewer or any(self.local_light(i) for i in range(self.lights))
 
     def replace(self, **changes):
         """This config with fields ``changes``; a derived setting among them
@@ -212,7 +233,7 @@ class DatapathConfig(BlockConfig):
         else:
             ports["v"] = (vec, 3)
         for i in range(self.lights):
-            if self.local_lights:
+            if self.local_light(i):
                 ports.update({f"l{i}_0": (end, 3), f"l{i}_1": (end, 3)})
             else:
                 ports[f"l{i}"] = (vec, 3)

@@ -41,7 +41,7 @@ def encode(config, n0, n1, a, shininess, v0, v1, lights0, lights1):
         raw["v"] = codes(wide(v0), config.normalize.fmt("out"))
     for index in range(config.lights):
         l0, l1 = lights0[index % len(lights0)], lights1[index % len(lights1)]
-        if config.local_lights:
+        if config.local_light(index):
             raw[f"l{index}_0"], raw[f"l{index}_1"] = codes(wide(l0), end), codes(wide(l1), end)
         else:
             raw[f"l{index}"] = codes(wide(l0), config.normalize.fmt("out"))

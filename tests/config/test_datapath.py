@@ -190,3 +190,15 @@ def test_vec_frac_read_back():
     wider_guard = fig7_config().replace(normalize=fig7_config().normalize.replace(g="1.13"))
     assert wider_guard.vec_frac is None
     assert METHODS["fig8"].config({"vec_frac": 13}).vec_frac == 13
+
+
+def test_local_lights_per_light():
+    config = DatapathConfig(lights=2, local_lights=[False, True])
+    assert config.local_lights == (False, True) and hash(config)
+    assert [config.local_light(i) for i in range(2)] == [False, True] and config.any_local
+    assert not DatapathConfig(lights=2).any_local
+    with pytest.raises(ValueError, match=r"local_lights must be True, False or 2 of them \(one per light\), "
+                                         r"not \(True,\)"):
+        DatapathConfig(lights=2, local_lights=(True,))
+    with pytest.raises(ValueError, match="local_lights must be True or False, not 1"):
+        DatapathConfig(local_lights=1)

@@ -32,6 +32,10 @@ def test_only_the_needed_blocks_are_built():
     assert "root" not in infinite and "halfway" not in infinite
     local = _instances(DatapathConfig(lights=2, local_lights=True, local_viewer=True))
     assert local.count("lirp") == 4 and local.count("normalize") == 4
+    # a point light beside a directional one: only the point light gets an L interpolator
+    mixed = _instances(DatapathConfig(lights=2, local_lights=(False, True)))
+    assert mixed.count("lirp") == 2 and mixed.count("normalize") == 2
+    assert set(DatapathConfig(lights=2, local_lights=(False, True)).inputs) >= {"l0", "l1_0", "l1_1"}
     viewer = _instances(fig8_config(lights=1, local_viewer=True))
     assert viewer.count("lirp") == 2 and viewer.count("root") == 1 and "shape" not in viewer
 
@@ -50,6 +54,7 @@ def test_harness(backend, name):
     dict(local_lights=True, local_viewer=True, lights=1),
     dict(local_lights=True, lights=2, direction_normalize=NormalizeConfig(order=1)),
     dict(shape=ShapeConfig(k=1), lights=1),
+    dict(local_lights=(True, False), lights=2),
 ])
 def test_harness_local_and_other_configs(backend, changes):
     count = 80 if backend == "amaranth" else 1000
