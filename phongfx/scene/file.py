@@ -43,7 +43,13 @@ class Camera:
 class Light:
     kind: str      # "directional" (vector: unit direction toward the light) | "point" (position)
     vector: tuple
-    intensity: float = 1.0
+    #: the light's RGB intensity: ``intensity`` times ``colour`` (each 0..16)
+    rgb: tuple = (1.0, 1.0, 1.0)
+
+    @property
+    def intensity(self):
+        """The mean of :attr:`rgb`: the light's grey level."""
+        return sum(self.rgb) / 3
 
 
 @dataclass(frozen=True)
@@ -52,6 +58,8 @@ class Material:
     ks: float
     n_lo: int = None   # None: no n (only lyon_spheres objects, which carry their own)
     n_hi: int = None
+    ka: float = 0.0    # ambient: ka·colour is added to every pixel of the material
+    colour: tuple = (1.0, 1.0, 1.0)  # RGB, each 0..1: scales ambient, diffuse and specular
 
 
 @dataclass(frozen=True)
@@ -156,6 +164,15 @@ class _Reader:
             self.fail(f"{field} must be a nonzero vector (a direction), not {value!r}")
         return tuple(float(x) for x in value)
 
+    def colour(self, value, field, hi):
+        """An RGB triple, each in 0..hi, from ``[r, g, b]`` or one number (grey)."""
+        if isinstance(value, list):
+            if len(value) != 3:
+                self.fail(f"{field} must be a number or [r, g, b], not {value!r}")
+            return tuple(self.number(x, f"{field}[{i}]", 0, hi) for i, x in enumerate(value))
+        grey = self.number(value, field, 0, hi)
+        return (grey, grey, grey)
+
     def unit(self, value, field):
         v = self.vector(value, field)
         length = math.sqrt(sum(x * x for x in v))
@@ -191,24 +208,29 @@ def _light(r, data, field):
     if len(kinds) != 1:
         r.fail(f"{field} must have exactly one of direction (at infinity) or position (local), "
                f"not {kinds or 'neither'}")
-    colours = [key for key in ("intensity", "colour", "color") if key in data]
-    if len(colours) > 1:
-        r.fail(f"{field} must have at most one of intensity, colour, color, not {colours}")
-    key = colours[0] if colours else "intensity"
-    value = data.get(key, 1.0)
-    if isinstance(value, list):  # colour [r, g, b]: the datapath is grey, so the mean
-        value = sum(r.vector(value, f"{field}.{key}", nonzero=False)) / 3
-    intensity = r.number(value, f"{field}.{key}", 0, 16)
+    if "colour" in data and "color" in data:
+        r.fail(f"{field} must have at most one of colour, color, not both")
+    intensity = r.number(data.get("intensity", 1.0), f"{field}.intensity", 0, 16)
+    key = "color" if "color" in data else "colour"
+    colour = r.colour(data.get(key, 1.0), f"{field}.{key}", 16)
+    rgb = tuple(intensity * c for c in colour)
+    if max(rgb) > 16:
+        r.fail(f"{field}: intensity × {key} must be at most 16 in each channel, not {list(rgb)}")
     if kinds[0] == "direction":
-        return Light("directional", r.unit(data["direction"], f"{field}.direction"), intensity)
-    return Light("point", r.vector(data["position"], f"{field}.position", nonzero=False), intensity)
+        return Light("directional", r.unit(data["direction"], f"{field}.direction"), rgb)
+    return Light("point", r.vector(data["position"], f"{field}.position", nonzero=False), rgb)
 
 
 def _material(r, data, field):
-    data = r.table(data, field, ("kd", "ks", "n"), ("kd", "ks"))
+    data = r.table(data, field, ("kd", "ks", "ka", "n", "colour", "color"), ("kd", "ks"))
     kd, ks = r.number(data["kd"], f"{field}.kd", 0, 1), r.number(data["ks"], f"{field}.ks", 0, 1)
+    ka = r.number(data.get("ka", 0.0), f"{field}.ka", 0, 1)
+    if "colour" in data and "color" in data:
+        r.fail(f"{field} must have at most one of colour, color, not both")
+    key = "color" if "color" in data else "colour"
+    colour = r.colour(data.get(key, 1.0), f"{field}.{key}", 1)
     n = r.n(data["n"], f"{field}.n") if "n" in data else (None, None)
-    return Material(kd, ks, *n)
+    return Material(kd, ks, *n, ka=ka, colour=colour)
 
 
 def _object(r, data, field, materials, base_dir):

@@ -14,11 +14,15 @@ points, what an L (V) interpolator is loaded with, and ``light`` (``viewer``) th
 exact one at the pixel.  Directional lights and a camera at infinity give one vector
 everywhere.
 
-Every result is shaded with one formula, outside the datapath and exact
-(:func:`shade`, :func:`levels`)::
+The reference a shader is measured against is shaded with one formula, exact, in
+float (:func:`shade`, :func:`levels`), per channel ``c`` of r, g, b::
 
-    I = clip(sum_i intensity_i · (kd · diff_i + ks · spec_i), 0, 1)
-    level = floor(I · (2^bits - 1) + 0.5)
+    I_c = clip(ka · M_c + sum_i L_ic · M_c · (kd · diff_i + ks · spec_i · [diff_i > 0]), 0, 1)
+    level = floor(I_c · (2^bits - 1) + 0.5)
+
+``M`` the material's colour, ``L_i`` light i's RGB intensity; the specular term counts
+only where the light is in front of the surface (``diff_i = max(N·L, 0) > 0``), the
+backside test the hardware blend (:mod:`phongfx.golden.blend`) applies as well.
 """
 
 from dataclasses import dataclass
@@ -50,10 +54,12 @@ class FrameGeometry:
     v0: np.ndarray        # (P, 3) unit vector toward the viewer at the span start
     v1: np.ndarray        # (P, 3) ... at the span end
     viewer: np.ndarray    # (P, 3) ... at the pixel
-    intensity: np.ndarray  # (lights,)
+    rgb: np.ndarray       # (lights, 3) each light's RGB intensity
     n: np.ndarray         # (P,) shininess (a material's n_lo for a range)
     kd: np.ndarray        # (P,)
     ks: np.ndarray        # (P,)
+    ka: np.ndarray        # (P,)
+    colour: np.ndarray    # (P, 3) the material's RGB colour
     material: np.ndarray  # (P,) int64 index into list(spec.materials)
     spans: object         # phongfx.scene.mesh.Spans, None for lyon_spheres
     frame: int
@@ -145,6 +151,8 @@ def frames(spec):
     material = np.array([names.index(obj.material) for obj in spec.objects])
     kd = np.array([spec.materials[name].kd for name in names])
     ks = np.array([spec.materials[name].ks for name in names])
+    ka = np.array([spec.materials[name].ka for name in names])
+    colour = np.array([spec.materials[name].colour for name in names], dtype=np.float64).reshape(-1, 3)
     out = []
     for frame in range(spec.frames.count):
         g = _lyon_frame(spec) if lyon else _mesh_frame(spec, mesh, owner, frame)
@@ -163,21 +171,22 @@ def frames(spec):
             spec.output.width, spec.output.height, g["row"], g["col"], g["span"], g["a"],
             g["n0"], g["n1"], g["normal"], g["position"], l0, l1, lit,
             np.ascontiguousarray(v0), np.ascontiguousarray(v1), np.ascontiguousarray(viewer),
-            np.array([light.intensity for light in spec.lights]), g["n"], kd[m], ks[m], m,
-            g["spans"], frame, spec.output.bits))
+            np.array([light.rgb for light in spec.lights], dtype=np.float64).reshape(-1, 3), g["n"],
+            kd[m], ks[m], ka[m], colour[m], m, g["spans"], frame, spec.output.bits))
     return out
 
 
 def shade(geometry, diff, spec):
-    """(P,) ``clip(sum_i intensity_i · (kd · diff_i + ks · spec_i), 0, 1)`` for per-light
-    diffuse and specular terms ``diff``, ``spec`` of shape (lights, P)."""
+    """(P, 3) RGB intensities of the module docstring's formula, for per-light diffuse and
+    specular terms ``diff``, ``spec`` of shape (lights, P), clipped to [0, 1]."""
     diff, spec = np.asarray(diff, dtype=np.float64), np.asarray(spec, dtype=np.float64)
-    shape = (len(geometry.intensity), len(geometry))
+    shape = (len(geometry.rgb), len(geometry))
     if diff.shape != shape or spec.shape != shape:
         raise ValueError(f"diff and spec must have shape (lights, pixels) = {shape}, "
                          f"not {diff.shape} and {spec.shape}")
-    terms = geometry.kd * diff + geometry.ks * spec
-    return np.clip(np.tensordot(geometry.intensity, terms, axes=1), 0.0, 1.0)
+    terms = geometry.kd * diff + geometry.ks * np.where(diff > 0, spec, 0.0)  # (lights, P)
+    light = np.einsum("lp,lc->pc", terms, geometry.rgb)
+    return np.clip(geometry.colour * (geometry.ka[:, None] + light), 0.0, 1.0)
 
 
 def levels(intensity, bits):

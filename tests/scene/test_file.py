@@ -44,9 +44,20 @@ def test_local_light_colour_range_and_camera():
         d["materials"]["m"]["n"] = [4, 64]
     spec = _parse(change)
     assert spec.local_lights and spec.local_viewer and spec.camera.vector == (0, 0, 5)
-    assert spec.lights[1].vector == (1, 2, 3) and spec.lights[1].intensity == pytest.approx(0.5)
+    assert spec.lights[1].vector == (1, 2, 3) and spec.lights[1].rgb == (0.2, 0.4, 0.9)
+    assert spec.lights[1].intensity == pytest.approx(0.5)
     assert (spec.materials["m"].n_lo, spec.materials["m"].n_hi) == (4, 64)
     assert spec.shininess == (4, 64)
+
+
+def test_light_and_material_colours():
+    def change(d):
+        d["lights"][0].update(intensity=2.0, colour=[1.0, 0.5, 0.25])
+        d["materials"]["m"].update(ka=0.1, colour=[0.8, 0.6, 0.4])
+    spec = _parse(change)
+    assert spec.lights[0].rgb == (2.0, 1.0, 0.5)
+    assert spec.materials["m"].ka == 0.1 and spec.materials["m"].colour == (0.8, 0.6, 0.4)
+    assert _parse().materials["m"].colour == (1.0, 1.0, 1.0) and _parse().materials["m"].ka == 0.0
 
 
 @pytest.mark.parametrize("name", ["lyon-balls", "torus", "local-mesh"])
@@ -133,9 +144,15 @@ BAD = [
      r"^t: objects\[0\]\.slices must be an integer in 3\.\.1024, not 2$"),
     (_set(("name",), 7), r"^t: name must be a non-empty string, not 7$"),
     (_set(("lights",), [1]), r"^t: lights\[0\] must be a table, not 1$"),
-    (_set(("lights", 0, "colour"), [1, 1]), r"^t: lights\[0\]\.colour must be 3 numbers, not \[1, 1\]$"),
-    (_set(("lights", 0), {"direction": [1, 0, 0], "intensity": 1, "color": [1, 1, 1]}),
-     r"^t: lights\[0\] must have at most one of intensity, colour, color, not \['intensity', 'color'\]$"),
+    (_set(("lights", 0, "colour"), [1, 1]), r"^t: lights\[0\]\.colour must be a number or \[r, g, b\], "
+                                            r"not \[1, 1\]$"),
+    (_set(("lights", 0), {"direction": [1, 0, 0], "colour": 1, "color": [1, 1, 1]}),
+     r"^t: lights\[0\] must have at most one of colour, color, not both$"),
+    (_set(("lights", 0), {"direction": [1, 0, 0], "intensity": 4, "colour": [1, 8, 1]}),
+     r"^t: lights\[0\]: intensity × colour must be at most 16 in each channel, not \[4.0, 32.0, 4.0\]$"),
+    (_set(("materials", "m", "ka"), 1.5), r"^t: materials\.m\.ka must be a number in \[0, 1\], not 1\.5$"),
+    (_set(("materials", "m", "colour"), [1, 0.5, 2]),
+     r"^t: materials\.m\.colour\[2\] must be a number in \[0, 1\], not 2$"),
     (_set(("objects",), []), r"^t: objects must be an array of 1\.\.64 tables \(\[\[objects\]\]\), not \[\]$"),
     (_set(("objects", 0, "scale"), 0), r"^t: objects\[0\]\.scale must be a number in \(0, 1000000\.0\], not 0$"),
     (_set(("objects", 0, "minor"), 2), r"^t: objects\[0\]\.radii must satisfy 0 < minor < major, "

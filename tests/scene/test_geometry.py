@@ -13,9 +13,9 @@ from phongfx.scene.mesh import fit_scale, rasterize, torus
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
 
 
-def _spec(lights=({"direction": [1, 2, 2]},), camera=None, objects=None, frames_=None, size=32):
+def _spec(lights=({"direction": [1, 2, 2]},), camera=None, objects=None, frames_=None, size=32, materials=None):
     data = {"lights": list(lights), "output": {"width": size, "height": size},
-            "materials": {"a": {"kd": 0.5, "ks": 0.25, "n": 8}, "b": {"kd": 0.9, "ks": 0.1, "n": [4, 40]}},
+            "materials": materials or {"a": {"kd": 0.5, "ks": 0.25, "n": 8}, "b": {"kd": 0.9, "ks": 0.1, "n": [4, 40]}},
             "objects": objects or [{"type": "sphere", "material": "a", "stacks": 8, "slices": 12}]}
     if camera:
         data["camera"] = camera
@@ -40,7 +40,7 @@ def test_directional_light_and_viewer_at_infinity_are_constant():
     for vectors in (g.l0[0], g.l1[0], g.light[0]):
         assert np.array_equal(vectors, np.broadcast_to(expected, vectors.shape))
     assert np.all(g.viewer == [0, 0, 1]) and np.all(g.v0 == [0, 0, 1]) and np.all(g.v1 == [0, 0, 1])
-    assert g.light.shape == (1, len(g), 3) and np.array_equal(g.intensity, [1.0])
+    assert g.light.shape == (1, len(g), 3) and np.array_equal(g.rgb, [[1.0, 1.0, 1.0]])
 
 
 def test_point_light_and_local_viewer_point_from_the_surface():
@@ -133,14 +133,25 @@ def test_shade_levels_and_errors():
     p = len(g)
     diff = np.stack([np.full(p, 0.4), np.full(p, 0.2)])
     spec = np.stack([np.full(p, 0.8), np.full(p, 0.4)])
-    # 0.5 * (0.5*0.4 + 0.25*0.8) + 1 * (0.5*0.2 + 0.25*0.4) = 0.2 + 0.2
-    assert np.allclose(shade(g, diff, spec), 0.4)
+    # 0.5 * (0.5*0.4 + 0.25*0.8) + 1 * (0.5*0.2 + 0.25*0.4) = 0.2 + 0.2, in every channel
+    assert shade(g, diff, spec).shape == (p, 3) and np.allclose(shade(g, diff, spec), 0.4)
     assert np.all(shade(g, diff * 10, spec) == 1.0) and np.all(shade(g, -diff, -spec) == 0.0)
+    # the backside test: no specular where the light is behind the surface (diff = 0)
+    assert np.allclose(shade(g, np.zeros_like(diff), spec), 0.0)
     assert levels([0.0, 0.4, 0.5 / 255, 0.49 / 255, 1.0], 8).tolist() == [0, 102, 1, 0, 255]
     assert error_levels([0.5, 0.0], [0.25, 1.0], 2).tolist() == [0.75, 3.0]
     with pytest.raises(ValueError, match=r"^diff and spec must have shape \(lights, pixels\) = "
                                          rf"\(2, {p}\), not \(1, {p}\) and \(2, {p}\)$"):
         shade(g, diff[:1], spec)
+
+
+def test_shade_colours_and_ambient():
+    (g,) = frames(_spec(lights=[{"direction": [0, 0, 1], "colour": [1.0, 0.5, 0.0]}],
+                        materials={"a": {"kd": 0.5, "ks": 0.25, "n": 16, "ka": 0.1, "colour": [1, 0.8, 0.5]}}))
+    p = len(g)
+    diff, spec = np.full((1, p), 0.4), np.full((1, p), 0.8)
+    # M_c·(ka + L_c·(kd·diff + ks·spec)) = M_c·(0.1 + L_c·0.4)
+    assert np.allclose(shade(g, diff, spec), [1.0 * 0.5, 0.8 * 0.3, 0.5 * 0.1])
 
 
 def test_a_camera_path_moves_the_local_viewer_frame_by_frame():
