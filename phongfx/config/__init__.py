@@ -25,6 +25,7 @@ May import: ``phongfx.core``.
 """
 
 from .base import MAX_PIPELINE, BlockConfig
+from .blend import BlendConfig
 from .blinn import BlinnConfig
 from .conventional import ConventionalConfig
 from .datapath import SPECULAR_UNITS, DatapathConfig, fig7_config, fig8_config, halfway_config
@@ -44,7 +45,7 @@ from .spherical import SphericalConfig
 __all__ = [
     "BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
     "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
-    "EulerConfig", "GouraudConfig", "BlinnConfig", "ConventionalConfig",
+    "EulerConfig", "GouraudConfig", "BlinnConfig", "ConventionalConfig", "BlendConfig",
     "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
     "MAX_PIPELINE",
 ]

@@ -134,6 +134,7 @@ REGISTRY = {entry.name: entry for entry in (
     _("gouraud", "GouraudConfig", "Gouraud"),
     _("blinn", "BlinnConfig", "Blinn"),
     _("conventional", "ConventionalConfig", "Conventional"),
+    _("blend", "BlendConfig", "Blend"),
     # the three datapaths of Lyon's Figures 7, 8 and 5: one component, three configs
     _("fig7", "fig7_config", "Datapath", module="datapath"),
     _("fig8", "fig8_config", "Datapath", module="datapath"),

@@ -8,12 +8,12 @@ HERE = Path(__file__).resolve().parent
 PACKAGE = Path(phongfx.config.__file__).resolve().parent
 
 #: The public names of phongfx.config when it was one module, every one still importable,
-#: and the configs of the blocks added since (ConventionalConfig).
+#: and the configs of the blocks added since (ConventionalConfig, BlendConfig).
 PUBLIC = ["BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
           "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig",
           "HalfwayConfig", "HALFWAY_VARIANTS", "EulerConfig", "GouraudConfig", "BlinnConfig",
           "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
-          "MAX_PIPELINE", "ConventionalConfig"]
+          "MAX_PIPELINE", "ConventionalConfig", "BlendConfig"]
 
 
 def test_public_names_kept():
