@@ -139,6 +139,8 @@ REGISTRY = {entry.name: entry for entry in (
     _("fig7", "fig7_config", "Datapath", module="datapath"),
     _("fig8", "fig8_config", "Datapath", module="datapath"),
     _("halfway_datapath", "halfway_config", "Datapath", module="datapath"),
+    # a whole shader: a unit above (one copy, or one per light) and the blend to r, g, b
+    _("shader", "ShaderConfig", "Shader"),
 )}
 del _
 

@@ -17,7 +17,7 @@ FOLDERS = {"phongfx.config": "phongfx/config", "phongfx.golden": "golden", "phon
 def test_names_and_order():
     assert block_names() == tuple(REGISTRY)
     assert block_names()[:3] == ("lirp", "normalize", "reflect")
-    assert block_names()[-3:] == ("fig7", "fig8", "halfway_datapath")
+    assert block_names()[-4:] == ("fig7", "fig8", "halfway_datapath", "shader")
     assert all(isinstance(entry, Entry) and entry.name == name for name, entry in REGISTRY.items())
 
 

@@ -1,0 +1,51 @@
+"""Golden model of a whole shader: the shading unit's copies, then the blend to r, g, b.
+
+Each copy of the unit (:class:`~phongfx.config.ShaderConfig` ``units``) runs its own golden
+model on its own inputs; every light's diffuse and specular terms, in the order
+:attr:`~phongfx.config.ShaderConfig.terms` gives, go to :func:`~phongfx.golden.blend.blend`
+with the pixel's material.  Nothing is narrowed between them: the blend takes the
+unit's output formats as they are.
+"""
+
+from phongfx.core.registry import REGISTRY
+
+from .blend import blend
+from .fixed import Fixed
+
+__all__ = ["shader", "shader_terms"]
+
+
+def shader(config, **ports):
+    """The pixel's ``r``, ``g``, ``b`` codes.
+
+    Parameters
+    ----------
+    config : ShaderConfig
+    ports : Fixed
+        Every input of ``config.inputs``: the unit's (prefixed ``c<j>_`` per copy when there
+        are several) and ``material`` when the blend has several materials.
+
+    Returns
+    -------
+    dict
+        ``{"r", "g", "b"}``: Fixed in ``blend.bits``.0.
+    """
+    return blend(config.blend, **shader_terms(config, **ports))
+
+
+def shader_terms(config, **ports):
+    """The blend's inputs :func:`shader` computes: every light's ``diff<i>`` (when the unit
+    has a diffuse output) and ``spec<i>``, and ``material``; a caller that also needs the
+    terms (the scene compiler's backside test) blends them itself."""
+    unit = REGISTRY[config.unit].load("golden")
+    outputs = [unit(sub, **{name: ports[config.prefix(copy) + name] for name in sub.inputs})
+               for copy, sub in enumerate(config.units)]
+    terms = {}
+    for light, (copy, diff, lane, spec) in enumerate(config.terms):
+        if diff is not None:
+            value = outputs[copy][diff]
+            terms[f"diff{light}"] = value if lane is None else Fixed(value.raw[:, lane], value.fmt)
+        terms[f"spec{light}"] = outputs[copy][spec]
+    if "material" in ports:
+        terms["material"] = ports["material"]
+    return terms

@@ -1,0 +1,54 @@
+import pytest
+
+from phongfx.config import BlendConfig, ConventionalConfig, ShaderConfig, fig7_config
+
+
+def _blend(lights=2, **changes):
+    grey = ((0.5, 0.5, 0.5),) * lights
+    return BlendConfig(**{"lights": lights, "diffuse": (grey,), "specular": (grey,), **changes})
+
+
+def test_defaults_are_figure_7_with_two_lights_and_grey_blend():
+    config = ShaderConfig()
+    assert config.unit == "fig7" and config.copies == 1
+    assert set(config.inputs) == set(fig7_config().inputs)
+    assert list(config.outputs) == ["r", "g", "b"]
+    assert config.terms == [(0, "diff0", None, "spec0"), (0, "diff1", None, "spec1")]
+
+
+def test_one_light_units_take_one_copy_each_with_prefixed_inputs():
+    units = (ConventionalConfig(local_light=True), ConventionalConfig())
+    config = ShaderConfig(unit="conventional", units=units, blend=_blend(diff="1.15"))
+    assert config.copies == 2 and config.terms[1] == (1, "diffuse", None, "specular")
+    assert {"c0_normal", "c0_light", "c1_normal", "c1_n"} <= set(config.inputs)
+    assert "normal" not in config.inputs
+
+
+def test_material_port_comes_from_the_blend():
+    grey = ((0.5, 0.5, 0.5),) * 2
+    blend = BlendConfig(ambient=((0, 0, 0), (0.1, 0.1, 0.1)), diffuse=(grey, grey), specular=(grey, grey))
+    assert "material" in ShaderConfig(blend=blend).inputs
+
+
+def test_replace_sends_unit_settings_to_every_unit_and_pipeline_to_the_blend():
+    config = ShaderConfig().replace(pipeline=2, vec_frac=12)
+    assert config.units[0].pipeline == 2 and config.units[0].vec_frac == 12
+    assert config.blend.pipeline == 2
+
+
+@pytest.mark.parametrize("changes, error, message", [
+    (dict(unit="lirp"), ValueError, r"^unit must be one of fig7, .*, not 'lirp'$"),
+    (dict(units=()), ValueError, r"^copies \(len\(units\)\) must be an integer in 1\.\.8, not 0$"),
+    (dict(blend=_blend(spec="1.12")), ValueError,
+     r"^blend\.spec \(1\.12\) must equal the unit's spec0 \(1\.15\): they are connected$"),
+    (dict(units=(ConventionalConfig(),)), TypeError, r"^units\[0\] must be a DatapathConfig, not "),
+    (dict(blend=_blend(lights=1)), ValueError,
+     r"^blend\.lights must be 2 \(the lights the units compute\), not 1$"),
+    (dict(blend=_blend(diff="1.12")), ValueError,
+     r"^blend\.diff \(1\.12\) must equal the unit's diff0 \(1\.10\): they are connected$"),
+    (dict(blend=_blend(diff="", gate=False, diffuse=(((0, 0, 0),) * 2,))), ValueError,
+     r"^blend\.diff must be a format: the fig7 unit has a diffuse output$"),
+])
+def test_bad_configs_are_refused(changes, error, message):
+    with pytest.raises(error, match=message):
+        ShaderConfig(**changes)

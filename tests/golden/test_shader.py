@@ -1,0 +1,36 @@
+import numpy as np
+
+from phongfx.config import BlendConfig, ShaderConfig, halfway_config
+from phongfx.core.registry import get_block
+from phongfx.explore.extremes import run_block
+
+
+def test_the_shader_is_the_unit_then_the_blend():
+    shader = get_block("shader")
+    raw = shader.stimulus(count=200, seed=3)
+    unit = get_block("fig7", config=shader.config.units[0]).golden(raw)
+    blend = get_block("blend", config=shader.config.blend).golden(unit)
+    out = shader.golden(raw)
+    assert set(out) == {"r", "g", "b"}
+    for name in "rgb":
+        assert np.array_equal(out[name], blend[name])
+    assert len(np.unique(out["r"])) > 20  # the stimulus reaches many levels
+
+
+def test_the_halfway_highlight_at_v_equal_minus_l_does_not_reach_the_pixel():
+    # V = −L: the halfway unit's spec is 1.0 (H = 0), but N·L = −1 gates it off
+    config = ShaderConfig(unit="halfway_datapath", units=(halfway_config(),),
+                          blend=BlendConfig(ambient=((0.1, 0.2, 0.3),)))
+    rows = {row.name: row for row in get_block("halfway_datapath").extremes()}
+    raw = rows["V = −L (N = V), n_max"].build(config.units[0])
+    unit = get_block("halfway_datapath", config=config.units[0]).golden(raw)
+    assert np.all(unit["spec0"] == config.units[0].outputs["spec0"][0].one)
+    out = get_block("shader", config=config).golden(raw)
+    assert np.all(out["r"] == 26) and np.all(out["g"] == 51) and np.all(out["b"] == 77)  # 255·ka·M, rounded
+
+
+def test_extreme_rows_hold():
+    rows, _ = run_block("shader")
+    assert len(rows) == 2
+    for row in rows:
+        assert row["golden"] == "pass" and row["rtl"] == "pass", row
