@@ -16,8 +16,8 @@ from phongfx.explore.tables import TABLES, table_module
 
 from .settings import apply_settings, configured_block
 
-__all__ = ["MAX_SIZE", "cmd_blocks", "cmd_verilog", "cmd_sim", "cmd_render", "cmd_synth", "cmd_sweep",
-           "cmd_report", "cmd_figure9", "cmd_compile", "cmd_tables"]
+__all__ = ["MAX_SIZE", "MAX_TESTBENCH_COUNT", "cmd_blocks", "cmd_verilog", "cmd_testbench", "cmd_sim",
+           "cmd_render", "cmd_synth", "cmd_sweep", "cmd_report", "cmd_figure9", "cmd_compile", "cmd_tables"]
 
 #: Largest ``--size`` of ``render mesh`` / ``render frames`` (an 8K frame).
 MAX_SIZE = 8192
@@ -33,8 +33,73 @@ def cmd_blocks(args):
 def cmd_verilog(args):
     from phongfx.hdl.emit import write_verilog
     block = configured_block(args.name, args.set)
-    write_verilog(block.component(), args.name, args.output)
+    if args.top:
+        from pathlib import Path
+
+        from phongfx.core.files import atomic_write
+        from phongfx.hdl.top import top_verilog
+
+        text = top_verilog(block.component(), args.name)
+        atomic_write(args.output, lambda temp: Path(temp).write_text(text))
+    else:
+        write_verilog(block.component(), args.name, args.output)
     print(f"wrote {args.output}", file=sys.stderr)
+    return 0
+
+
+#: Largest ``--count`` of ``testbench``: the testbench holds every vector in simulator memory.
+MAX_TESTBENCH_COUNT = 1_000_000
+
+
+def cmd_testbench(args):
+    from tqdm import tqdm
+
+    from phongfx.sim.testbench import (MAX_PROBABILITY, SIMULATORS, require_simulator, run_simulator,
+                                       write_testbench)
+    if not 0 <= args.count <= MAX_TESTBENCH_COUNT:
+        raise ValueError(f"--count must be an integer in 0..{MAX_TESTBENCH_COUNT}, not {args.count}")
+    if args.seed < 0:
+        raise ValueError(f"--seed must be a non-negative integer, not {args.seed}")
+    for option in ("stall", "bubbles"):
+        value = getattr(args, option)
+        if not 0 <= value <= MAX_PROBABILITY:  # also refuses nan
+            raise ValueError(f"--{option} must be a probability in 0..{MAX_PROBABILITY}, not {value}")
+    block = configured_block(args.name, args.set)
+    simulators = SIMULATORS if args.simulate == "both" else (args.simulate,) if args.simulate else ()
+    for simulator in simulators:
+        require_simulator(simulator)  # refused before anything is written
+    steps = 3 + len(simulators)
+    with tqdm(total=steps, desc=f"testbench {args.name}", disable=args.quiet, file=sys.stderr,
+              bar_format="{desc}: {n}/{total} steps {elapsed}") as bar:
+        def stage(step):
+            bar.set_description(f"testbench {args.name}: {step}")
+        stage("vectors")
+        inputs = block.stimulus(count=args.count, seed=args.seed)
+        bar.update(1)
+        stage("golden")
+        expected = block.golden(inputs)
+        bar.update(1)
+        stage("writing")
+        bench = write_testbench(block, inputs, expected, args.output, args.name, seed=args.seed,
+                                stall=args.stall, bubbles=args.bubbles, vcd=args.vcd)
+        bar.update(1)
+        results = {}
+        for simulator in simulators:
+            stage(simulator)
+            results[simulator] = run_simulator(simulator, args.output, args.name)
+            bar.update(1)
+    print(f"wrote {args.output}: {', '.join(bench.files)} ({bench.vectors} vectors; mid-stream reset "
+          f"after {bench.reset_at} results)")
+    failed = []
+    for simulator, (ok, text, seconds) in results.items():
+        verdict = [line for line in text.splitlines() if line.startswith(("PASS", "FAIL"))]
+        print(f"{simulator} ({seconds:.1f} s):")
+        print("\n".join(f"  {line}" for line in (verdict or text.splitlines()[-20:])))
+        if not ok:
+            failed.append(simulator)
+    if failed:
+        print(f"phongfx: testbench of {args.name} FAILED under {', '.join(failed)}", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -46,8 +111,13 @@ def cmd_sim(args):
         raise ValueError(f"--seed must be a non-negative integer, not {args.seed}")
     block = configured_block(args.name, args.set)
     options = {"vcd": args.vcd} if args.vcd else {}
-    if args.vcd and args.backend != "amaranth":
-        raise ValueError("--vcd is written by the amaranth back end; add --backend amaranth")
+    if args.vcd and args.backend == "verilator":
+        raise ValueError("--vcd is written by the amaranth and verilator-fast back ends, not verilator")
+    stream = args.stalls or args.reset_at is not None
+    if stream and args.netlist:
+        raise ValueError("--stalls and --reset-at run the RTL inside Handshake; a --netlist has no ready")
+    if stream:
+        options.update(stalls=args.stalls, reset_at=args.reset_at)
     if args.device and not args.netlist:
         raise ValueError("--device chooses the synthesis of --netlist; add --netlist ecp5|ice40")
     if args.netlist and args.dsp:
@@ -230,7 +300,12 @@ def _saving(cost, other):
 
 
 def _levels(value):
-    return f"{value:.3f} levels" if isinstance(value, float) else f"{value} levels"
+    """A max error in display levels (whole numbers at the outputs; "inf" when unbuildable)."""
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, float):
+        return f"{value:.3f} levels"
+    return f"{value} level" if value == 1 else f"{value} levels"
 
 
 def cmd_compile(args):
@@ -264,8 +339,10 @@ def cmd_compile(args):
               f"against {spec.requirement.against} on {spec.name}; see {args.output}/manifest.json",
               file=sys.stderr)
         return 1
-    print(f"chosen {data['chosen']} ({data['module']}): max {data['error']['max']:.3f} levels, "
-          f"mean {data['error']['mean']:.4f}, {_cost(data['cost'])}, latency {data['latency']}")
+    error = data["error"]
+    print(f"chosen {data['chosen']} ({data['module']}): max {_levels(error['max'])} at out_r/g/b, "
+          f"mean {error['mean']:.4f} ({error['max_unrounded']:.3f} against the unrounded reference), "
+          f"{_cost(data['cost'])}, latency {data['latency']}")
     default = data["default_widths"]
     misses = default["max"] > spec.requirement.max_error_levels
     print(f"  against its default widths: max {_levels(default['max'])}, {_cost(default['cost'])}"

@@ -176,15 +176,17 @@ def frames(spec):
     return out
 
 
-def shade(geometry, diff, spec):
+def shade(geometry, diff, spec, lit=None):
     """(P, 3) RGB intensities of the module docstring's formula, for per-light diffuse and
-    specular terms ``diff``, ``spec`` of shape (lights, P), clipped to [0, 1]."""
+    specular terms ``diff``, ``spec`` of shape (lights, P), clipped to [0, 1]; ``lit``
+    (lights, P) bool, if given, is the backside test instead of ``diff > 0``."""
     diff, spec = np.asarray(diff, dtype=np.float64), np.asarray(spec, dtype=np.float64)
     shape = (len(geometry.rgb), len(geometry))
     if diff.shape != shape or spec.shape != shape:
         raise ValueError(f"diff and spec must have shape (lights, pixels) = {shape}, "
                          f"not {diff.shape} and {spec.shape}")
-    terms = geometry.kd * diff + geometry.ks * np.where(diff > 0, spec, 0.0)  # (lights, P)
+    lit = diff > 0 if lit is None else np.asarray(lit, dtype=bool)
+    terms = geometry.kd * diff + geometry.ks * np.where(lit, spec, 0.0)  # (lights, P)
     light = np.einsum("lp,lc->pc", terms, geometry.rgb)
     return np.clip(geometry.colour * (geometry.ka[:, None] + light), 0.0, 1.0)
 

@@ -6,7 +6,11 @@ the compiler (:mod:`phongfx.explore.compile.compiler`) may leave out:
 
 * N always varies; L only if some light is local, V only if the camera is local
   (Lyon 1993, "Local lights and viewer": otherwise no L/V interpolator or normalizer);
+* which lights are local, one by one (only those get an L interpolator and normalizer);
 * the number of lights and the set or range of shininess ``n``;
+* the blend's constants: per material ``ka·M``, and per light ``kd·M·L`` and ``ks·M·L``
+  (``M`` the material's RGB colour, ``L`` the light's RGB intensity), which the hardware
+  blend multiplies by as constants (:class:`~phongfx.config.BlendConfig`);
 * the largest angle between the two end normals of any span over all frames, and the
   shortest interpolated un-normalized normal ``|N'|`` (``N' = (1-a)N0 + a·N1``): it is
   the normalizer's input range, and it decides how far Lyon's first-order ``g1`` stays
@@ -36,6 +40,7 @@ class Analysis:
 
     local_lights: bool
     local_viewer: bool
+    light_local: tuple     # per light: a point light (True) or a directional one
     lights: int
     n_values: tuple
     n_lo: int
@@ -48,11 +53,21 @@ class Analysis:
     highlight_in_span: float
     spans: int
     pixels: int
+    bits: int = 8
+    ambient: tuple = ()    # per material (r, g, b)
+    diffuse: tuple = ()    # per material, per light (r, g, b)
+    specular: tuple = ()
 
     @property
     def scanline_may_suffice(self):
         """No visible highlight peaks strictly inside a span (Gouraud/Euler need not miss one)."""
         return self.highlight_in_span == 0.0
+
+    @property
+    def local_lights_config(self):
+        """A datapath's ``local_lights``: one switch when every light is alike, else one per light."""
+        kinds = set(self.light_local)
+        return kinds.pop() if len(kinds) == 1 else tuple(self.light_local)
 
     def as_dict(self):
         out = asdict(self)
@@ -109,6 +124,12 @@ def highlight_in_span(geometry, levels):
     return int(inside.sum()), len(ids)
 
 
+def _per_light(materials, lights, name):
+    """Per material, per light, ``k·M_c·L_c`` for the material's coefficient ``name`` (kd, ks)."""
+    return tuple(tuple(tuple(getattr(m, name) * mc * lc for mc, lc in zip(m.colour, light.rgb))
+                       for light in lights) for m in materials)
+
+
 def analyse(spec, geometries):
     """The :class:`Analysis` of ``spec`` over its frames ``geometries``.
 
@@ -133,7 +154,13 @@ def analyse(spec, geometries):
         got, total = highlight_in_span(g, levels)
         inside, spans, pixels = inside + got, spans + total, pixels + len(g.a)
     g1, g2 = _normalizer_errors(length)
+    materials = list(spec.materials.values())
     return Analysis(local_lights=bool(spec.local_lights), local_viewer=bool(spec.local_viewer),
+                    light_local=tuple(light.kind == "point" for light in spec.lights),
+                    bits=spec.output.bits,
+                    ambient=tuple(tuple(m.ka * c for c in m.colour) for m in materials),
+                    diffuse=_per_light(materials, spec.lights, "kd"),
+                    specular=_per_light(materials, spec.lights, "ks"),
                     lights=len(spec.lights), n_values=values, n_lo=min(values), n_hi=max(values),
                     single_n=len(set(values)) == 1, max_span_angle_deg=angle,
                     min_normal_length=length, g1_error=float(g1), g2_error=float(g2),

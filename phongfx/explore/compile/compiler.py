@@ -20,12 +20,16 @@ function's ``k`` (fewer squarings is cheaper; ``2^k = n`` makes ``f_k`` Phong's 
 
 Evaluation: each frame once per shininess *variant*: one when every material has a
 single ``n``, else three, with each range material at its ``n_lo``, its rounded
-geometric mean and its ``n_hi``.  The error of a pixel is ``|I - I_ref|·(2^bits - 1)``
-(:func:`phongfx.scene.geometry.error_levels`), ``I_ref`` from true Phong (``"phong"``:
-``(R·L)^n`` and ``N·L`` at Phong's normal (``FrameGeometry.normal``), and the exact light and
-viewer of the pixel) or from the
-method's own float form (``"self"``); max and mean over all visible pixels of all
-renders.
+geometric mean and its ``n_hi``.  Every render goes through the golden model of the whole
+shader (unit and hardware blend, :mod:`phongfx.golden.shader`), so the error is measured
+at its ``r``, ``g``, ``b`` outputs: per pixel and channel ``|out - level(I_ref)|`` in
+display levels (:func:`pixel_error`, an integer: how far the displayed pixel is from the
+displayed reference), ``I_ref`` (:func:`phongfx.scene.geometry.shade`, the backside test
+included) from true Phong (``"phong"``: ``(R·L)^n`` and ``N·L`` at Phong's normal
+(``FrameGeometry.normal``), and the exact light and viewer of the pixel) or from the
+method's own float form (``"self"``); max and mean over all visible pixels and channels of
+all renders, and ``max_unrounded`` against the reference before its rounding
+(``|out - I_ref·(2^bits - 1)|``, which the outputs' own rounding puts at 0.5 at best).
 
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
@@ -41,14 +45,17 @@ import numpy as np
 from phongfx.core.registry import get_block
 from phongfx.explore.methods import METHODS
 from phongfx.explore.synth import SynthError
+from phongfx.golden.blend import blend
+from phongfx.golden.fixed import Fixed
 from phongfx.golden.reference import specular
-from phongfx.scene.geometry import error_levels, frames, shade
+from phongfx.golden.shader import shader_terms
+from phongfx.scene.geometry import frames, levels, shade
 
 from . import run as runs
 from .analysis import analyse
 
 __all__ = ["Compiled", "SceneEval", "COST_UNITS", "compile_scene", "check_methods", "width_params", "search_widths",
-           "cost"]
+           "cost", "pixel_error", "terminator_lit"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -82,10 +89,31 @@ def width_params(method, against="phong"):
     return out
 
 
+def _cosines(g):
+    """(lights, P) exact ``N·L`` at Phong's normal."""
+    return np.stack([np.sum(g.normal * light, -1) for light in g.light])
+
+
 def _diffuse(g):
     """(lights, P) exact ``max(N·L, 0)`` at Phong's normal: every method's diffuse reference."""
-    normal = g.normal
-    return np.stack([np.maximum(np.sum(normal * light, -1), 0.0) for light in g.light])
+    return np.maximum(_cosines(g), 0.0)
+
+
+def terminator_lit(g, lit, bits):
+    """(lights, P) the reference's backside test: exact ``N·L > 0``, except in the
+    terminator band ``|N·L| <= 1/(2^bits - 1)`` (where the diffuse term is under one
+    display level), where the shader's own test ``lit`` (lights, P) decides.
+
+    The test is a step: for a low ``n`` the specular term is large where a light grazes the
+    surface, so a shader whose ``N·L`` is off by a hair on the wrong side of 0 shows a
+    jump of tens of levels at that pixel.  Where the whole diffuse term is below one
+    level, the terminator's place is within the display's own resolution, and either side
+    is Phong's answer.  ``lit`` None (a unit without a diffuse term): the exact test."""
+    cosine = _cosines(g)
+    exact = cosine > 0
+    if lit is None:
+        return exact
+    return np.where(np.abs(cosine) <= 1.0 / ((1 << bits) - 1), lit, exact)
 
 
 class SceneEval:
@@ -102,6 +130,7 @@ class SceneEval:
         self.shininess_variants = []
         variants = self._variants()
         self.renders = [(g, n) for g in self.geometries for n in variants(g)]
+        #: per render, true Phong's (lights, P) specular terms (the diffuse is the same for all)
         self.reference = [self._phong(g, n) for g, n in self.renders]
         self.cache = {}
 
@@ -127,24 +156,34 @@ class SceneEval:
         return variants
 
     def _phong(self, g, n):
-        normal = g.normal
-        spec = np.stack([specular("phong", normal, light, g.viewer, n) for light in g.light])
-        return shade(g, _diffuse(g), spec)
+        return np.stack([specular("phong", g.normal, light, g.viewer, n) for light in g.light])
 
     def render(self, method, config, params, index):
-        """``(I, I_ref, raw inputs, raw outputs)`` of render ``index``."""
+        """``(codes, I_ref, raw inputs, raw outputs)`` of render ``index``: the shader's
+        ``r``, ``g``, ``b`` codes (P, 3) and the float reference intensities (P, 3), whose
+        backside test follows the shader's within the terminator band (:func:`terminator_lit`)."""
         g, n = self.renders[index]
         raw = runs.frame_inputs(method, config, g, n)
-        out = get_block(runs.block_name(method), config=config).golden(raw)
-        diff, spec = runs.frame_terms(method, config, out, g)
-        value = shade(g, diff, spec)
+        fixed = {name: Fixed(np.asarray(raw[name], dtype=np.int64), fmt)
+                 for name, (fmt, _) in config.inputs.items()}
+        terms = shader_terms(config, **fixed)
+        out = {name: value.raw for name, value in blend(config.blend, **terms).items()}
+        codes = runs.frame_codes(method, out, g)
+        lit = None
+        if config.blend.diff:  # the shader's own backside test, per light, at the visible pixels
+            lit = np.stack([runs.visible(method, terms[f"diff{i}"].raw > 0, g)
+                            for i in range(config.blend.lights)])
         if self.spec.requirement.against == "self":
-            return value, shade(g, _diffuse(g), runs.own_specular(method, config, params, g, n)), raw, out
-        return value, self.reference[index], raw, out
+            spec = runs.own_specular(method, config, params, g, n)
+        else:
+            spec = self.reference[index]
+        diff = _diffuse(g)
+        return codes, shade(g, diff, spec, lit=terminator_lit(g, lit, self.bits)), raw, out
 
     def error(self, method, params):
-        """``{"max", "mean"}`` error in levels of ``method`` at ``params`` (cached); a config
-        that cannot be built or overflows has ``max = inf`` and says why in ``"why"``."""
+        """``{"max", "mean", "max_unrounded"}`` error in levels of ``method`` at ``params``
+        (cached; :func:`pixel_error`); a config that cannot be built or overflows has
+        ``max = inf`` and says why in ``"why"``."""
         key = (method, tuple(sorted(params.items())))
         if key not in self.cache:
             self.cache[key] = self._error(method, params)
@@ -153,12 +192,21 @@ class SceneEval:
     def _error(self, method, params):
         try:
             config = runs.build(method, params, self.analysis)
-            errors = [error_levels(*self.render(method, config, params, i)[:2], self.bits)
-                      for i in range(len(self.renders))]
+            renders = [self.render(method, config, params, i)[:2] for i in range(len(self.renders))]
         except (ValueError, OverflowError) as error:
-            return {"max": float("inf"), "mean": float("inf"), "why": str(error)}
-        e = np.concatenate(errors)
-        return {"max": float(e.max(initial=0.0)), "mean": float(e.mean()) if e.size else 0.0}
+            inf = float("inf")
+            return {"max": inf, "mean": inf, "max_unrounded": inf, "why": str(error)}
+        e = np.concatenate([pixel_error(codes, ref, self.bits).ravel() for codes, ref in renders])
+        scale = (1 << self.bits) - 1
+        raw = np.concatenate([np.abs(codes - ref * scale).ravel() for codes, ref in renders])
+        return {"max": float(e.max(initial=0.0)), "mean": float(e.mean()) if e.size else 0.0,
+                "max_unrounded": float(raw.max(initial=0.0))}
+
+
+def pixel_error(codes, reference, bits):
+    """(P, 3) ``|out - level(I_ref)|``: how many display levels the shader's ``r``, ``g``,
+    ``b`` codes are from the displayed reference (an integer; the requirement's unit)."""
+    return np.abs(np.asarray(codes, dtype=np.int64) - levels(reference, bits))
 
 
 def _passes(scene, method, params):
@@ -290,8 +338,9 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         # the searched ones only when they meet the requirement
         for where in (result["default"], result) if result["feasible"] else (result["default"],):
             try:
+                # the shader holds every copy of the unit and the blend: one design to cost
                 where["cost"] = cost(name, runs.build(name, where["params"], scene.analysis), synth,
-                                     runs.copies(name, scene.analysis), target=target, device=device,
+                                     1, target=target, device=device,
                                      freq=freq)
             except (ValueError, SynthError) as error:  # a tool failure costs that design only
                 where["cost"] = {"cost": None, "why": str(error).splitlines()[0]}

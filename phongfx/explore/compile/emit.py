@@ -20,7 +20,7 @@ from collections import Counter
 
 import numpy as np
 
-from phongfx.config import BlockConfig, DatapathConfig
+from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
 from phongfx.core.files import atomic_write
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
@@ -34,6 +34,10 @@ __all__ = ["formats", "submodules", "manifest", "emit"]
 def formats(config, prefix=""):
     """``{"path.field": "Sn.m"}`` of every format field of ``config`` (used sub-configs only)."""
     out = {}
+    if isinstance(config, ShaderConfig):  # its units (one, or one per light) and the blend
+        for copy, unit in enumerate(config.units):
+            out.update(formats(unit, f"{prefix}unit{copy if config.copies > 1 else ''}."))
+        return {**out, **formats(config.blend, f"{prefix}blend.")}
     names = [f.name for f in dataclasses.fields(config)]
     if isinstance(config, DatapathConfig):
         names = list(config.used)
@@ -56,7 +60,8 @@ def submodules(verilog_text, module):
 
 
 def _kinds(instances):
-    return dict(sorted(Counter(re.sub(r"\d+$", "", n) for n in instances).items()))
+    """Instances per kind of block, whatever shader copy holds them (``unit0.lirp0``: lirp)."""
+    return dict(sorted(Counter(re.sub(r"\d+$", "", n.rpartition(".")[2]) for n in instances).items()))
 
 
 def _clean(value):
@@ -107,14 +112,19 @@ def manifest(compiled, module=None, instances=None, check=None):
                     "blocks": instances, "block_counts": _kinds(instances or []),
                     "formats": formats(config), "config": dataclasses.asdict(config),
                     "latency": block.latency, "ports": _ports(config),
-                    "error": {"max": best["max"], "mean": best["mean"]}, "cost": best["cost"],
+                    "error": {"max": best["max"], "mean": best["mean"],
+                              "max_unrounded": best.get("max_unrounded"),
+                              "measured_at": "out_r, out_g, out_b (display levels)"},
+                    "cost": best["cost"],
                     "minimality_proof": best["proof"], "default_widths": best["default"],
                     "rtl_check": check})
     return _clean(out)
 
 
 def _picture(geometry, values):
-    image = np.zeros((geometry.height, geometry.width))
+    """An (H, W) or (H, W, 3) picture of per-pixel ``values`` (P,) or (P, 3); black elsewhere."""
+    values = np.asarray(values, dtype=np.float64)
+    image = np.zeros((geometry.height, geometry.width) + values.shape[1:])
     image[geometry.row, geometry.col] = values
     return image
 
@@ -127,7 +137,8 @@ def _identifier(text):
 def emit(compiled, out_dir, *, check=True, progress=None):
     """Write the outputs of ``compiled`` under ``out_dir``; returns the manifest dict."""
     from phongfx.hdl.emit import verilog
-    from phongfx.scene.geometry import error_levels
+
+    from .compiler import pixel_error
 
     best = compiled.best
     if best is None:
@@ -147,9 +158,10 @@ def emit(compiled, out_dir, *, check=True, progress=None):
         if g.frame in done:
             continue
         done.add(g.frame)
-        value, reference, raw, out = scene.render(method, config, best["params"], index)
-        write_png(os.path.join(out_dir, "frames", f"frame_{g.frame:03d}.png"), _picture(g, value))
-        error = error_levels(value, reference, compiled.spec.output.bits)
+        codes, reference, raw, out = scene.render(method, config, best["params"], index)
+        top_level = (1 << compiled.spec.output.bits) - 1
+        write_png(os.path.join(out_dir, "frames", f"frame_{g.frame:03d}.png"), _picture(g, codes / top_level))
+        error = pixel_error(codes, reference, compiled.spec.output.bits).max(axis=-1)
         write_png(os.path.join(out_dir, "error", f"frame_{g.frame:03d}.png"), _picture(g, error / scale))
         if check and result is None:
             if progress:

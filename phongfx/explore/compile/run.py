@@ -1,17 +1,17 @@
 """How each method of :data:`phongfx.explore.methods.METHODS` shades a scene file's frame.
 
 The compiler (:mod:`phongfx.explore.compile.compiler`) asks, per method: can it represent the scene
-(:func:`rejection`), what is its block config at given widths (:func:`build`), what
-are a frame's raw input codes (:func:`frame_inputs`, the same stream the RTL check
-drives), and what diffuse and specular amounts per light do its raw outputs stand for
-(:func:`frame_terms`).  :func:`own_specular` is the method's float form (the
-``against = "self"`` reference).
+(:func:`rejection`), what is its whole shader at given widths (:func:`build`: the unit,
+:func:`unit_config`, and the hardware blend of the scene's constants to ``r``, ``g``,
+``b``), what are a frame's raw input codes (:func:`frame_inputs`, the same stream the RTL
+check drives), and which pixels its ``r``, ``g``, ``b`` codes are (:func:`frame_codes`).
+:func:`own_specular` is the method's float form (the ``against = "self"`` reference).
 
 * Lyon's datapaths (``fig7``, ``fig8``, ``halfway``) take everything a scene has: span
   ends of N, of L and V when local (:func:`phongfx.sim.stimulus.datapath.encode`), any
   number of lights, ``n`` per pixel or fixed in the hardware (``n_const``/``m_const``).
 * ``blinn`` and ``spherical`` compute Blinn's ``(N·H)^n'`` and take one copy of
-  the unit per light (their streams are checked one after the other, :func:`copies`).
+  the unit per light, side by side in the shader (:func:`copies`).
   ``blinn`` is fed per pixel the interpolated ``N`` and the exact unit ``L`` and
   ``H = (L+V)/|L+V|`` of that pixel, so it takes point lights and a local viewer too (the
   hardware that would compute those per-pixel vectors is not in its cost);
@@ -33,20 +33,27 @@ drives), and what diffuse and specular amounts per light do its raw outputs stan
 
 import numpy as np
 
+from phongfx.config import BlendConfig, ShaderConfig
+from phongfx.config.shader import UNIT_TERMS
 from phongfx.explore.methods import METHODS
 from phongfx.golden.reference import specular
 from phongfx.render.mesh import shade as mesh_shade
 from phongfx.scene.mesh import unit
-from phongfx.scene.span_inputs import VIEWER, blinn_codes, conventional_codes, decode, spherical_inputs
+from phongfx.scene.span_inputs import VIEWER, blinn_codes, conventional_codes, spherical_inputs
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["DATAPATHS", "EXTRA", "K_MAX", "rejection", "build", "frame_inputs", "frame_terms", "own_specular",
-           "block_name", "copies"]
+__all__ = ["DATAPATHS", "EXTRA", "K_MAX", "COEF_DEFAULT", "rejection", "unit_config", "build", "frame_inputs",
+           "visible", "frame_codes", "own_specular", "block_name", "copies"]
 
 #: Methods built as a :class:`~phongfx.config.DatapathConfig`.
 DATAPATHS = ("fig7", "fig8", "halfway")
-#: Parameters the compiler adds to a method's own: the normalizers' order (g1 = 1, g2 = 2).
-EXTRA = {name: {"order": (2, (1, 2))} for name in DATAPATHS}
+#: Fraction bits of the blend's constants (``coef``) at a method's defaults: their rounding
+#: moves a pixel by at most (2·lights + 1)·2^-(coef+1) levels before its own rounding.
+COEF_DEFAULT = 8
+#: Parameters the compiler adds to a method's own: the blend's ``coef`` (every method) and
+#: the normalizers' order (g1 = 1, g2 = 2; Lyon's datapaths).
+EXTRA = {name: {"coef": (COEF_DEFAULT, (0, 16)), **({"order": (2, (1, 2))} if name in DATAPATHS else {})}
+         for name in METHODS}
 #: Largest shape-function ``k`` (:class:`~phongfx.config.ShapeConfig`): against true Phong
 #: the compiler searches ``k`` too, since ``f_k(n·D²/2)`` is ``(R·L)^n`` exactly at ``2^k = n``.
 K_MAX = 4
@@ -86,15 +93,18 @@ def rejection(method, spec, analysis, geometries):
         top = METHODS[method].ranges["n"][1]
         if _n_hi(analysis, method) > top:
             return f"is fed n' = 4n up to {4 * analysis.n_hi}; the unit takes 1..{top}"
+    if method == "spherical" and len(spec.materials) > 1:
+        return "its stream covers hidden span pixels, which have no material: the scene has several"
     if method == "spherical" and not analysis.single_n:
         return "its per-span setup holds one n; the scene has several"
     return None
 
 
-def build(method, params, analysis):
-    """Block config of ``method`` at ``params`` (the method's own and :data:`EXTRA`),
-    fitted to the scene: lights, local L/V, ``n`` format narrowed to the scene's largest
-    ``n``, ``n`` fixed in the hardware for a single ``n``."""
+def unit_config(method, params, analysis, light=None):
+    """The shading unit's config of ``method`` at ``params`` (the method's own and
+    :data:`EXTRA`), fitted to the scene: lights, local L/V (each light on its own), ``n``
+    format narrowed to the scene's largest ``n``, ``n`` fixed in the hardware for a single
+    ``n``.  ``light``: the light of a copy of a one-light unit (its L local or not)."""
     spec = METHODS[method]
     own = {k: v for k, v in params.items() if k in spec.params}
     k = own.pop("k", None)
@@ -109,11 +119,12 @@ def build(method, params, analysis):
             top = _n_hi(analysis, method)
             config = config.replace(n=f"{top.bit_length()}.0", n_max=top)
         if method == "conventional":
-            config = config.replace(local_light=analysis.local_lights, local_viewer=analysis.local_viewer)
+            config = config.replace(local_light=analysis.light_local[light],
+                                    local_viewer=analysis.local_viewer)
         return config
     norm = config.normalize.replace(order=params.get("order", 2))
     config = config.replace(normalize=norm, direction_normalize=norm,
-                            local_lights=analysis.local_lights, local_viewer=analysis.local_viewer)
+                            local_lights=analysis.local_lights_config, local_viewer=analysis.local_viewer)
     const = analysis.n_lo if analysis.single_n else 0
     if method == "fig8":
         m = int(np.ceil(np.sqrt(analysis.n_hi)))
@@ -129,43 +140,73 @@ def build(method, params, analysis):
     return config.replace(difference=difference)
 
 
+def build(method, params, analysis):
+    """The whole shader of ``method`` at ``params``: its unit (one copy, or one per light
+    for a one-light unit, :func:`unit_config`) and the blend of the scene's constants
+    (:class:`~phongfx.config.BlendConfig`: ``coef`` fraction bits, the scene's output bits)."""
+    lights = range(copies(method, analysis))
+    units = tuple(unit_config(method, params, analysis, light) for light in lights)
+    block = METHODS[method].block
+    diff, _, spec = UNIT_TERMS[block](units[0])[0]
+    outputs = units[0].outputs
+    blend = BlendConfig(lights=analysis.lights, diff=str(outputs[diff][0]) if diff else "",
+                        spec=str(outputs[spec][0]), coef_frac=params.get("coef", COEF_DEFAULT),
+                        bits=analysis.bits, ambient=analysis.ambient,
+                        diffuse=analysis.diffuse if diff else _zeros(analysis.diffuse),
+                        specular=analysis.specular, gate=diff is not None,
+                        pipeline=getattr(units[0], "pipeline", 0))
+    return ShaderConfig(unit=block, units=units, blend=blend)
+
+
+def _zeros(nested):
+    """``nested`` (per material, per light, RGB) with every value 0."""
+    return tuple(tuple((0.0, 0.0, 0.0) for _ in material) for material in nested)
+
+
 def frame_inputs(method, config, geometry, n):
-    """Raw input codes of one frame with per-pixel shininess ``n`` (visible pixels; every
-    span pixel for the units fed per span)."""
+    """Raw shader input codes of one frame with per-pixel shininess ``n`` (visible pixels;
+    every span pixel for the units fed per span): each copy's stream side by side, and
+    the pixel's material."""
+    units = config.units
     if method in DATAPATHS:  # a shininess fixed in the hardware has no port: encode drops it
-        return encode(config, geometry.n0, geometry.n1, geometry.a, n, geometry.v0, geometry.v1,
-                      list(geometry.l0), list(geometry.l1))
-    if method == "blinn":  # visible pixels only, each with its own L and H
+        streams = [encode(units[0], geometry.n0, geometry.n1, geometry.a, n, geometry.v0, geometry.v1,
+                          list(geometry.l0), list(geometry.l1))]
+    elif method == "blinn":  # visible pixels only, each with its own L and H
         streams = [blinn_codes(geometry.interpolated, light, unit(light + geometry.viewer),
-                                      (4 * n).astype(np.int64), config) for light in geometry.light]
+                               (4 * n).astype(np.int64), sub) for light, sub in zip(geometry.light, units)]
     elif method == "conventional":  # visible pixels only; a local L or V as interpolated
-        view = _lirp(geometry, geometry.v0, geometry.v1) if config.local_viewer else geometry.viewer
-        lights = _lirp(geometry, geometry.l0, geometry.l1) if config.local_light else geometry.light
-        streams = [conventional_codes(geometry.interpolated, light, view, n.astype(np.int64), config)
-                   for light in lights]
-    else:  # one copy of the unit per light: their streams in a row
+        view = _lirp(geometry, geometry.v0, geometry.v1) if config.units[0].local_viewer else geometry.viewer
+        streams = [conventional_codes(geometry.interpolated,
+                                      _lirp(geometry, l0, l1) if sub.local_light else light, view,
+                                      n.astype(np.int64), sub)
+                   for l0, l1, light, sub in zip(geometry.l0, geometry.l1, geometry.light, units)]
+    else:  # one copy of the unit per light, fed every span pixel
         lo = int(4 * n.min())
-        streams = [spherical_inputs(geometry.spans, light, lo, config) for light in geometry.light[:, 0]]
-    return {name: np.concatenate([raw[name] for raw in streams]) for name in streams[0]}
+        streams = [spherical_inputs(geometry.spans, light, lo, sub)
+                   for light, sub in zip(geometry.light[:, 0], units)]
+    raw = {config.prefix(copy) + name: value for copy, stream in enumerate(streams)
+           for name, value in stream.items()}
+    if "material" in config.inputs:
+        raw["material"] = np.asarray(geometry.material, dtype=np.int64)
+    return raw
 
 
-def frame_terms(method, config, outputs, geometry):
-    """``(diff, spec)``, each (lights, P), the amounts the raw ``outputs`` stand for."""
-    if method in DATAPATHS:
-        ports = config.outputs
-        lights = range(config.lights)
-        return tuple(np.stack([outputs[f"{part}{i}"] * ports[f"{part}{i}"][0].lsb for i in lights])
-                     for part in ("diff", "spec"))
-    lights = len(geometry.light)
-    visible = slice(None) if method in _PER_PIXEL else geometry.spans.visible
-    diff = decode(method, outputs, config, "diff")
-    diff = diff[:, 0] if diff.ndim > 1 else diff
-    spec = decode(method, outputs, config, "spec")
-    return tuple(term.reshape(lights, -1)[:, visible] for term in (diff, spec))
+def visible(method, values, geometry):
+    """``values`` (count,) of the shader's stream at the frame's visible pixels (P,): the
+    stream is those pixels, except the spherical unit's, which is every span pixel."""
+    values = np.asarray(values)
+    return values if method != "spherical" else values[geometry.spans.visible]
+
+
+def frame_codes(method, outputs, geometry):
+    """(P, 3) the ``r``, ``g``, ``b`` codes of the frame's visible pixels from the shader's
+    raw ``outputs``."""
+    return np.stack([visible(method, outputs[name], geometry) for name in "rgb"], axis=-1)
 
 
 def own_specular(method, config, params, geometry, n):
-    """(lights, P) the method's float specular form at the exact vectors (``"self"``)."""
+    """(lights, P) the method's float specular form at the exact vectors (``"self"``);
+    ``config`` the shader's."""
     lights = np.asarray(geometry.light)
     if method == "spherical":
         return np.stack([mesh_shade(geometry.spans, "cos2", light=light, n=4 * float(n[0]))[1][
@@ -181,7 +222,8 @@ def own_specular(method, config, params, geometry, n):
     else:
         form = f"lyon-k{params.get('k', METHODS[method].params['k'])}"
     if method == "fig8":
-        m = config.shininess_const or np.clip(np.round(np.sqrt(n)), 1, config.root.m_max)
+        unit_ = config.units[0]
+        m = unit_.shininess_const or np.clip(np.round(np.sqrt(n)), 1, unit_.root.m_max)
         n = np.broadcast_to(m * m, n.shape).astype(np.float64)
     normal = geometry.normal
     return np.stack([specular(form, normal, light, geometry.viewer, n) for light in lights])
@@ -194,11 +236,11 @@ def _lirp(geometry, start, end):
 
 
 def copies(method, analysis):
-    """How many copies of ``method``'s block the scene needs (one per light for the
+    """How many copies of ``method``'s unit the shader holds (one per light for the
     single-light units; Lyon's datapaths hold every light)."""
     return 1 if method in DATAPATHS else analysis.lights
 
 
 def block_name(method):
-    """The registry block of ``method``."""
-    return METHODS[method].block
+    """The registry block of ``method``'s whole shader: unit and blend."""
+    return "shader"

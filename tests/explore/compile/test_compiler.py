@@ -76,7 +76,7 @@ def _instances(compiled):
 
 
 def _kinds(instances, kind):
-    return sum(1 for name in instances if re.fullmatch(rf"{kind}\d+", name))
+    return sum(1 for name in instances if re.fullmatch(rf"{kind}\d+", name.rpartition(".")[2]))
 
 
 def test_the_cheapest_feasible_method_is_chosen_and_the_rest_say_why_not():
@@ -117,9 +117,11 @@ def test_lyon_balls_compile_without_l_or_v_interpolators():
     assert {"v", "l0", "l1"} <= set(config.inputs) and not {"v0", "l0_0"} & set(config.inputs)
     assert compiled.rejected["spherical"] == ("needs mesh spans (its setup is per span); the scene "
                                               "has Lyon's spheres")
-    # the Blinn–Phong baseline: one unit per light, each light's stream measured
+    # the Blinn–Phong baseline: one unit per light, side by side in one shader, costed as one
     baseline = compiled.results["blinn"]["default"]
-    assert baseline["cost"]["copies"] == 2 and 0 < baseline["max"] < 10
+    blinn = build("blinn", baseline["params"], compiled.analysis)
+    assert blinn.copies == 2 and {"c0_normal", "c1_normal"} <= set(blinn.inputs)
+    assert baseline["cost"]["copies"] == 1 and 0 < baseline["max"] < 10
 
 
 def test_a_local_light_and_viewer_compile_with_their_interpolators():
@@ -141,10 +143,10 @@ def test_the_blinn_baseline_takes_a_local_light_per_pixel():
 def test_single_n_is_a_hardware_constant_and_a_range_a_port():
     single = compile_scene(_torus(), methods=["fig7"])
     config = build("fig7", single.best["params"], single.analysis)
-    assert config.difference.n_const == 16 and "n" not in config.inputs
+    assert config.units[0].difference.n_const == 16 and "n" not in config.inputs
     ranged = compile_scene(parse_scene(LOCAL, name="local"), methods=["fig7"])
     config = build("fig7", ranged.best["params"], ranged.analysis)
-    assert config.inputs["n"][0].int_bits == 6 and config.difference.n_max == 32
+    assert config.inputs["n"][0].int_bits == 6 and config.units[0].difference.n_max == 32
 
 
 def test_a_range_of_n_is_rendered_at_its_ends_and_geometric_mean():
@@ -232,7 +234,7 @@ def test_example_scenes_compile_and_verify(tmp_path, name):
 
 def _fake_synth(name, *, config=None, **options):
     # LUT4s that depend on the design, so the cost is seen to come from this config
-    return {"lut4": 100 + config.normalize.fmt("out").frac_bits, "ff": 1, "carry": 1, "dsp": 3,
+    return {"lut4": 100 + config.units[0].normalize.fmt("out").frac_bits, "ff": 1, "carry": 1, "dsp": 3,
             "bram_bits": 0, "fmax_mhz": 99.0, "latency": 17}
 
 
@@ -258,9 +260,10 @@ def test_the_conventional_unit_meets_phong_where_blinn_cannot():
     assert compiled.chosen == "conventional" and compiled.best["max"] <= 1.0
     assert compiled.results["blinn"]["feasible"] is False and compiled.results["blinn"]["max"] > 1.0
     params = compiled.best["params"]
-    assert set(params) == {"vec_frac", "rsqrt_addr", "table_addr"} and params["vec_frac"] < 15
+    assert set(params) == {"vec_frac", "rsqrt_addr", "table_addr", "coef"} and params["vec_frac"] < 15
     config = build("conventional", params, compiled.analysis)
-    assert (config.local_light, config.local_viewer, config.n_max) == (False, False, 16)
+    unit = config.units[0]
+    assert (config.copies, unit.local_light, unit.local_viewer, unit.n_max) == (1, False, False, 16)
     g, n = compiled.scene.renders[0]
     raw = run_frame_inputs("conventional", config, g, n)
     assert len(raw["n"]) == len(g) and set(raw["n"].tolist()) == {16}  # n itself, not 4n
@@ -270,14 +273,15 @@ def test_the_conventional_unit_normalizes_a_point_light_and_a_local_viewer():
     compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["conventional"])
     assert "conventional" not in compiled.rejected
     assert compiled.chosen == "conventional" and 0 < compiled.best["max"] <= 1.0
-    config = build("conventional", compiled.best["params"], compiled.analysis)
+    shader = build("conventional", compiled.best["params"], compiled.analysis)
+    config = shader.units[0]
     assert (config.local_light, config.local_viewer, config.n_max) == (True, True, 32)
     # a normalizer of its own for L and V: three seed ROMs with N's
     text = verilog(get_block("conventional", config=config).component(), "top", emit_src=False)
     assert {"rsqrt", "light_rsqrt", "view_rsqrt"} <= set(re.findall(r"\b\w*rsqrt\b", text))
     # fed the interpolated, un-normalized L and V of the span ends, not the pixel's unit ones
     g, n = compiled.scene.renders[0]
-    raw = run_frame_inputs("conventional", config, g, n)
+    raw = run_frame_inputs("conventional", shader, g, n)
     a = g.a[:, None]
     for port, start, end, exact in (("light", g.l0[0], g.l1[0], g.light[0]), ("view", g.v0, g.v1, g.viewer)):
         np.testing.assert_array_equal(raw[port], codes((1 - a) * start + a * end, config.vec))
@@ -300,3 +304,39 @@ def test_asic_target_prices_in_square_microns_beside_the_phong_baseline(tmp_path
     text = capsys.readouterr().out
     assert f"area {cost['cost']:,.0f} µm²" in text and "against conventional Phong meeting the same requirement" in text
     assert "against its default widths" in text
+
+
+MIXED = """
+[[lights]]
+direction = [0, 0, 1]
+[[lights]]
+position = [2, 2, 3]
+colour = [1.0, 0.6, 0.2]
+[materials.clay]
+kd = 0.6
+ks = 0.3
+ka = 0.1
+colour = [0.9, 0.7, 0.5]
+n = 16
+[[objects]]
+type = "sphere"
+material = "clay"
+[output]
+width = 24
+height = 24
+[requirement]
+against = "self"
+"""
+
+
+def test_a_point_light_beside_a_directional_one_gets_the_only_l_interpolator():
+    compiled = compile_scene(parse_scene(MIXED, name="mixed"), methods=["fig7"])
+    config, instances = _instances(compiled)
+    assert config.units[0].local_lights == (False, True)
+    assert _kinds(instances, "lirp") == 2 and _kinds(instances, "normalize") == 2  # N and the point light
+    assert {"l0", "l1_0", "l1_1"} <= set(config.inputs)
+    # coloured light and material: the blend's channels differ, measured at r, g, b
+    g, n = compiled.scene.renders[0]
+    codes_, reference, _, _ = compiled.scene.render("fig7", config, compiled.best["params"], 0)
+    assert codes_.shape == (len(g), 3) and len({tuple(c) for c in codes_[:, :].T.tolist()}) == 3
+    assert compiled.best["max"] <= 1.0 and np.max(np.abs(codes_ - np.floor(reference * 255 + 0.5))) <= 1
