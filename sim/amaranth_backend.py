@@ -1,8 +1,9 @@
 """Back end: Amaranth's own simulator (pure Python, no external tools)."""
 
+from amaranth.hdl import ClockDomain, Module
 from amaranth.sim import Simulator
 
-__all__ = ["run"]
+__all__ = ["run", "run_stream"]
 
 
 def run(component, in_valid, in_payload, cycles, *, vcd=None):
@@ -34,3 +35,43 @@ def run(component, in_valid, in_payload, cycles, *, vcd=None):
     else:
         sim.run()
     return out_valid, out_payload
+
+
+def run_stream(component, checker, *, vcd=None):
+    """Run a :class:`~phongfx.hdl.handshake.Handshake` ``component`` under ``checker``, a
+    :class:`~phongfx.sim.harness.StreamChecker`, until it says the run is over.
+
+    The driver must see each cycle's ``i.ready`` before the edge (whether its vector is
+    taken decides the next cycle's input), so inputs and outputs cannot be fixed lists as
+    in :func:`run`.  The ``sync`` domain is declared here, not implied, so that its reset
+    is a signal the testbench can drive.
+    """
+    top = Module()
+    top.domains.sync = domain = ClockDomain("sync")
+    top.submodules.dut = component
+    i_payload = component.i.payload.as_value()
+    o_payload = component.o.payload.as_value()
+    mask = (1 << len(o_payload)) - 1
+
+    async def testbench(ctx):
+        cycle = 0
+        going = True
+        while going:
+            rst, valid, payload, ready = checker.drive(cycle)
+            ctx.set(domain.rst, rst)
+            ctx.set(component.i.valid, valid)
+            ctx.set(i_payload, payload)
+            ctx.set(component.o.ready, ready)
+            going = checker.observe(cycle, ctx.get(component.i.ready), ctx.get(component.o.valid),
+                                    ctx.get(o_payload) & mask)
+            await ctx.tick()
+            cycle += 1
+
+    sim = Simulator(top)
+    sim.add_clock(1e-8)
+    sim.add_testbench(testbench)
+    if vcd:
+        with sim.write_vcd(vcd):
+            sim.run()
+    else:
+        sim.run()

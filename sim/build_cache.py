@@ -31,6 +31,7 @@ from phongfx.hdl.block import unbuilt
 from phongfx.hdl.dsp import MODEL as DSP_MODEL
 from phongfx.hdl.dsp import dsp_target
 from phongfx.hdl.emit import verilog
+from phongfx.hdl.handshake import Handshake
 
 __all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "seed_runtime",
            "keep_runtime", "cached_build"]
@@ -157,6 +158,12 @@ def _key(component, module, top_text, waves):
         unbuilt(component)
         # a block's design is a function of its class and its (frozen) config: convert once
         return _config_key(type(component), config, module, top_text, waves)
+    if isinstance(component, Handshake) and getattr(component.block, "config", None) is not None:
+        # so is a Handshake's, of its own class and its block's
+        unbuilt(component)
+        unbuilt(component.block)
+        return _handshake_key(type(component), type(component.block), component.block.config, module,
+                              top_text, waves)
     return _design_key(component, module, top_text, waves)
 
 
@@ -174,6 +181,11 @@ def _text_key(design, top_text, waves):
 @functools.lru_cache(maxsize=64)
 def _config_key(cls, config, module, top_text, waves):
     return _design_key(cls(config), module, top_text, waves)
+
+
+@functools.lru_cache(maxsize=64)
+def _handshake_key(cls, block_class, config, module, top_text, waves):
+    return _design_key(cls(block_class(config)), module, top_text, waves)
 
 
 def cached_build(component, module, top, top_text, compile_, *, root, waves=False, executable=None,

@@ -14,6 +14,19 @@ special case: the simulated top, :func:`wrapper`, pads ``{i.payload, i.valid}``
 and ``{o.payload, o.valid}`` to at least three words, which makes both ports
 ``VlWide`` whatever the block.
 
+Back-pressure and reset (``stalls``, ``reset_at``: the stream mode of
+:mod:`phongfx.sim.harness`) cannot be a precomputed per-cycle stream, since when a vector
+is taken depends on the design's ``i.ready``.  The checker then runs the harness's
+:class:`~phongfx.sim.harness.StreamChecker` in C++ (mode 2 of ``fast_main.cpp``): Python
+passes the vectors, the expected outputs in order, where to resume after a reset, and one
+control byte per cycle (the ``o.ready``, idle and reset decisions of a
+:class:`~phongfx.sim.harness.StreamPlan`, drawn with numpy), so the C++ only follows them.  The simulated top is then
+:class:`~phongfx.hdl.handshake.Handshake` around the block, with ``rst`` and ``o.ready``
+on a ``ctl`` port; without stalls the top and the loop are the fast path's as before.
+
+``vcd=PATH`` builds with Verilator's ``--trace`` (a flavour of its own in the cache) and
+writes the waveform of the run.
+
 Builds share :mod:`phongfx.sim.verilator_backend`'s tool environment and the build and
 run-time object caches of :mod:`phongfx.sim.build_cache` (in a flavour of their own, as
 the flags differ).
@@ -30,16 +43,18 @@ from phongfx.hdl.block import checked_outputs
 from phongfx.hdl.emit import payload_widths
 
 from .build_cache import BUILD_ARGS, cache_root, cached_build, keep_runtime, seed_runtime
-from .harness import (Mismatch, Result, checked_expected, columns, payload_fields, payload_mismatch, row_of,
-                      schedule)
+from .harness import (Mismatch, Result, checked_expected, columns, handshake_component, payload_fields,
+                      payload_mismatch, plan_stream, restart_points, row_of, schedule, stream_mismatch,
+                      stream_mode)
 from .verilator_backend import tool_environment
 
-__all__ = ["MAIN", "words_of", "pack_words", "wrapper", "build", "stream", "check",
+__all__ = ["MAIN", "words_of", "pack_words", "wrapper", "is_stream", "build", "stream", "check",
            "check_timed", "run"]
 
 MAIN = Path(__file__).with_name("fast_main.cpp")
 EXECUTABLE = "phongfx_sim"
-_MAGIC = 0x3174736166786670  # "pfxfast1", as in fast_main.cpp
+_MAGIC = 0x3274736166786670  # "pfxfast2", as in fast_main.cpp
+_HEADER = 16  # uint64 words
 _MIN_WORDS = 3  # > 64 bits: every port is a VlWide
 _VERILATOR_ARGS = ["--cc", "--exe", "--prefix", "Vtop", "-O3", "--x-assign", "fast",
                    "-o", EXECUTABLE]
@@ -92,32 +107,49 @@ def _to_int(words):
     return int.from_bytes(np.ascontiguousarray(words, dtype="<u4").tobytes(), "little")
 
 
-def wrapper(module, in_width, out_width):
+def wrapper(module, in_width, out_width, stream=False):
     """Verilog of the simulation top ``<module>_fast``: word ports around block ``module``.
 
     ``i_word`` is ``{pad, i.payload, i.valid}`` and ``o_word`` ``{0, o.payload, o.valid}``,
-    each :func:`words_of` 32-bit words, combinational both ways.
+    each :func:`words_of` 32-bit words, combinational both ways.  ``ctl`` is ``{rst, o.ready}``
+    and ``i_ready`` the design's ``i.ready`` for a ``stream`` design (a
+    :class:`~phongfx.hdl.handshake.Handshake`); a plain block ignores ``ctl``, its reset
+    tied low so that Verilator folds it away, and ``i_ready`` is 1.
     """
     ni, no = words_of(in_width + 1), words_of(out_width + 1)
     pad = 32 * no - out_width - 1
     tie = f"  assign o_word[{32 * no - 1}:{out_width + 1}] = {pad}'d0;\n" if pad else ""
+    if stream:
+        ports = ".clk(clk), .rst(ctl[1]),\n    .i__valid(i_word[0]), .i__ready(i_ready), "
+        out_ready = ", .o__ready(ctl[0])"
+    else:
+        ports = ".clk(clk), .rst(1'b0),\n    .i__valid(i_word[0]), "
+        out_ready = ""
+        tie += "  assign i_ready = 1'b1;\n"
     return f"""
-module {module}_fast(clk, i_word, o_word);
+module {module}_fast(clk, ctl, i_word, o_word, i_ready);
   input clk;
+  input [1:0] ctl;
   input [{32 * ni - 1}:0] i_word;
   output [{32 * no - 1}:0] o_word;
+  output i_ready;
   {module} dut (
-    .clk(clk), .rst(1'b0),
-    .i__valid(i_word[0]), .i__payload(i_word[{in_width}:1]),
-    .o__valid(o_word[0]), .o__payload(o_word[{out_width}:1])
+    {ports}.i__payload(i_word[{in_width}:1]),
+    .o__valid(o_word[0]){out_ready}, .o__payload(o_word[{out_width}:1])
   );
 {tie}endmodule
 """
 
 
-def build(component, *, build_dir=None, design=None):
+def is_stream(component):
+    """Whether ``component``'s ``i`` has a ``ready`` (a Handshake), which the top must drive."""
+    return "ready" in component.i.signature.members
+
+
+def build(component, *, build_dir=None, design=None, trace=False):
     """Compile ``component`` (or ``design``, Verilog of a module with its ports: a
-    synthesized netlist with its cell models) with the C++ checker, or find it in the cache.
+    synthesized netlist with its cell models) with the C++ checker, or find it in the cache;
+    ``trace`` compiles Verilator's VCD tracing in (``phongfx_sim`` then takes a VCD path).
 
     Returns
     -------
@@ -132,40 +164,44 @@ def build(component, *, build_dir=None, design=None):
     module = type(component).__name__.lower()
     top = f"{module}_fast"
     main = MAIN.read_text()
-    flavour = ("fast", *_VERILATOR_ARGS, *_MAKE_ARGS)
+    verilator_args = [*_VERILATOR_ARGS, "--trace"] if trace else _VERILATOR_ARGS
+    flavour = ("fast", *verilator_args, *_MAKE_ARGS)
     # the key covers everything the executable depends on beyond the design
-    top_text = wrapper(module, *payload_widths(component)) + "/*\n" + "\n".join(flavour) + main + "*/\n"
+    top_text = (wrapper(module, *payload_widths(component), stream=is_stream(component)) + "/*\n"
+                + "\n".join(flavour) + main + "*/\n")
     root = cache_root(build_dir)
 
     def compile_(work, source, log):
         (work / MAIN.name).write_text(main)
-        seeded = seed_runtime(root, work, False, flavour)
+        seeded = seed_runtime(root, work, trace, flavour)
         verilator = tool_environment()
         with open(log, "w") as out:
             run_ = dict(cwd=work, stdout=out, stderr=subprocess.STDOUT, check=True)
-            subprocess.run([str(verilator), *_VERILATOR_ARGS, *BUILD_ARGS, "--top-module", top,
+            subprocess.run([str(verilator), *verilator_args, *BUILD_ARGS, "--top-module", top,
                             "--Mdir", str(work), str(source), str(work / MAIN.name)], **run_)
             # make rebuilds objects older than Vtop.mk, just written: refresh the seeded ones
             if seeded:
                 subprocess.run(["touch", "-c", *map(str, seeded)], **run_)
             subprocess.run(["make", "-f", "Vtop.mk", "-j", "2", *_MAKE_ARGS], **run_)
-        keep_runtime(root, work, False, flavour)
+        keep_runtime(root, work, trace, flavour)
 
-    return cached_build(component, module, top, top_text, compile_, root=root,
+    return cached_build(component, module, top, top_text, compile_, root=root, waves=trace,
                         executable=EXECUTABLE, design=design)
 
 
-def _execute(compiled, header, arrays):
-    """Write the stream, run the checker on it; returns (result bytes, seconds split)."""
+def _execute(compiled, header, arrays, vcd=None):
+    """Write the stream, run the checker on it (writing waveform ``vcd`` if given: a
+    ``trace`` build); returns (result bytes, seconds split)."""
     run_dir = Path(tempfile.mkdtemp(prefix="fast-", dir=compiled.directory))
     stream_, result = run_dir / "stream.bin", run_dir / "result.bin"
     start = time.perf_counter()
     with open(stream_, "wb") as file:
-        file.write(np.array(header, dtype="<u8").tobytes())
+        file.write(np.array(list(header) + [0] * (_HEADER - len(header)), dtype="<u8").tobytes())
         for array in arrays:
             file.write(memoryview(np.ascontiguousarray(array, dtype="<u4")).cast("B"))
     written = time.perf_counter()
-    done = subprocess.run([str(compiled.directory / EXECUTABLE), str(stream_), str(result)],
+    done = subprocess.run([str(compiled.directory / EXECUTABLE), str(stream_), str(result),
+                           *([str(Path(vcd).resolve())] if vcd else [])],
                           capture_output=True, text=True)
     simulated = time.perf_counter()
     if done.returncode:
@@ -207,7 +243,8 @@ def stream(block, inputs, expected, slots, latency, seed):
 
 
 def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, count=1000,
-                max_report=10, build_dir=None, design=None):
+                max_report=10, build_dir=None, design=None, stalls=0.0, reset_at=None, reset_cycles=2,
+                handshake=None, vcd=None):
     """:func:`check`, also returning the seconds spent in each step.
 
     Returns
@@ -217,6 +254,10 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
         ``simulate`` (simulation and comparison in the C++ checker) and ``report``.
     """
     config = block.config
+    streaming = stream_mode(stalls, reset_at)
+    if streaming and design is not None:
+        raise ValueError("stalls and reset_at run the RTL inside Handshake; a netlist design has no "
+                         "ready to stall")
     times = {}
     start = time.perf_counter()
     if inputs is None:
@@ -228,10 +269,14 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
     times["golden"] = time.perf_counter() - start
 
     start = time.perf_counter()
-    component = block.component()
+    component = handshake_component(block, handshake) if streaming else block.component()
     latency = component.latency
-    compiled = build(component, build_dir=build_dir, design=design)
+    compiled = build(component, build_dir=build_dir, design=design, trace=bool(vcd))
     times["build"] = time.perf_counter() - start
+    if streaming:
+        return _check_stream(block, inputs, expected, compiled, latency, times, bubbles=bubbles, seed=seed,
+                             max_report=max_report, stalls=stalls, reset_at=reset_at,
+                             reset_cycles=reset_cycles, vcd=vcd)
 
     start = time.perf_counter()
     count = len(np.asarray(next(iter(inputs.values()))))
@@ -242,8 +287,7 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
     no = want.shape[1]
     times["pack"] = time.perf_counter() - start
 
-    data, split = _execute(compiled, [_MAGIC, cycles, ni, no, max_report, 0, 0, 0],
-                           [in_words, want])
+    data, split = _execute(compiled, [_MAGIC, cycles, ni, no, max_report, 0], [in_words, want], vcd)
     times.update(split)
     start = time.perf_counter()
     ran, mismatches, recorded = np.frombuffer(data[:24], dtype="<u8").tolist()
@@ -269,15 +313,56 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
     return result, times
 
 
+def _check_stream(block, inputs, expected, compiled, latency, times, *, bubbles, seed, max_report, stalls,
+                  reset_at, reset_cycles, vcd):
+    """:func:`check_timed`'s stream mode: the plan's decisions in, mode 2 of ``fast_main.cpp``."""
+    config = block.config
+    start = time.perf_counter()
+    vectors = pack_words(config.inputs, inputs)
+    results = pack_words(checked_outputs(config), checked_expected(expected))
+    count, ni = vectors.shape
+    no = results.shape[1]
+    _, in_width = payload_fields(config.inputs)
+    plan = plan_stream(count, latency, in_width, stalls=stalls, bubbles=bubbles, reset_at=reset_at,
+                       reset_cycles=reset_cycles, seed=seed, restarts=restart_points(config, inputs))
+    junk = np.frombuffer(b"".join((j << 1).to_bytes(4 * ni, "little") for j in plan.junk), dtype="<u4")
+    control = np.zeros(-(-plan.limit // 4) * 4, dtype=np.uint8)
+    control[:plan.limit] = plan.control
+    times["pack"] = time.perf_counter() - start
+
+    header = [_MAGIC, plan.limit, ni, no, max_report, 2, count, len(plan.junk), latency, plan.quiet_from,
+              plan.drain]
+    data, split = _execute(compiled, header, [vectors, results, junk, plan.resume.astype("<u4"),
+                                              control.view("<u4")], vcd)
+    times.update(split)
+    start = time.perf_counter()
+    cycles, mismatches, recorded, _, stall_cycles, resets, resent, _ = \
+        np.frombuffer(data[:64], dtype="<u8").tolist()
+    result = Result(block.name, "verilator-fast", count, cycles, times["write"] + times["simulate"],
+                    mismatch_count=mismatches, stall_cycles=stall_cycles, resets=resets, resent=resent)
+    record = np.dtype([("cycle", "<u8"), ("kind", "<u8"), ("index", "<i8"), ("got", "<u4", no),
+                       ("want", "<u4", no)])
+    for entry in np.frombuffer(data[64:], dtype=record, count=recorded):
+        got, want = _to_int(entry["got"]), _to_int(entry["want"])
+        result.mismatches.append(stream_mismatch(config, inputs, expected, plan, int(entry["cycle"]),
+                                                 int(entry["kind"]), int(entry["index"]), got & 1, got >> 1,
+                                                 want & 1, want >> 1))
+    times["report"] = time.perf_counter() - start
+    return result, times
+
+
 def check(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, count=1000,
-          max_report=10, build_dir=None, design=None):
+          max_report=10, build_dir=None, design=None, stalls=0.0, reset_at=None, reset_cycles=2,
+          handshake=None, vcd=None):
     """:func:`phongfx.sim.harness.check` on the fast path; same arguments and :class:`Result`.
 
     ``Result.seconds`` covers writing the stream and the compiled simulate-and-compare
     run, not the golden model, packing or the build (see :func:`check_timed`).
     """
     return check_timed(block, inputs, expected=expected, bubbles=bubbles, seed=seed,
-                       count=count, max_report=max_report, build_dir=build_dir, design=design)[0]
+                       count=count, max_report=max_report, build_dir=build_dir, design=design,
+                       stalls=stalls, reset_at=reset_at, reset_cycles=reset_cycles,
+                       handshake=handshake, vcd=vcd)[0]
 
 
 def run(component, in_valid, in_payload, cycles, *, build_dir=None):
@@ -299,8 +384,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None):
     data = b"".join(((int(p) & mask) << 1 | int(v) & 1).to_bytes(4 * ni, "little")
                     for v, p in zip(in_valid[:cycles], in_payload[:cycles]))
     compiled = build(component, build_dir=build_dir)
-    out, _ = _execute(compiled, [_MAGIC, cycles, ni, no, 0, 1, 0, 0],
-                      [np.frombuffer(data, dtype="<u4")])
+    out, _ = _execute(compiled, [_MAGIC, cycles, ni, no, 0, 1], [np.frombuffer(data, dtype="<u4")])
     words = np.frombuffer(out, dtype="<u4").reshape(cycles, no)
     values = [_to_int(row) for row in words]
     return [w & 1 for w in values], [w >> 1 for w in values]

