@@ -6,9 +6,10 @@ VENV ?= .venv
 BACKEND ?= verilator-fast
 STAMP := $(VENV)/.installed-stamp
 # Standard-cell synthesis (phongfx synth --target asic) needs OpenSTA and the OSU Liberty
-# files from Debian.  make installs them where it can (as root with apt-get, as in CI);
-# elsewhere it says how, and the tests that need them are skipped.
-DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035
+# files from Debian, and the exported testbenches (phongfx testbench) run under Icarus Verilog.
+# make installs them where it can (as root with apt-get, as in CI); elsewhere it says how,
+# and the tests that need them are skipped.
+DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035 iverilog
 DEBIAN_STAMP := $(VENV)/.debian-stamp
 
 .PHONY: sim test test-all synth sweep sweep-asic report bench identity clean
@@ -19,15 +20,17 @@ $(STAMP): pyproject.toml
 	$(VENV)/bin/python -m pip install --quiet -e '.[cluster,bench]'
 	touch $(STAMP)
 
-$(DEBIAN_STAMP): $(STAMP)
-	@if command -v sta >/dev/null && [ -f /usr/share/qflow/tech/osu018/osu018_stdcells.lib ] \
+# the Makefile too: a package added to DEBIAN_PACKAGES is installed where the stamp exists
+$(DEBIAN_STAMP): $(STAMP) Makefile
+	@if command -v sta >/dev/null && command -v iverilog >/dev/null \
+	    && [ -f /usr/share/qflow/tech/osu018/osu018_stdcells.lib ] \
 	    && [ -f /usr/share/qflow/tech/osu035/osu035_stdcells.lib ]; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	    echo "installing Debian packages: $(DEBIAN_PACKAGES)"; \
 	    DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null \
 	    || { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null; }; \
 	else \
-	    echo "note: standard-cell tools missing; as root: apt-get install $(DEBIAN_PACKAGES)"; \
+	    echo "note: standard-cell tools or Icarus Verilog missing; as root: apt-get install $(DEBIAN_PACKAGES)"; \
 	fi
 	touch $@
 

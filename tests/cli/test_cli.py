@@ -223,3 +223,58 @@ def test_sweep_refuses_a_bad_spec_with_exit_2(tmp_path, capsys):
     assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--quiet"]) == 2
     assert capsys.readouterr().err.startswith("phongfx: error: ")
     assert not (tmp_path / "out").exists()
+
+
+def test_verilog_top_writes_the_named_port_top(tmp_path):
+    path = tmp_path / "lirp_top.v"
+    assert main(["verilog", "lirp", "--top", "-o", str(path)]) == 0
+    text = path.read_text()
+    assert text.startswith("// lirp_top: ") and "module lirp_top(" in text
+    assert "input  in_n0_x     12  S1.10" in text and "out_overflow" not in text
+
+
+def test_testbench_writes_and_passes_under_icarus(tmp_path, capsys):
+    import re
+    import shutil
+
+    if shutil.which("iverilog") is None:
+        pytest.skip("Icarus Verilog (iverilog) is not installed; apt-get install iverilog")
+    out = tmp_path / "tb"
+    assert main(["testbench", "diffuse", "-o", str(out), "--count", "5", "--seed", "3", "--run", "icarus",
+                 "--quiet"]) == 0
+    text = capsys.readouterr().out
+    files = "diffuse_top.v, tb_diffuse.v, diffuse_in.memh, diffuse_expected.memh, run.sh, README.txt"
+    assert text.startswith(f"wrote {out}: {files} (")
+    assert re.search(r"^icarus \([0-9.]+ s\):\n  PASS \d+ vectors, \d+ cycles", text, re.M), text
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--count", "-1"], "--count must be an integer in 0..1000000, not -1"),
+    (["--seed", "-2"], "--seed must be a non-negative integer, not -2"),
+    (["--stall", "1"], "--stall must be a probability in 0..0.95, not 1.0"),
+    (["--bubbles", "nan"], "--bubbles must be a probability in 0..0.95, not nan"),
+    (["--set", "k=9"], "k must be an integer in 0..4, not 9"),
+    (["--set", "q=1"], "--set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding, pipeline"),
+])
+def test_testbench_bad_input_exits_2_and_writes_nothing(argv, message, capsys, tmp_path):
+    assert main(["testbench", "shape", "-o", str(tmp_path / "out"), "--quiet", *argv]) == 2
+    assert capsys.readouterr().err == f"phongfx: error: {message}\n"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_testbench_refuses_a_missing_simulator_before_writing(capsys, tmp_path, monkeypatch):
+    import shutil
+
+    monkeypatch.setattr(shutil, "which", lambda tool: None)
+    assert main(["testbench", "lirp", "-o", str(tmp_path / "out"), "--run", "both", "--quiet"]) == 2
+    assert capsys.readouterr().err == ("phongfx: error: iverilog: Icarus Verilog is not installed (iverilog, "
+                                       "vvp not on PATH); install it with: apt-get install iverilog\n")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_testbench_into_a_file_is_refused(capsys, tmp_path):
+    path = tmp_path / "file"
+    path.write_text("")
+    assert main(["testbench", "diffuse", "-o", str(path), "--count", "0", "--quiet"]) == 2
+    assert capsys.readouterr().err == f"phongfx: error: {path}: Not a directory\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
