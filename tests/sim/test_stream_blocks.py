@@ -75,10 +75,10 @@ def test_block_under_stalls_and_reset_amaranth(name):
 ])
 def test_block_long_stream_fast(name, seed, stalls, bubbles):
     block = get_block(name)
-    _check(name, "verilator-fast", block.stimulus(count=20000, seed=seed), stalls, bubbles, seed)
+    _check(name, "verilator-fast", block.stimulus(count=100_000, seed=seed), stalls, bubbles, seed)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", NAMES)
 def test_block_long_stream_amaranth(name):
-    _check(name, "amaranth", _sample(get_block(name), 1000, seed=34), 0.5, 0.3, seed=34)
+    _check(name, "amaranth", _sample(get_block(name), 3000, seed=34), 0.5, 0.3, seed=34)
