@@ -26,7 +26,13 @@ def run(component, in_valid, in_payload, cycles, *, vcd=None):
             out_payload[cycle] = ctx.get(o_payload) & ((1 << len(o_payload)) - 1)
             await ctx.tick()
 
-    sim = Simulator(component)
+    _simulate(component, testbench, vcd)
+    return out_valid, out_payload
+
+
+def _simulate(design, testbench, vcd):
+    """Run ``testbench`` on ``design`` with a 100 MHz clock, writing waveform ``vcd`` if given."""
+    sim = Simulator(design)
     sim.add_clock(1e-8)
     sim.add_testbench(testbench)
     if vcd:
@@ -34,7 +40,6 @@ def run(component, in_valid, in_payload, cycles, *, vcd=None):
             sim.run()
     else:
         sim.run()
-    return out_valid, out_payload
 
 
 def run_stream(component, checker, *, vcd=None):
@@ -67,11 +72,4 @@ def run_stream(component, checker, *, vcd=None):
             await ctx.tick()
             cycle += 1
 
-    sim = Simulator(top)
-    sim.add_clock(1e-8)
-    sim.add_testbench(testbench)
-    if vcd:
-        with sim.write_vcd(vcd):
-            sim.run()
-    else:
-        sim.run()
+    _simulate(top, testbench, vcd)
