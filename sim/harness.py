@@ -529,8 +529,7 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
     handshake : type, optional
         The stream-mode wrapper class (default ``Handshake``; a test passes a broken one).
     options
-        Passed to the back end (``vcd=PATH`` for ``amaranth`` and ``verilator-fast``,
-        ``build_dir`` ...).
+        Passed to the back end (``vcd=PATH``, a waveform, on every back end; ``build_dir`` ...).
 
     ``stalls`` and ``reset_at`` run on the ``amaranth`` and ``verilator-fast`` back ends
     (:data:`STREAM_BACKENDS`); the cocotb one, whose testbench feeds the design fixed

@@ -162,7 +162,7 @@ def build(component, *, build_dir=None, waves=False):
     return cached_build(component, module, top, top_text, compile_, root=root, waves=waves)
 
 
-def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False):
+def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False, vcd=None):
     """Drive ``component.i`` for ``cycles`` clocks under Verilator; sample ``component.o``.
 
     Parameters
@@ -176,6 +176,9 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
     waves : bool or path
         Record a VCD: ``True`` leaves it as ``dump.vcd`` in the build directory,
         a path puts it there.
+    vcd : path, optional
+        The same as ``waves=vcd``: the name the other back ends take, so that ``check(...,
+        vcd=PATH)`` and ``phongfx sim --vcd`` work on every back end.
 
     Returns
     -------
@@ -194,6 +197,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False)
     if len(in_valid) < cycles or len(in_payload) < cycles:
         raise ValueError(f"need {cycles} cycles of stimulus, got {len(in_valid)} valid "
                          f"and {len(in_payload)} payload values")
+    waves = vcd if vcd else waves
     compiled = build(component, build_dir=build_dir, waves=bool(waves))
     run_dir = Path(tempfile.mkdtemp(prefix="run-", dir=compiled.directory))
     write_vectors(run_dir / STIMULUS, list(in_valid[:cycles]), list(in_payload[:cycles]))

@@ -111,8 +111,6 @@ def cmd_sim(args):
         raise ValueError(f"--seed must be a non-negative integer, not {args.seed}")
     block = configured_block(args.name, args.set)
     options = {"vcd": args.vcd} if args.vcd else {}
-    if args.vcd and args.backend == "verilator":
-        raise ValueError("--vcd is written by the amaranth and verilator-fast back ends, not verilator")
     stream = args.stalls or args.reset_at is not None
     if stream and args.netlist:
         raise ValueError("--stalls and --reset-at run the RTL inside Handshake; a --netlist has no ready")

