@@ -24,7 +24,15 @@ Bengtsson §5, and a coarse UV sphere as Szirmay-Kalos et al. §6), one directio
   float Phong with its backside test (0 where ``N̂·L <= 0``) for the conventional unit.
 
 Metrics are in 8-bit levels, ``e = 255·|fixed - float|`` over the visible pixels
-(:func:`error_metrics`).  The datapaths are evaluated with one light (the lights are
+(:func:`error_metrics`).  The **pixel** metrics ``<scene>.pixel-<ref>.*`` measure what a
+shader built on the method shows: its raw diffuse and specular outputs through the
+hardware blend (:mod:`phongfx.golden.blend`, the render weights ``AMBIENT + KD·diffuse +
+KS·specular`` of :mod:`phongfx.render.mesh`, grey, :data:`PIXEL_COEF` fraction bits, the
+backside test on the specular term) against the same formula in float on exact
+``max(N̂·L, 0)`` and the reference's specular, both as 8-bit display codes
+(:func:`pixel_metrics`; the terminator band as in the scene compiler,
+:func:`phongfx.scene.geometry.terminator_lit`); a unit without a diffuse output (Schlick's)
+blends its specular alone, and the diffuse-only units (Euler, Gouraud) have none.  The datapaths are evaluated with one light (the lights are
 independent copies), while :meth:`MethodSpec.config`, which synthesis sees, keeps the
 ``lights`` parameter (registry default 2).
 """
@@ -33,11 +41,13 @@ import numpy as np
 
 from .methods import METHODS, SCENES, MethodSpec, Scene
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "COST_KEYS", "ASIC_COST_KEYS",
-           "error_metrics", "evaluate"]
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "PIXEL_COEF", "COST_KEYS",
+           "ASIC_COST_KEYS", "error_metrics", "pixel_metrics", "evaluate"]
 
 STATS = ("max", "mean", "psnr", "pct_over1")
 REFERENCES = ("phong", "self")
+#: Fraction bits of the pixel metrics' blend constants (:func:`pixel_metrics`).
+PIXEL_COEF = 8
 COST_KEYS = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "mpixels_per_s", "latency")
 #: The cost of a standard-cell synthesis (``target = "asic"``): area in µm², cells, area × delay.
 ASIC_COST_KEYS = ("area_um2", "cell_count", "ff", "fmax_mhz", "mpixels_per_s", "area_delay", "latency")
@@ -50,7 +60,13 @@ def error_metrics(value, reference, visible=None):
     """``{max, mean, psnr, pct_over1}`` of ``e = 255·|value - reference|`` (8-bit levels)
     over the ``visible`` pixels (all when None): ``psnr = 10·log10(255² / mean(e²))`` dB
     (``inf`` for no error), ``pct_over1`` the percentage of pixels with ``e > 1``."""
-    e = 255 * np.abs(np.asarray(value, dtype=np.float64) - np.asarray(reference, dtype=np.float64))
+    return _stats(255 * np.abs(np.asarray(value, dtype=np.float64) - np.asarray(reference, dtype=np.float64)),
+                  visible)
+
+
+def _stats(e, visible=None):
+    """:func:`error_metrics` of errors ``e`` already in levels."""
+    e = np.asarray(e, dtype=np.float64)
     e = e if visible is None else e[np.asarray(visible, dtype=bool)]
     if not e.size:
         raise ValueError("visible must select at least one pixel, not 0")
@@ -58,6 +74,32 @@ def error_metrics(value, reference, visible=None):
     return {"max": float(e.max()), "mean": float(e.mean()),
             "psnr": float(10 * np.log10(255.0 ** 2 / mse)) if mse > 0 else float("inf"),
             "pct_over1": float(100 * np.mean(e > 1))}
+
+
+def pixel_metrics(terms, reference_spec, scene):
+    """:func:`error_metrics` of a shader's 8-bit display codes (module docstring) from the unit's
+    raw ``terms`` (``{"diff": (codes, Format) or None, "spec": (codes, Format)}``) against the
+    float blend of exact diffuse and ``reference_spec``, over the scene's visible pixels."""
+    from phongfx.config import BlendConfig
+    from phongfx.core.registry import get_block
+    from phongfx.render.mesh import AMBIENT, KD, KS
+    from phongfx.scene.geometry import levels, terminator_lit
+
+    d = scene.data
+    diff, spec = terms["diff"], terms["spec"]
+    def grey(k):  # one material, one light, one grey RGB triple
+        return (((k, k, k),),)
+
+    blend = BlendConfig(lights=1, diff=str(diff[1]) if diff else "", spec=str(spec[1]), coef_frac=PIXEL_COEF,
+                        bits=8, ambient=((AMBIENT,) * 3,), diffuse=grey(KD if diff else 0.0),
+                        specular=grey(KS), gate=diff is not None)
+    raw = {"spec0": spec[0], **({"diff0": diff[0]} if diff else {})}
+    codes = get_block("blend", config=blend).golden(raw)["r"]
+    cosine = d["normal"] @ d["light"]
+    lit = terminator_lit(cosine, diff[0] > 0 if diff else None, 8)
+    exact = (KD * np.maximum(cosine, 0.0) if diff else 0.0) + KS * np.where(lit, reference_spec, 0.0)
+    reference = levels(np.clip(AMBIENT + exact, 0.0, 1.0), 8)
+    return _stats(np.abs(codes - reference), d["visible"])  # whole codes, exactly
 
 
 def _cost(block, config, options):
@@ -109,7 +151,8 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=No
     -------
     dict
         ``metrics``: ``{"<scene>.<ref>.<stat>": float}`` for ``ref`` in :data:`REFERENCES`
-        and ``stat`` in :data:`STATS`; ``cost``: ``{key: number}`` for :data:`COST_KEYS`
+        and ``stat`` in :data:`STATS`, and ``"<scene>.pixel-<ref>.<stat>"`` (the pixel
+        metrics, every method but the diffuse-only ones); ``cost``: ``{key: number}`` for :data:`COST_KEYS`
         (``mpixels_per_s`` = Fmax at one pixel per clock), or None without ``synth``.
 
     Raises
@@ -132,10 +175,13 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=No
     metrics = {}
     for name in scenes:
         scene = SCENES[name]
-        fixed, floats = spec.run(spec, config, p, scene)
+        fixed, floats, terms = spec.run(spec, config, p, scene)
         for ref in REFERENCES:
             for stat, value in error_metrics(fixed, floats[ref], scene.data["visible"]).items():
                 metrics[f"{name}.{ref}.{stat}"] = value
+            if terms is not None:
+                for stat, value in pixel_metrics(terms, floats[ref], scene).items():
+                    metrics[f"{name}.pixel-{ref}.{stat}"] = value
     if synth is not None:
         cost = _cost(spec.block, config, synth)
     else:

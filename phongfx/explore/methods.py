@@ -147,7 +147,20 @@ class Scene:
 SCENES = {"torus": Scene("torus", frame=30), "sphere": Scene("sphere", frame=20)}
 
 
-# --- runs: (fixed, {"phong": float, "self": float}) per pixel ------------------------------
+# --- runs: (fixed, {"phong": float, "self": float}, terms) per pixel ------------------------
+#
+# ``terms`` are the unit's raw outputs that a shader's blend takes: ``{"diff": (codes,
+# Format) or None, "spec": (codes, Format)}``, or None for the diffuse-only units (Euler,
+# Gouraud), whose quantity compared is the diffuse term itself.
+
+
+def _terms(outputs, ports, diff, spec, lane=None):
+    """The blend's inputs among a unit's raw ``outputs``: ports ``diff`` (None: no diffuse
+    output; ``lane``: a vector's lane) and ``spec``, with their formats from ``ports``."""
+    def term(name):
+        codes = np.asarray(outputs[name])
+        return codes if lane is None or codes.ndim == 1 else codes[:, lane], ports[name][0]
+    return {"diff": term(diff) if diff else None, "spec": term(spec)}
 
 def _power(c, n):
     return np.where(c > 0, np.maximum(c, 0.0) ** n, 0.0)
@@ -166,7 +179,8 @@ def _datapath(spec, config, p, scene, own, phong="phong", n_self=None):
     fixed = out["spec0"] * one.outputs["spec0"][0].lsb
     args = (d["normal"], d["light"], VIEWER)
     return fixed, {"phong": specular(phong, *args, n),
-                   "self": specular(own, *args, n if n_self is None else n_self)}
+                   "self": specular(own, *args, n if n_self is None else n_self)}, \
+        _terms(out, one.outputs, "diff0", "spec0")
 
 
 def _run_fig7(spec, config, p, scene):
@@ -190,7 +204,8 @@ def _run_spherical(spec, config, p, scene):
     d = scene.data
     out = get_block("spherical", config=config).golden(spherical_inputs(d["spans"], d["light"], p["n"], config))
     self_ = shade(d["spans"], "cos2", light=d["light"], n=p["n"])[1]
-    return decode("spherical", out, config, "spec"), {"phong": _nh_phong(scene, p["n"]), "self": self_}
+    return decode("spherical", out, config, "spec"), {"phong": _nh_phong(scene, p["n"]), "self": self_}, \
+        _terms(out, config.outputs, "diff", "spec", lane=0)
 
 
 def _diffuse_curves(scene):
@@ -206,7 +221,7 @@ def _run_scanline(unit, feed, own):
         d = scene.data
         out = get_block(unit, config=config).golden(feed(d["spans"], d["light"], config))
         curves = _diffuse_curves(scene)
-        return decode(unit, out, config), {"phong": curves["phong"], "self": curves[own]}
+        return decode(unit, out, config), {"phong": curves["phong"], "self": curves[own]}, None
     return run
 
 
@@ -214,14 +229,16 @@ def _run_schlick(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("schlick", config=config).golden(schlick_inputs(d["spans"], d["light"], n, config))
     t = np.clip(d["normal"] @ d["h"], 0.0, 1.0)
-    return decode("schlick", out, config), {"phong": _nh_phong(scene, n), "self": t / (n - n * t + t)}
+    return decode("schlick", out, config), {"phong": _nh_phong(scene, n), "self": t / (n - n * t + t)}, \
+        _terms(out, config.outputs, None, "spec")
 
 
 def _run_blinn(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("blinn", config=config).golden(blinn_inputs(d["spans"], d["light"], n, config))
     phong = _nh_phong(scene, n)
-    return decode("blinn", out, config, "spec"), {"phong": phong, "self": phong}
+    return decode("blinn", out, config, "spec"), {"phong": phong, "self": phong}, \
+        _terms(out, config.outputs, "diffuse", "specular")
 
 
 def _run_conventional(spec, config, p, scene):
@@ -233,7 +250,8 @@ def _run_conventional(spec, config, p, scene):
     out = get_block("conventional", config=config).golden(raw)
     phong = specular("phong", d["normal"], d["light"], VIEWER, n)
     own = np.where(d["normal"] @ d["light"] > 0, phong, 0.0)
-    return decode("conventional", out, config, "spec"), {"phong": phong, "self": own}
+    return decode("conventional", out, config, "spec"), {"phong": phong, "self": own}, \
+        _terms(out, config.outputs, "diffuse", "specular")
 
 
 _VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)

@@ -32,7 +32,8 @@ import numpy as np
 from .lyon import Scene, pixels
 from .mesh import Mesh, rasterize, unit
 
-__all__ = ["FrameGeometry", "frames", "rotation", "scene_mesh", "shade", "levels", "error_levels"]
+__all__ = ["FrameGeometry", "frames", "rotation", "scene_mesh", "shade", "levels", "error_levels", "pixel_error",
+           "terminator_lit"]
 
 
 @dataclass
@@ -199,3 +200,26 @@ def levels(intensity, bits):
 def error_levels(intensity, reference, bits):
     """``|I - I_ref| · (2^bits - 1)``: an error in output levels, before rounding."""
     return np.abs(np.asarray(intensity, np.float64) - np.asarray(reference, np.float64)) * ((1 << bits) - 1)
+
+
+def pixel_error(codes, reference, bits):
+    """``|out - level(I_ref)|``: how many display levels a shader's output codes are from the
+    displayed reference (an integer array, the shape of ``codes``)."""
+    return np.abs(np.asarray(codes, dtype=np.int64) - levels(reference, bits))
+
+
+def terminator_lit(cosine, lit, bits):
+    """The reference's backside test for exact ``cosine = N·L`` (any shape): ``N·L > 0``,
+    except in the terminator band ``|N·L| <= 1/(2^bits - 1)`` (where the diffuse term is
+    under one display level), where the shader's own test ``lit`` (same shape) decides.
+
+    The test is a step: for a low ``n`` the specular term is large where a light grazes the
+    surface, so a shader whose ``N·L`` is off by a hair on the wrong side of 0 shows a
+    jump of tens of levels at that pixel.  Where the whole diffuse term is below one
+    level, the terminator's place is within the display's own resolution, and either side
+    is Phong's answer.  ``lit`` None (a unit without a diffuse term): the exact test."""
+    cosine = np.asarray(cosine, dtype=np.float64)
+    exact = cosine > 0
+    if lit is None:
+        return exact
+    return np.where(np.abs(cosine) <= 1.0 / ((1 << bits) - 1), lit, exact)

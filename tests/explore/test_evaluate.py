@@ -51,11 +51,34 @@ def test_metric_keys_are_the_contract():
     result = evaluate("schlick", {})
     assert set(result) == {"metrics", "cost"} and result["cost"] is None
     assert set(result["metrics"]) == {f"{scene}.{ref}.{stat}" for scene in ("torus", "sphere")
-                                      for ref in ("phong", "self")
+                                      for ref in ("phong", "self", "pixel-phong", "pixel-self")
                                       for stat in ("max", "mean", "psnr", "pct_over1")}
+    # the diffuse-only units have no shader pixel of their own to measure
+    assert not any(".pixel-" in key for key in evaluate("euler", {}, scenes=("torus",))["metrics"])
     assert all(isinstance(v, float) for v in result["metrics"].values())
     only = evaluate("schlick", {}, scenes=("sphere",))["metrics"]
     assert {key.split(".")[0] for key in only} == {"sphere"}
+
+
+def test_pixel_metrics_are_display_codes_through_the_hardware_blend():
+    from phongfx.core.format import Format
+    from phongfx.explore.evaluate import pixel_metrics
+    from phongfx.render.mesh import AMBIENT, KD, KS
+
+    scene = SCENES["torus"]
+    d = scene.data
+    cosine = d["normal"] @ d["light"]
+    spec = np.clip(d["normal"] @ d["h"], 0, 1) ** 8
+    fmt = Format(1, 12)
+    terms = {"diff": (np.round(np.maximum(cosine, 0) * fmt.one).astype(np.int64), fmt),
+             "spec": (np.round(spec * fmt.one).astype(np.int64), fmt)}
+    exact = pixel_metrics(terms, spec, scene)
+    assert exact["max"] <= 1.0 and exact["mean"] < 0.1  # 12-bit terms: within a code
+    # a specular 24 levels high everywhere: KS·24/255·... shows as whole codes off the reference
+    high = {**terms, "spec": (np.minimum(terms["spec"][0] + round(24 / 255 / KS * fmt.one), fmt.max_raw), fmt)}
+    off = pixel_metrics(high, spec, scene)
+    assert off["max"] >= 23 and float(off["max"]).is_integer()
+    assert AMBIENT + KD + KS == pytest.approx(1.0)
 
 
 def test_error_metrics_hand_made():

@@ -246,7 +246,7 @@ REAL = {"scenes": ["sphere"], "grid": [{"method": "spherical", "addr_bits": [4, 
 
 
 def _real_columns():
-    metrics = [f"sphere.{ref}.{stat}" for ref in ("phong", "self")
+    metrics = [f"sphere.{ref}.{stat}" for ref in ("phong", "pixel-phong", "self", "pixel-self")
                for stat in ("max", "mean", "psnr", "pct_over1")]
     return (["id", "method", "status", "error", "seconds", "param.addr_bits", "param.rom_bits",
              "param.theta_frac", "param.n", "param.t_frac", "param.out_frac"] + metrics

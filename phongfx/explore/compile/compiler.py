@@ -23,9 +23,9 @@ single ``n``, else three, with each range material at its ``n_lo``, its rounded
 geometric mean and its ``n_hi``.  Every render goes through the golden model of the whole
 shader (unit and hardware blend, :mod:`phongfx.golden.shader`), so the error is measured
 at its ``r``, ``g``, ``b`` outputs: per pixel and channel ``|out - level(I_ref)|`` in
-display levels (:func:`pixel_error`, an integer: how far the displayed pixel is from the
-displayed reference), ``I_ref`` (:func:`phongfx.scene.geometry.shade`, the backside test
-included) from true Phong (``"phong"``: ``(R·L)^n`` and ``N·L`` at Phong's normal
+display levels (:func:`~phongfx.scene.geometry.pixel_error`, an integer: how far the
+displayed pixel is from the displayed reference), ``I_ref``
+(:func:`phongfx.scene.geometry.shade`, the backside test included) from true Phong (``"phong"``: ``(R·L)^n`` and ``N·L`` at Phong's normal
 (``FrameGeometry.normal``), and the exact light and viewer of the pixel) or from the
 method's own float form (``"self"``); max and mean over all visible pixels and channels of
 all renders, and ``max_unrounded`` against the reference before its rounding
@@ -49,13 +49,13 @@ from phongfx.golden.blend import blend
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.reference import specular
 from phongfx.golden.shader import shader_terms
-from phongfx.scene.geometry import frames, levels, shade
+from phongfx.scene.geometry import frames, pixel_error, shade, terminator_lit
 
 from . import run as runs
 from .analysis import analyse
 
 __all__ = ["Compiled", "SceneEval", "COST_UNITS", "compile_scene", "check_methods", "width_params", "search_widths",
-           "cost", "pixel_error", "terminator_lit"]
+           "cost"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -97,23 +97,6 @@ def _cosines(g):
 def _diffuse(g):
     """(lights, P) exact ``max(N·L, 0)`` at Phong's normal: every method's diffuse reference."""
     return np.maximum(_cosines(g), 0.0)
-
-
-def terminator_lit(g, lit, bits):
-    """(lights, P) the reference's backside test: exact ``N·L > 0``, except in the
-    terminator band ``|N·L| <= 1/(2^bits - 1)`` (where the diffuse term is under one
-    display level), where the shader's own test ``lit`` (lights, P) decides.
-
-    The test is a step: for a low ``n`` the specular term is large where a light grazes the
-    surface, so a shader whose ``N·L`` is off by a hair on the wrong side of 0 shows a
-    jump of tens of levels at that pixel.  Where the whole diffuse term is below one
-    level, the terminator's place is within the display's own resolution, and either side
-    is Phong's answer.  ``lit`` None (a unit without a diffuse term): the exact test."""
-    cosine = _cosines(g)
-    exact = cosine > 0
-    if lit is None:
-        return exact
-    return np.where(np.abs(cosine) <= 1.0 / ((1 << bits) - 1), lit, exact)
 
 
 class SceneEval:
@@ -161,7 +144,8 @@ class SceneEval:
     def render(self, method, config, params, index):
         """``(codes, I_ref, raw inputs, raw outputs)`` of render ``index``: the shader's
         ``r``, ``g``, ``b`` codes (P, 3) and the float reference intensities (P, 3), whose
-        backside test follows the shader's within the terminator band (:func:`terminator_lit`)."""
+        backside test follows the shader's within the terminator band
+        (:func:`~phongfx.scene.geometry.terminator_lit`)."""
         g, n = self.renders[index]
         raw = runs.frame_inputs(method, config, g, n)
         fixed = {name: Fixed(np.asarray(raw[name], dtype=np.int64), fmt)
@@ -178,11 +162,11 @@ class SceneEval:
         else:
             spec = self.reference[index]
         diff = _diffuse(g)
-        return codes, shade(g, diff, spec, lit=terminator_lit(g, lit, self.bits)), raw, out
+        return codes, shade(g, diff, spec, lit=terminator_lit(_cosines(g), lit, self.bits)), raw, out
 
     def error(self, method, params):
         """``{"max", "mean", "max_unrounded"}`` error in levels of ``method`` at ``params``
-        (cached; :func:`pixel_error`); a config that cannot be built or overflows has
+        (cached; :func:`~phongfx.scene.geometry.pixel_error`); a config that cannot be built or overflows has
         ``max = inf`` and says why in ``"why"``."""
         key = (method, tuple(sorted(params.items())))
         if key not in self.cache:
@@ -201,12 +185,6 @@ class SceneEval:
         raw = np.concatenate([np.abs(codes - ref * scale).ravel() for codes, ref in renders])
         return {"max": float(e.max(initial=0.0)), "mean": float(e.mean()) if e.size else 0.0,
                 "max_unrounded": float(raw.max(initial=0.0))}
-
-
-def pixel_error(codes, reference, bits):
-    """(P, 3) ``|out - level(I_ref)|``: how many display levels the shader's ``r``, ``g``,
-    ``b`` codes are from the displayed reference (an integer; the requirement's unit)."""
-    return np.abs(np.asarray(codes, dtype=np.int64) - levels(reference, bits))
 
 
 def _passes(scene, method, params):

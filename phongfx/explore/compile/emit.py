@@ -150,7 +150,7 @@ def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=N
     from phongfx.hdl.emit import verilog
     from phongfx.hdl.top import port_map, top_verilog
 
-    from .compiler import pixel_error
+    from phongfx.scene.geometry import pixel_error
 
     best = compiled.best
     if best is None:
