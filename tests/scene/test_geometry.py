@@ -175,3 +175,13 @@ def test_a_camera_path_moves_the_local_viewer_frame_by_frame():
 def test_bad_camera_paths(camera, frames_, message):
     with pytest.raises(SceneError, match=message):
         _spec(camera=camera, frames_=frames_)
+
+
+def test_pixel_error_and_the_terminator_band():
+    from phongfx.scene.geometry import pixel_error, terminator_lit
+    assert pixel_error([[10, 0, 255]], [[10.4 / 255, 0.6 / 255, 1.0]], 8).tolist() == [[0, 1, 0]]
+    cosine = np.array([-0.5, -0.002, 0.0, 0.003, 0.5])
+    shader = np.array([True, True, False, False, False])
+    # within 1/255 of N·L = 0 the shader's own test decides; outside it, the exact one
+    assert terminator_lit(cosine, shader, 8).tolist() == [False, True, False, False, True]
+    assert terminator_lit(cosine, None, 8).tolist() == [False, False, False, True, True]
