@@ -37,7 +37,9 @@ $(DEBIAN_STAMP): $(STAMP) Makefile
 sim: $(STAMP)
 	$(VENV)/bin/phongfx render --backend $(BACKEND) --out build/sim
 	$(VENV)/bin/phongfx compile scenes/lyon-balls.toml -o build/sim/lyon-balls --testbench --quiet
-	@if command -v iverilog >/dev/null; then sh build/sim/lyon-balls/testbench/run.sh icarus | tail -n 1; \
+	@if command -v iverilog >/dev/null; then \
+	    sh build/sim/lyon-balls/testbench/run.sh icarus > build/sim/lyon-balls/testbench/make.log; status=$$?; \
+	    tail -n 1 build/sim/lyon-balls/testbench/make.log; exit $$status; \
 	else echo "note: iverilog missing; the exported testbench is in build/sim/lyon-balls/testbench"; fi
 
 test: $(STAMP) $(DEBIAN_STAMP)
