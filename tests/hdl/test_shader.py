@@ -3,7 +3,6 @@ import pytest
 from phongfx.config import (BlendConfig, ConventionalConfig, SchlickConfig, ShaderConfig, SphericalConfig,
                             fig8_config)
 from phongfx.core.registry import get_block
-from phongfx.hdl.shader import Shader
 from phongfx.sim.harness import check
 
 GREY = (0.5, 0.5, 0.5)
