@@ -149,7 +149,6 @@ def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=N
     ``vcd``: a waveform file of the RTL check."""
     from phongfx.hdl.emit import verilog
     from phongfx.hdl.top import port_map, top_verilog
-
     from phongfx.scene.geometry import pixel_error
 
     best = compiled.best
