@@ -240,6 +240,9 @@ def cached_build(component, module, top, top_text, compile_, *, root, waves=Fals
     log = work / "build.log"
     try:
         compile_(work, source, log)
+    except KeyboardInterrupt:  # a half-built folder is no cache entry; a failed build keeps its log
+        shutil.rmtree(work, ignore_errors=True)
+        raise
     except TOOL_ERRORS as error:
         raise RuntimeError(f"Verilator build of {module} failed ({error}); log {log}:\n"
                            f"{log_tail(log)}") from None

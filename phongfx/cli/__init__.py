@@ -46,6 +46,9 @@ def main(argv=None):
         return 0 if stop.code is None else stop.code
     try:
         return args.run(args)
+    except KeyboardInterrupt:  # Ctrl-C: one line, not a traceback; temporary folders are gone
+        print("phongfx: interrupted", file=sys.stderr)
+        return 130
     except BrokenPipeError:  # output piped into `head` and the like: not an error
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0

@@ -56,9 +56,19 @@ def _frames_parser(p):
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
+def _version():
+    """The installed package's version (``pyproject.toml``), or "unknown" outside an install."""
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("phongfx")
+    except PackageNotFoundError:
+        return "unknown"
+
+
 def build_parser():
     """The ``phongfx`` argument parser; each subcommand sets ``run`` to its ``cmd_*`` function."""
     parser = _Parser(prog="phongfx", description=DESCRIPTION)
+    parser.add_argument("--version", action="version", version=f"phongfx {_version()}")
     sub = parser.add_subparsers(dest="command", required=True)
 
     sub.add_parser("blocks", help="list the datapath blocks").set_defaults(run=commands.cmd_blocks)

@@ -143,7 +143,11 @@ def cached_run(workdir, key, flow):
     root.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix=f".{key}.", dir=root))
     os.chmod(work, 0o755)  # mkdtemp makes it private; the reports are for reading
-    result = flow(work)
+    try:
+        result = flow(work)
+    except KeyboardInterrupt:  # a half-run folder is no cache entry; a failed run keeps its logs
+        shutil.rmtree(work, ignore_errors=True)
+        raise
     (work / RESULT).write_text(json.dumps(result, indent=1) + "\n")
     try:
         work.rename(final)

@@ -1,0 +1,49 @@
+"""Ctrl-C: a real SIGINT to a child ``phongfx``: exit 130, one line, no half-built folder."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+
+def _interrupted(args, cwd, after):
+    """Run ``python -m phongfx.cli ARGS`` in ``cwd``, SIGINT it ``after`` seconds in; (code, stderr)."""
+    env = {k: v for k, v in os.environ.items() if k != "PHONGFX_BUILD"}  # the cache under cwd/build
+    child = subprocess.Popen([sys.executable, "-m", "phongfx.cli", *args], cwd=cwd, env=env,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(after)
+    assert child.poll() is None, "the command ended before it could be interrupted"
+    child.send_signal(signal.SIGINT)
+    _, err = child.communicate(timeout=60)
+    return child.returncode, err
+
+
+def _hidden(root):
+    return sorted(str(p) for p in Path(root).rglob(".*") if p.is_dir())
+
+
+def test_version():
+    done = subprocess.run([sys.executable, "-m", "phongfx.cli", "--version"], capture_output=True, text=True)
+    assert done.returncode == 0 and done.stdout.startswith("phongfx ")
+
+
+@pytest.mark.verilator
+def test_ctrl_c_during_a_verilator_build_exits_130_in_one_line_and_leaves_no_temporary_folder(tmp_path):
+    # an empty cache: the first Verilator build of lirp takes well over the 6 s waited
+    code, err = _interrupted(["sim", "lirp", "--vectors", "10"], tmp_path, after=6)
+    assert code == 130
+    assert err.strip().splitlines() == ["phongfx: interrupted"]
+    assert "Traceback" not in err
+    assert _hidden(tmp_path / "build") == []
+
+
+def test_ctrl_c_during_synthesis_exits_130_in_one_line_and_leaves_no_temporary_folder(tmp_path):
+    # Yosys, then nextpnr, on the shape unit: longer than the 5 s waited
+    code, err = _interrupted(["synth", "shape", "--quiet"], tmp_path, after=5)
+    assert code == 130
+    assert err.strip().splitlines() == ["phongfx: interrupted"]
+    assert _hidden(tmp_path / "build") == []
