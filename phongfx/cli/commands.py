@@ -11,6 +11,7 @@ import json
 import os
 import sys
 
+from phongfx.core.files import check_folder
 from phongfx.core.registry import block_names, get_block
 from phongfx.explore.tables import TABLES, table_module
 
@@ -157,6 +158,7 @@ def cmd_render(args):
     from phongfx.config import fig7_config
     from phongfx.render.lyon import run
     config = apply_settings(fig7_config(), args.set or [])
+    check_folder(args.out)
     summary = run(config, radius=args.radius, span=args.span, backend=args.backend,
                   out_dir=args.out, quiet=args.quiet)
     print(f"pixels checked {summary['pixels_checked']}, mismatches {summary['mismatches']}, "
@@ -180,6 +182,7 @@ def _check_size(size):
 def cmd_render_mesh(args):
     from phongfx.render import mesh as mesh_render
     _check_size(args.size)
+    check_folder(args.mesh_out)
     if args.figure:
         figure = {"14": mesh_render.figure14, "15": mesh_render.figure15}[args.figure]
         summary = figure(out_dir=args.mesh_out)
@@ -196,6 +199,7 @@ def cmd_render_mesh(args):
 def cmd_render_frames(args):
     from phongfx.render.frames import UNITS, markdown, run_all
     _check_size(args.size)
+    check_folder(args.frames_out)
     result = run_all(out_dir=args.frames_out, units=args.units or UNITS, quiet=args.quiet,
                      backend=args.frames_backend, polygons=args.polygons, width=args.size,
                      height=args.size, frame=args.frame)
@@ -315,6 +319,7 @@ def cmd_compile(args):
     methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
     device = _target_device(args.target, args.device, args.library)
     spec = load_scene(args.scene)
+    check_folder(args.output)
     with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
               bar_format="{desc}: {n} steps {elapsed}") as bar:
         def progress(step):

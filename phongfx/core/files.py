@@ -8,7 +8,24 @@ a failed or interrupted run never leaves a half-written file.
 import os
 import tempfile
 
-__all__ = ["atomic_write"]
+__all__ = ["atomic_write", "check_folder"]
+
+
+def check_folder(path, what="output folder"):
+    """``path`` if it is, or could be made, a folder: else ``NotADirectoryError`` naming it and
+    the regular file in its way.  Called before long work, so that a bad ``-o`` fails at once,
+    not after the work is done."""
+    path = os.path.abspath(os.fspath(path))
+    probe = path
+    while not os.path.exists(probe):
+        parent = os.path.dirname(probe)
+        if parent == probe:
+            break
+        probe = parent
+    if os.path.exists(probe) and not os.path.isdir(probe):
+        where = "is" if probe == path else f"is under {probe}, which is"
+        raise NotADirectoryError(20, f"the {what} {where} a regular file, not a folder", path)
+    return path
 
 
 def atomic_write(path, write):
