@@ -23,8 +23,8 @@ def check_folder(path, what="output folder"):
             break
         probe = parent
     if os.path.exists(probe) and not os.path.isdir(probe):
-        where = "is" if probe == path else f"is under {probe}, which is"
-        raise NotADirectoryError(20, f"the {what} {where} a regular file, not a folder", path)
+        where = "is a regular file" if probe == path else f"is under {probe}, a regular file"
+        raise NotADirectoryError(20, f"the {what} {where}: Not a directory", path)
     return path
 
 

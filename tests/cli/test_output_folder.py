@@ -25,12 +25,12 @@ def test_a_bad_output_folder_fails_before_the_work(tmp_path, capsys, argv):
     assert main([part.replace("{file}", str(blocker)) for part in argv]) == 2
     assert time.perf_counter() - start < 3  # the compile itself takes 10–15 s, a render longer
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith("phongfx: error: ") and "regular file, not a folder" in err[0]
+    assert len(err) == 1 and err[0].startswith("phongfx: error: ") and err[0].endswith("a regular file: Not a directory")
     assert blocker.read_text() == "not a folder\n" and list(tmp_path.iterdir()) == [blocker]
 
 
 def test_check_folder(tmp_path):
     assert check_folder(tmp_path / "new" / "deeper") == str(tmp_path / "new" / "deeper")
     (tmp_path / "f").write_text("")
-    with pytest.raises(NotADirectoryError, match=r"the output folder is under .*f, which is a regular file"):
+    with pytest.raises(NotADirectoryError, match=r"the output folder is under .*f, a regular file: Not a directory"):
         check_folder(tmp_path / "f" / "x")
