@@ -9,8 +9,8 @@ the block's configuration.  Errors go to stderr with exit code 2 (bad input) or 
 (a mismatch).
 
 The top of the house: it may import every layer.  :mod:`~phongfx.cli.parser` holds the
-arguments, :mod:`~phongfx.cli.commands` one function per subcommand,
-:mod:`~phongfx.cli.settings` the ``--set`` parsing; :func:`main` here runs a command and
+arguments, :mod:`~phongfx.cli.commands` one function per subcommand (``compile``'s in
+:mod:`~phongfx.cli.compile`), :mod:`~phongfx.cli.settings` the ``--set`` parsing; :func:`main` here runs a command and
 turns every kind of bad input into one line and an exit code.
 """
 

@@ -13,6 +13,7 @@ from phongfx.hdl.dsp import DSP_TARGETS
 from phongfx.sim.harness import BACKENDS
 
 from . import commands
+from . import compile as compile_command
 
 __all__ = ["DESCRIPTION", "build_parser"]
 
@@ -201,5 +202,5 @@ def build_parser():
                    help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench (Icarus, Verilator)")
     p.add_argument("--vcd", metavar="FILE", help="waveform of the RTL check (Verilator --trace)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.set_defaults(run=commands.cmd_compile)
+    p.set_defaults(run=compile_command.cmd_compile)
     return parser

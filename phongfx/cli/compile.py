@@ -1,0 +1,104 @@
+"""``phongfx compile``: the scene compiler's command, and how it reports each method.
+
+Kept apart from :mod:`~phongfx.cli.commands` (the other subcommands) because its report
+is the longest: every method's result, the chosen design against its defaults and the
+Phong baseline, the shipped top, the testbench and the RTL check.
+"""
+
+import sys
+
+from phongfx.core.files import check_folder
+
+from .commands import exit_on_mismatch, target_device
+
+__all__ = ["cmd_compile"]
+
+
+def _cost(cost):
+    """``LUT-eq 1234`` or ``area 56,789 µm²`` of a compile cost dict; why it is missing."""
+    value = cost.get("cost")
+    if value is None:
+        return f"cost unknown ({cost.get('why', 'not costed')})"
+    if cost.get("unit") == "µm²":
+        return f"area {value:,.0f} µm²"
+    return f"LUT-eq {value:.0f}"
+
+
+def _saving(cost, other):
+    if cost.get("cost") is None or not other.get("cost"):
+        return ""
+    return f" (chosen saves {1 - cost['cost'] / other['cost']:.1%})"
+
+
+def _levels(value):
+    """A max error in display levels (whole numbers at the outputs; "inf" when unbuildable)."""
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    if isinstance(value, float):
+        return f"{value:.3f} levels"
+    return f"{value} level" if value == 1 else f"{value} levels"
+
+
+def cmd_compile(args):
+    from tqdm import tqdm
+
+    from phongfx.explore.compile.compiler import check_methods, compile_scene
+    from phongfx.explore.compile.emit import emit
+    from phongfx.scene.file import load_scene
+    methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
+    device = target_device(args.target, args.device, args.library)
+    spec = load_scene(args.scene)
+    check_folder(args.output)
+    with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
+              bar_format="{desc}: {n} steps {elapsed}") as bar:
+        def progress(step):
+            bar.set_description(f"compile {spec.name}: {step}")
+            bar.update(1)
+        compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
+                                 freq=args.freq, progress=progress)
+        data = emit(compiled, args.output, check=not args.no_check, progress=progress,
+                    testbench=args.testbench, vcd=args.vcd)
+    for name, reason in data["rejected"].items():
+        print(f"  {name:12s} rejected: {reason}")
+    for name, r in data["methods"].items():
+        default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'])}"
+        if r["feasible"]:
+            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({default})")
+        else:
+            print(f"  {name:12s} infeasible: max {_levels(r['max'])} even at {r['params']} ({default})")
+    print(f"cost model: {data['cost_model']}; wrote {args.output}/manifest.json")
+    if data["chosen"] is None:
+        print(f"phongfx: no method meets max_error_levels = {spec.requirement.max_error_levels} "
+              f"against {spec.requirement.against} on {spec.name}; see {args.output}/manifest.json",
+              file=sys.stderr)
+        return 1
+    error = data["error"]
+    print(f"chosen {data['chosen']} ({data['module']}): max {_levels(error['max'])} at out_r/g/b, "
+          f"mean {error['mean']:.4f} ({error['max_unrounded']:.3f} against the unrounded reference), "
+          f"{_cost(data['cost'])}, latency {data['latency']}")
+    default = data["default_widths"]
+    misses = default["max"] > spec.requirement.max_error_levels
+    print(f"  against its default widths: max {_levels(default['max'])}, {_cost(default['cost'])}"
+          + (" (the defaults miss the requirement)" if misses else _saving(data['cost'], default['cost'])))
+    baseline = data["conventional_baseline"]
+    if "why_not" in baseline:
+        print(f"  against conventional Phong: {baseline['why_not']}")
+    elif baseline["feasible"]:
+        print(f"  against conventional Phong meeting the same requirement: max {_levels(baseline['max'])}, "
+              f"{_cost(baseline['cost'])} at {baseline['params']}{_saving(data['cost'], baseline['cost'])}")
+    else:
+        print(f"  conventional Phong misses the requirement: max {_levels(baseline['max'])} even at "
+              f"{baseline['params']}")
+    top = data["top"]
+    print(f"shipped top: {args.output}/{top['file']} ({top['module']}, {len(top['ports'])} ports, "
+          f"latency {top['latency']})")
+    if "testbench" in data:
+        print(f"testbench: {args.output}/testbench ({data['testbench']['vectors']} vectors of frame "
+              f"{data['testbench']['frame']}; run: sh {args.output}/testbench/run.sh)")
+    check = data["rtl_check"]
+    if check is None:
+        return 0
+    print(f"RTL check frame {check['frame']}: {check['pixels']} pixels, {check['cycles']} cycles "
+          f"({check['stalls']:.0%} out_ready stalls, a reset at cycle {check['reset_at_cycle']}), "
+          f"{check['mismatches']} mismatches, {check['seconds']:.2f} s")
+    return exit_on_mismatch(check["mismatches"], f"; see {args.output}/manifest.json")
