@@ -128,12 +128,15 @@ def keep_runtime(root, work, waves, flavour=()):
     if cache.is_dir():
         return
     temp = Path(tempfile.mkdtemp(prefix=f".{cache.name}.", dir=root))
-    for file in _runtime_files(work):
-        shutil.copy2(file, temp / file.name)
     try:
+        for file in _runtime_files(work):
+            shutil.copy2(file, temp / file.name)
         temp.rename(cache)
     except OSError:  # saved meanwhile by another process
         shutil.rmtree(temp, ignore_errors=True)
+    except KeyboardInterrupt:  # half a copy is no cache entry
+        shutil.rmtree(temp, ignore_errors=True)
+        raise
 
 
 def log_tail(path, lines=_LOG_TAIL):
@@ -235,14 +238,20 @@ def cached_build(component, module, top, top_text, compile_, *, root, waves=Fals
 
     root.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
+    try:
+        return _build_into(work, final, component, module, top, top_text, compile_, design, executable)
+    except KeyboardInterrupt:  # a half-built folder is no cache entry; a failed build keeps its log
+        shutil.rmtree(work, ignore_errors=True)
+        raise
+
+
+def _build_into(work, final, component, module, top, top_text, compile_, design, executable):
+    """The build of :func:`cached_build` in ``work``, renamed to ``final`` when complete."""
     source = work / f"{top}.v"
     source.write_text((verilog(component, module, emit_src=False) if design is None else design) + top_text)
     log = work / "build.log"
     try:
         compile_(work, source, log)
-    except KeyboardInterrupt:  # a half-built folder is no cache entry; a failed build keeps its log
-        shutil.rmtree(work, ignore_errors=True)
-        raise
     except TOOL_ERRORS as error:
         raise RuntimeError(f"Verilator build of {module} failed ({error}); log {log}:\n"
                            f"{log_tail(log)}") from None

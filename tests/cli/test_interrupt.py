@@ -10,12 +10,16 @@ from pathlib import Path
 import pytest
 
 
-def _interrupted(args, cwd, after):
-    """Run ``python -m phongfx.cli ARGS`` in ``cwd``, SIGINT it ``after`` seconds in; (code, stderr)."""
+def _interrupted(args, cwd, folder):
+    """Run ``python -m phongfx.cli ARGS`` in ``cwd``, SIGINT it once its work has begun (a hidden
+    work folder appears in ``cwd/folder``, plus a moment); (code, stderr)."""
     env = {k: v for k, v in os.environ.items() if k != "PHONGFX_BUILD"}  # the cache under cwd/build
     child = subprocess.Popen([sys.executable, "-m", "phongfx.cli", *args], cwd=cwd, env=env,
                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    time.sleep(after)
+    deadline = time.monotonic() + 120
+    while not _hidden(Path(cwd) / folder) and child.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(0.5)  # inside the tool run, not at its first line
     assert child.poll() is None, "the command ended before it could be interrupted"
     child.send_signal(signal.SIGINT)
     _, err = child.communicate(timeout=60)
@@ -23,7 +27,7 @@ def _interrupted(args, cwd, after):
 
 
 def _hidden(root):
-    return sorted(str(p) for p in Path(root).rglob(".*") if p.is_dir())
+    return sorted(str(p) for p in Path(root).rglob(".*") if p.is_dir()) if Path(root).is_dir() else []
 
 
 def test_version():
@@ -33,8 +37,8 @@ def test_version():
 
 @pytest.mark.verilator
 def test_ctrl_c_during_a_verilator_build_exits_130_in_one_line_and_leaves_no_temporary_folder(tmp_path):
-    # an empty cache: the first Verilator build of lirp takes well over the 6 s waited
-    code, err = _interrupted(["sim", "lirp", "--vectors", "10"], tmp_path, after=6)
+    # an empty cache: the first Verilator build of lirp takes several seconds
+    code, err = _interrupted(["sim", "lirp", "--vectors", "10"], tmp_path, "build/verilator")
     assert code == 130
     assert err.strip().splitlines() == ["phongfx: interrupted"]
     assert "Traceback" not in err
@@ -42,8 +46,8 @@ def test_ctrl_c_during_a_verilator_build_exits_130_in_one_line_and_leaves_no_tem
 
 
 def test_ctrl_c_during_synthesis_exits_130_in_one_line_and_leaves_no_temporary_folder(tmp_path):
-    # Yosys, then nextpnr, on the shape unit: longer than the 5 s waited
-    code, err = _interrupted(["synth", "shape", "--quiet"], tmp_path, after=5)
+    # Yosys, then nextpnr, on the shape unit: several seconds
+    code, err = _interrupted(["synth", "shape", "--quiet"], tmp_path, "build/synth")
     assert code == 130
     assert err.strip().splitlines() == ["phongfx: interrupted"]
     assert _hidden(tmp_path / "build") == []
