@@ -1,0 +1,43 @@
+"""How a long synthesis loop says where it is: "synthesizing candidate i of N (what) 12 s".
+
+``compile --synth``, ``tables cost`` and ``report`` each synthesize a list of designs, each
+taking from seconds to minutes.  A bar that only counts steps looks hung for minutes, so
+every one of them names the candidate, its place in the list and the time spent so far,
+and passes the synthesis flow's own stage (yosys, nextpnr, sta) through.
+"""
+
+import time
+
+__all__ = ["describe", "Candidates"]
+
+
+def describe(block, params=None):
+    """``fig7, vec=10 t=8`` of a block name and its changed widths (``params``: a dict)."""
+    if not params:
+        return str(block)
+    return f"{block}, " + " ".join(f"{k}={v}" for k, v in params.items())
+
+
+class Candidates:
+    """Counts the candidates of one loop and words each step for a ``progress(text)`` callable.
+
+    >>> lines = []
+    >>> steps = Candidates(2, lines.append, clock=lambda: 0.0)
+    >>> stage = steps.next("fig7", {"vec": 10})
+    >>> stage("yosys")
+    >>> lines
+    ['synthesizing candidate 1 of 2 (fig7, vec=10) 0 s', 'synthesizing candidate 1 of 2 (fig7, vec=10): yosys 0 s']
+    """
+
+    def __init__(self, total, progress, clock=time.monotonic):
+        if not isinstance(total, int) or total < 0:
+            raise ValueError(f"total must be a non-negative integer, not {total!r}")
+        self.total, self.progress, self.clock = total, progress, clock
+        self.index, self.started = 0, clock()
+
+    def next(self, block, params=None):
+        """Announce the next candidate; returns the callable that words its flow's stages."""
+        self.index += 1
+        what = f"synthesizing candidate {self.index} of {self.total} ({describe(block, params)})"
+        self.progress(f"{what} {self.clock() - self.started:.0f} s")
+        return lambda stage: self.progress(f"{what}: {stage} {self.clock() - self.started:.0f} s")
