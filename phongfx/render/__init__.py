@@ -5,7 +5,9 @@
   (golden plus cycle check) the other renderers share;
 * :mod:`.mesh`: a mesh frame by method (Phong, Gouraud, Euler, the spherical unit, …)
   with its error against Phong, and Szirmay-Kalos et al.'s Figures 14 and 15;
-* :mod:`.frames`: full frames through the RTL of the scanline units.
+* :mod:`.frames`: full frames through the RTL of the scanline units;
+* :mod:`.figure`: pictures a person can read (titled, enlarged, error with a colour bar in
+  8-bit levels, contact sheets), for these and for the scene compiler.
 
 May import: ``phongfx.core``, ``phongfx.config``, ``phongfx.golden``, ``phongfx.sim``,
 ``phongfx.scene``.

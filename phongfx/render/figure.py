@@ -1,0 +1,190 @@
+"""Pictures a person can read: a title, a visible scale, and for an error a colour bar.
+
+A shaded frame of 96 × 96 pixels, written one PNG pixel per frame pixel, is a postage stamp
+with no way to tell what it shows; an error picture whose white means "twice the requirement"
+says so only in a manifest.  These functions write the same data as a figure instead:
+
+* :func:`frame_figure`: a picture, titled, enlarged by an integer factor (nearest
+  neighbour, so every frame pixel stays a sharp square of one colour) to at least
+  :data:`MIN_SIZE` pixels on its longer side;
+* :func:`error_figure`: per-pixel error in 8-bit display levels the same way, with a colour
+  bar in those levels beside it; ``white_levels`` and above are white;
+* :func:`contact_sheet`: many frames (or error pictures) in one grid, each tile titled,
+  e.g. every frame of a scene's animation at a glance.
+
+The layout is set in pixels (Agg, :data:`DPI`), not left to ``tight_layout``: the picture
+is drawn at exactly ``scale`` PNG pixels per frame pixel, which a resampling layout would
+blur.  Pixels not covered (NaN in an error picture) are drawn in :data:`UNCOVERED`, a
+colour outside the grey scale, so that "no error" and "no surface" differ.
+"""
+
+import math
+import textwrap
+
+import numpy as np
+
+from phongfx.core.files import atomic_write
+
+__all__ = ["MIN_SIZE", "TILE_SIZE", "DPI", "UNCOVERED", "scale_for", "frame_figure", "error_figure",
+           "contact_sheet"]
+
+#: Longer side, in PNG pixels, that a single picture is enlarged to at least.
+MIN_SIZE = 384
+#: Longer side, in PNG pixels, that a contact sheet's tile is enlarged to at least.
+TILE_SIZE = 192
+#: Dots per inch of the figures; the layout below is in pixels at this density.
+DPI = 100
+#: Colour of pixels with no value (NaN): light blue, outside every grey of the scale.
+UNCOVERED = "#b8cce4"
+
+_PAD = 10  # pixels around the picture
+_LINE = 17  # pixels per title line at _FONT points
+_FONT = 10
+_CHAR = 6.8  # average pixels per character at _FONT points, to wrap titles
+_BAR = (14, 12, 72)  # colour bar: gap to the picture, its width, room for ticks and label
+
+
+def scale_for(shape, min_size=MIN_SIZE):
+    """The integer enlargement that brings a picture of ``shape`` (H, W, ...) to at least
+    ``min_size`` pixels on its longer side (1 if it is already that large)."""
+    if min(int(shape[0]), int(shape[1])) < 1:
+        raise ValueError(f"picture must have at least one pixel, not shape {tuple(shape)}")
+    return max(1, math.ceil(min_size / max(int(shape[0]), int(shape[1]))))
+
+
+def _pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def _picture(picture):
+    """``picture`` as (H, W, 3) RGB in [0, 1]: drawn as colours, not through a colour map,
+    so that each grey is the PNG grey ``round(255·value)``."""
+    data = np.asarray(picture, dtype=np.float64)
+    if data.ndim not in (2, 3) or (data.ndim == 3 and data.shape[2] != 3):
+        raise ValueError(f"picture must be (H, W) grey or (H, W, 3) RGB, not shape {data.shape}")
+    data = np.clip(data, 0.0, 1.0)
+    return np.repeat(data[..., None], 3, axis=2) if data.ndim == 2 else data
+
+
+def _wrap(title, width_px):
+    """``title`` as lines that fit ``width_px`` pixels (its own newlines kept)."""
+    columns = max(12, int(width_px / _CHAR))
+    return [line for part in str(title).split("\n") for line in (textwrap.wrap(part, columns) or [""])]
+
+
+def _grey_map(name):
+    import matplotlib
+    return matplotlib.colormaps[name].with_extremes(bad=UNCOVERED)
+
+
+def _save(fig, path):
+    plt = _pyplot()
+    try:
+        atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=DPI, format="png"))
+    finally:
+        plt.close(fig)
+    return path
+
+
+def _show(ax, data, **style):
+    ax.imshow(data, interpolation="nearest", aspect="auto", **style)
+    ax.set_axis_off()
+
+
+def _single(path, data, title, min_size, style, bar_label=None):
+    """One picture at an integer scale under its title; a colour bar right of it if
+    ``bar_label`` is given."""
+    plt = _pyplot()
+    scale = scale_for(data.shape, min_size)
+    h, w = data.shape[0] * scale, data.shape[1] * scale
+    bar = sum(_BAR) if bar_label else 0
+    width = w + bar + 2 * _PAD
+    lines = _wrap(title, width - 2 * _PAD)
+    top = _LINE * len(lines) + _PAD
+    height = h + top + _PAD
+    fig = plt.figure(figsize=(width / DPI, height / DPI), dpi=DPI)
+    ax = fig.add_axes((_PAD / width, _PAD / height, w / width, h / height))
+    _show(ax, data, **style)
+    fig.text(0.5, 1 - (_PAD / 2) / height, "\n".join(lines), ha="center", va="top", fontsize=_FONT)
+    if bar_label:
+        cax = fig.add_axes(((_PAD + w + _BAR[0]) / width, _PAD / height, _BAR[1] / width, h / height))
+        fig.colorbar(ax.images[0], cax=cax, extend="max", label=bar_label)
+    return _save(fig, path)
+
+
+def frame_figure(path, picture, title, *, min_size=MIN_SIZE):
+    """Write ``picture`` ((H, W) grey or (H, W, 3) RGB, floats in [0, 1], e.g. a shader's
+    colour codes / 255) to the PNG ``path``, titled ``title``, enlarged by an integer factor
+    to at least ``min_size`` pixels on its longer side.  Returns ``path``."""
+    return _single(path, _picture(picture), title, min_size, {})
+
+
+def _error_style(levels, white_levels, cmap):
+    if not (isinstance(white_levels, (int, float)) and math.isfinite(white_levels) and white_levels > 0):
+        raise ValueError(f"white_levels must be a positive number of 8-bit levels, not {white_levels!r}")
+    data = np.asarray(levels, dtype=np.float64)
+    if data.ndim != 2:
+        raise ValueError(f"levels must be an (H, W) array of 8-bit levels, not shape {data.shape}")
+    return data, {"cmap": _grey_map(cmap), "vmin": 0.0, "vmax": float(white_levels)}
+
+
+def error_figure(path, levels, title, white_levels, *, min_size=MIN_SIZE, cmap="gray"):
+    """Write ``levels`` ((H, W) error in 8-bit display levels; NaN where nothing is drawn)
+    to the PNG ``path`` as :func:`frame_figure` does, black = 0 and white = ``white_levels``
+    or more, with a colour bar in 8-bit levels beside it.  Returns ``path``."""
+    data, style = _error_style(levels, white_levels, cmap)
+    return _single(path, data, title, min_size, style, bar_label="error, 8-bit display levels")
+
+
+def contact_sheet(path, pictures, titles, *, title=None, columns=None, tile_size=TILE_SIZE,
+                  white_levels=None, cmap="gray"):
+    """Write ``pictures`` (equal-shape frames as :func:`frame_figure` takes, or with
+    ``white_levels`` error pictures as :func:`error_figure` takes, then sharing one colour
+    bar) to the PNG ``path`` as one grid: ``columns`` tiles a row (default about square),
+    each tile titled by its entry of ``titles`` and enlarged to at least ``tile_size``
+    pixels; ``title`` above the whole sheet.  Returns ``path``."""
+    plt = _pyplot()
+    pictures = list(pictures)
+    titles = list(titles)
+    if not pictures or len(titles) != len(pictures):
+        raise ValueError(f"contact_sheet needs one title per picture and at least one picture, "
+                         f"not {len(pictures)} picture(s) and {len(titles)} title(s)")
+    if white_levels is None:
+        data, style = [_picture(p) for p in pictures], {}
+    else:
+        pairs = [_error_style(p, white_levels, cmap) for p in pictures]
+        data, style = [d for d, _ in pairs], pairs[0][1]
+    shape = data[0].shape
+    if any(d.shape != shape for d in data):
+        raise ValueError(f"contact_sheet pictures must share one shape; the first is {shape}")
+    columns = columns or math.ceil(math.sqrt(len(data)))
+    if not isinstance(columns, int) or columns < 1:
+        raise ValueError(f"columns must be a positive integer, not {columns!r}")
+    rows = math.ceil(len(data) / columns)
+    scale = scale_for(shape, tile_size)
+    h, w = shape[0] * scale, shape[1] * scale
+    label = max(len(_wrap(t, w)) for t in titles) * _LINE + 4
+    bar = sum(_BAR) if white_levels is not None else 0
+    width = columns * (w + _PAD) + _PAD + bar
+    head = _wrap(title, width - 2 * _PAD) if title else []
+    top = _LINE * len(head) + _PAD
+    height = top + rows * (h + label + _PAD)
+    fig = plt.figure(figsize=(width / DPI, height / DPI), dpi=DPI)
+    for index, (picture, name) in enumerate(zip(data, titles)):
+        r, c = divmod(index, columns)
+        x, y = _PAD + c * (w + _PAD), height - top - (r + 1) * (h + label + _PAD) + _PAD
+        ax = fig.add_axes((x / width, y / height, w / width, h / height))
+        _show(ax, picture, **style)
+        fig.text((x + w / 2) / width, (y + h + 2) / height, "\n".join(_wrap(name, w)),
+                 ha="center", va="bottom", fontsize=_FONT - 1)
+    if head:
+        fig.text(0.5, 1 - (_PAD / 2) / height, "\n".join(head), ha="center", va="top", fontsize=_FONT)
+    if white_levels is not None:
+        span = rows * (h + label + _PAD) - _PAD - label
+        cax = fig.add_axes(((width - bar + _BAR[0] - _PAD) / width, _PAD / height, _BAR[1] / width,
+                            span / height))
+        fig.colorbar(fig.axes[0].images[0], cax=cax, extend="max", label="error, 8-bit display levels")
+    return _save(fig, path)
