@@ -24,9 +24,8 @@ from phongfx.scene.lyon import Scene, pixels
 from phongfx.sim.harness import BACKENDS, check
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["scene_inputs", "shade", "amounts", "composite", "run", "REFERENCES", "MODES"]
+__all__ = ["scene_inputs", "shade", "amounts", "composite", "references", "run", "MODES"]
 
-REFERENCES = ("phong", "lyon-k2")
 MODES = ("exact", "spans")
 DIFFUSE_GAIN = 35.0  # appendix: diff = 35
 SPECULAR_PEAK = 400.0  # appendix: specfs = 400/max(ns^.25)·ns^.25
@@ -66,8 +65,16 @@ def shade(block, raw, backend, chunk=16384, progress=None, bounds=None):
     return golden, stats
 
 
+def references(config):
+    """The float references of ``config``'s datapath: true Phong, and Lyon's float form of
+    the datapath as configured, ``lyon-k<k>`` at its shape's own ``k`` (against another
+    k the error would be the difference of two shape functions, not the fixed point's)."""
+    return ("phong", f"lyon-k{config.shape.k}")
+
+
 def _errors(config, scene, px, golden):
-    """Per-pixel error (max over lights, 8-bit levels) against each float reference."""
+    """Per-pixel error (max over lights, 8-bit levels) against each float reference; the
+    keys are :func:`references` and ``<own>-interpolated`` and ``diffuse``."""
     lights, viewer = scene.unit_lights()[:config.lights], scene.unit_viewer()
     spec, diff = amounts(config, golden)
 
@@ -78,12 +85,13 @@ def _errors(config, scene, px, golden):
             worst = np.maximum(worst, np.abs(spec[index] - ref) * 255)
         return worst
 
-    out = {method: specular_error(method, px.normal) for method in REFERENCES}
+    phong, own = references(config)
+    out = {method: specular_error(method, px.normal) for method in (phong, own)}
     # the float algorithm on the same interpolated (exactly renormalized) normals: what is
     # left is the fixed-point datapath's own error (g2, 10-bit vectors), not span geometry
     lerp = (1 - px.a[:, None]) * px.n0 + px.a[:, None] * px.n1
-    out["lyon-k2-interpolated"] = specular_error(
-        "lyon-k2", lerp / np.maximum(np.linalg.norm(lerp, axis=-1, keepdims=True), 1e-300))
+    out[f"{own}-interpolated"] = specular_error(
+        own, lerp / np.maximum(np.linalg.norm(lerp, axis=-1, keepdims=True), 1e-300))
     diff_ref = np.maximum(px.normal @ lights.T, 0)
     out["diffuse"] = np.max(np.abs(np.stack(diff, axis=-1) - diff_ref), axis=-1) * 255
     return out
@@ -109,7 +117,8 @@ def composite(scene, px, spec, diff):
     return image
 
 
-def _plots(out_dir, scene, results):
+def _plots(out_dir, scene, results, own):
+    k = own.rpartition("-k")[2]
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -117,14 +126,14 @@ def _plots(out_dir, scene, results):
     fig, axes = plt.subplots(len(MODES), 1, figsize=(10, 3.2 * len(MODES)))
     for ax, mode in zip(axes, MODES):
         ax.imshow(results[mode]["image"], cmap="gray", vmin=0, vmax=255, interpolation="nearest")
-        ax.set_title(f"Figure 7 datapath, {mode} normals — n = {', '.join(map(str, scene.shininess))}")
+        ax.set_title(f"Figure 7 datapath (k = {k}), {mode} normals — n = {', '.join(map(str, scene.shininess))}")
         ax.axis("off")
     fig.tight_layout()
     atomic_write(os.path.join(out_dir, "fig7.png"), lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)
 
-    shown_refs = {"phong": "float phong", "lyon-k2": "float lyon-k2",
-                  "lyon-k2-interpolated": "float lyon-k2 on the same interpolated N"}
+    shown_refs = {"phong": "float phong", own: f"float {own}",
+                  f"{own}-interpolated": f"float {own} on the same interpolated N"}
     fig, axes = plt.subplots(len(MODES), len(shown_refs), figsize=(20, 3.4 * len(MODES)))
     for r, mode in enumerate(MODES):
         px, errors = results[mode]["pixels"], results[mode]["errors"]
@@ -177,6 +186,7 @@ def run(config=None, *, radius=64, span=8, backend="verilator-fast", out_dir="bu
 
     summary = {
         "datapath": "fig7", "config": _plain(config), "latency": block.latency,
+        "float_form": references(config)[1],
         "backend": backend, "radius": radius, "span": span, "shininess": list(Scene().shininess),
         "pixels_checked": sum(r["stats"]["pixels"] for r in results.values()),
         "mismatches": sum(r["stats"]["mismatches"] for r in results.values()),
@@ -210,7 +220,7 @@ def run(config=None, *, radius=64, span=8, backend="verilator-fast", out_dir="bu
             entry["first_mismatch"] = result["stats"]["first_mismatch"]
         summary["error_8bit"][mode] = entry
 
-    _plots(out_dir, scenes["spans"], results)
+    _plots(out_dir, scenes["spans"], results, references(config)[1])
     atomic_write(os.path.join(out_dir, "summary.json"),
             lambda p: open(p, "w").write(json.dumps(summary, indent=2) + "\n"))
     return summary

@@ -22,3 +22,15 @@ def test_small_scene_is_bit_identical_and_reported(tmp_path, backend):
     assert exact["specular_vs_phong"]["max"] > exact["specular_vs_lyon-k2"]["max"]
     assert exact["diffuse_vs_float"]["max"] < 1
     assert np.isfinite(summary["error_8bit"]["spans"]["specular_vs_lyon-k2"]["mean"])
+
+
+def test_a_configured_k_is_compared_with_its_own_float_form(tmp_path):
+    """``--set shape.k=1``: the datapath computes f_1, so its float form is lyon-k1 (against
+    lyon-k2 the error would be the two shapes' difference, some 24 levels, not the fixed point's)."""
+    from phongfx.config import ShapeConfig, fig7_config
+    summary = run(fig7_config(shape=ShapeConfig(k=1)), radius=6, span=4, backend="amaranth",
+                  out_dir=str(tmp_path), sample=0, quiet=True)
+    exact = summary["error_8bit"]["exact"]
+    assert summary["float_form"] == "lyon-k1"
+    assert "specular_vs_lyon-k2" not in exact and "specular_vs_lyon-k1-interpolated" in exact
+    assert exact["specular_vs_lyon-k1"]["max"] < 3
