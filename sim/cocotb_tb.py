@@ -4,7 +4,10 @@ It is not a pytest module: ``cocotb_tools.runner`` names it as the test module a
 the simulator imports it.  ``$PHONGFX_TB_DIR`` names the run directory, which holds
 ``stimulus.txt`` (first line: the cycle count; then one line per cycle,
 ``valid hex_payload``) and receives ``results.txt`` in the same format, written
-only once every cycle has run, so the caller never sees partial results.
+only once every cycle has run, so the caller never sees partial results.  Before it,
+``seconds.txt`` receives the seconds the clocked run took: the simulation alone, without
+the Verilator build, the simulator's start or the reading and writing of the files, so
+that cycles per second measure the simulator (they varied 20-fold with the build's cache).
 
 The simulated top is the back end's wrapper (see
 :func:`phongfx.sim.verilator_backend.wrapper`): ``stim`` holds the input words
@@ -17,16 +20,18 @@ first cycle, to read the previous block's ``resp`` and write this block's
 """
 
 import os
+import time
 from pathlib import Path
 
 import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import Timer
 
-__all__ = ["drive", "read_vectors", "write_vectors", "STIMULUS", "RESULTS"]
+__all__ = ["drive", "read_vectors", "write_vectors", "STIMULUS", "RESULTS", "SECONDS"]
 
 STIMULUS = "stimulus.txt"
 RESULTS = "results.txt"
+SECONDS = "seconds.txt"
 PERIOD_NS = 10
 PHASE_NS = 2  # inside the low half, away from both clock edges
 
@@ -81,6 +86,7 @@ async def drive(dut):
     # Strings made before the loop leave each wake a single write and read.
     stimulus = _blocks(in_valid, in_payload, block, in_word)
 
+    start = time.perf_counter()
     Clock(dut.clk, PERIOD_NS, unit="ns").start(start_high=False)
     await Timer(PHASE_NS, unit="ns")
     period = Timer(block * PERIOD_NS, unit="ns")
@@ -89,6 +95,7 @@ async def drive(dut):
         stim.value = words
         await period
         got.append(resp.value)
+    seconds = time.perf_counter() - start
 
     # to_unsigned() of a value holding X or Z raises, failing the test rather
     # than inventing bits.
@@ -98,4 +105,5 @@ async def drive(dut):
         packed = value.to_unsigned()
         words.extend(packed >> (j * out_word) & mask for j in range(block))
     del words[cycles:]
+    (run_dir / SECONDS).write_text(f"{seconds!r}\n")
     write_vectors(run_dir / RESULTS, [w & 1 for w in words], [w >> 1 for w in words])

@@ -162,7 +162,7 @@ def build(component, *, build_dir=None, waves=False):
     return cached_build(component, module, top, top_text, compile_, root=root, waves=waves)
 
 
-def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False, vcd=None):
+def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False, vcd=None, timing=None):
     """Drive ``component.i`` for ``cycles`` clocks under Verilator; sample ``component.o``.
 
     Parameters
@@ -179,6 +179,9 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False,
     vcd : path, optional
         The same as ``waves=vcd``: the name the other back ends take, so that ``check(...,
         vcd=PATH)`` and ``phongfx sim --vcd`` work on every back end.
+    timing : dict, optional
+        Receives ``simulate``, the seconds of the clocked run in the simulator alone (see
+        :mod:`phongfx.sim.cocotb_tb`), the figure a cycles-per-second rate wants.
 
     Returns
     -------
@@ -190,7 +193,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False,
     RuntimeError
         If the build or the simulation fails or leaves no complete results.
     """
-    from .cocotb_tb import RESULTS, STIMULUS, read_vectors, write_vectors
+    from .cocotb_tb import RESULTS, SECONDS, STIMULUS, read_vectors, write_vectors
 
     if cycles == 0:
         return [], []
@@ -219,6 +222,7 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False,
     if failure is None:
         try:
             out_valid, out_payload = read_vectors(run_dir / RESULTS)
+            seconds = float((run_dir / SECONDS).read_text())
         except (OSError, ValueError) as error:
             failure = f"no complete results ({error})"
         else:
@@ -232,4 +236,6 @@ def run(component, in_valid, in_payload, cycles, *, build_dir=None, waves=False,
         target = compiled.directory / "dump.vcd" if waves is True else Path(waves)
         shutil.move(run_dir / "dump.vcd", target)
     shutil.rmtree(run_dir, ignore_errors=True)
+    if timing is not None:
+        timing["simulate"] = seconds
     return out_valid, out_payload

@@ -332,6 +332,25 @@ def test_verilator_build_is_cached():
 
 
 @pytest.mark.verilator
+def test_verilator_speed_is_the_simulation_alone(monkeypatch):
+    """``make sim``'s cocotb cycles/s once counted the Verilator build (71 to 1,321 cycles/s
+    from run to run, by the state of the cache): a slow build must not change the figure."""
+    build = verilator_backend.build
+
+    def slow_build(*args, **kwargs):
+        time.sleep(1.5)
+        return build(*args, **kwargs)
+
+    monkeypatch.setattr(verilator_backend, "build", slow_build)
+    start = time.perf_counter()
+    result = check(LIRP, _inputs(20), backend="verilator", bubbles=0.0)
+    wall = time.perf_counter() - start
+    assert result.ok and wall > 1.5
+    assert 0 < result.seconds < 1.0 and result.seconds < wall - 1.5
+    assert result.cycles_per_second == result.cycles / result.seconds
+
+
+@pytest.mark.verilator
 def test_verilator_build_failure_raises_with_log(monkeypatch, tmp_path):
     monkeypatch.setattr(build_cache, "verilog", lambda *args, **kwargs: "module broken(;\n")
     with pytest.raises(RuntimeError, match=r"(?s)^Verilator build of lirp failed .*%Error") as info:
