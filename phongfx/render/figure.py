@@ -25,7 +25,7 @@ import numpy as np
 
 from phongfx.core.files import atomic_write
 
-__all__ = ["MIN_SIZE", "TILE_SIZE", "DPI", "UNCOVERED", "scale_for", "frame_figure", "error_figure",
+__all__ = ["MIN_SIZE", "TILE_SIZE", "DPI", "MARGIN", "UNCOVERED", "scale_for", "frame_figure", "error_figure",
            "contact_sheet"]
 
 #: Longer side, in PNG pixels, that a single picture is enlarged to at least.
@@ -37,7 +37,8 @@ DPI = 100
 #: Colour of pixels with no value (NaN): light blue, outside every grey of the scale.
 UNCOVERED = "#b8cce4"
 
-_PAD = 10  # pixels around the picture
+#: PNG pixels between a single picture and the figure's left and bottom edges.
+MARGIN = 10
 _LINE = 17  # pixels per title line at _FONT points
 _FONT = 10
 _CHAR = 6.8  # average pixels per character at _FONT points, to wrap titles
@@ -72,7 +73,9 @@ def _picture(picture):
 def _wrap(title, width_px):
     """``title`` as lines that fit ``width_px`` pixels (its own newlines kept)."""
     columns = max(12, int(width_px / _CHAR))
-    return [line for part in str(title).split("\n") for line in (textwrap.wrap(part, columns) or [""])]
+    # "n = 20" is one term: no-break spaces (which textwrap does not split at) keep it whole
+    text = str(title).replace(" = ", "\u00a0=\u00a0")
+    return [line for part in text.split("\n") for line in (textwrap.wrap(part, columns) or [""])]
 
 
 def _grey_map(name):
@@ -101,16 +104,16 @@ def _single(path, data, title, min_size, style, bar_label=None):
     scale = scale_for(data.shape, min_size)
     h, w = data.shape[0] * scale, data.shape[1] * scale
     bar = sum(_BAR) if bar_label else 0
-    width = w + bar + 2 * _PAD
-    lines = _wrap(title, width - 2 * _PAD)
-    top = _LINE * len(lines) + _PAD
-    height = h + top + _PAD
+    width = w + bar + 2 * MARGIN
+    lines = _wrap(title, width - 2 * MARGIN)
+    top = _LINE * len(lines) + MARGIN
+    height = h + top + MARGIN
     fig = plt.figure(figsize=(width / DPI, height / DPI), dpi=DPI)
-    ax = fig.add_axes((_PAD / width, _PAD / height, w / width, h / height))
+    ax = fig.add_axes((MARGIN / width, MARGIN / height, w / width, h / height))
     _show(ax, data, **style)
-    fig.text(0.5, 1 - (_PAD / 2) / height, "\n".join(lines), ha="center", va="top", fontsize=_FONT)
+    fig.text(0.5, 1 - (MARGIN / 2) / height, "\n".join(lines), ha="center", va="top", fontsize=_FONT)
     if bar_label:
-        cax = fig.add_axes(((_PAD + w + _BAR[0]) / width, _PAD / height, _BAR[1] / width, h / height))
+        cax = fig.add_axes(((MARGIN + w + _BAR[0]) / width, MARGIN / height, _BAR[1] / width, h / height))
         fig.colorbar(ax.images[0], cax=cax, extend="max", label=bar_label)
     return _save(fig, path)
 
@@ -168,23 +171,23 @@ def contact_sheet(path, pictures, titles, *, title=None, columns=None, tile_size
     h, w = shape[0] * scale, shape[1] * scale
     label = max(len(_wrap(t, w)) for t in titles) * _LINE + 4
     bar = sum(_BAR) if white_levels is not None else 0
-    width = columns * (w + _PAD) + _PAD + bar
-    head = _wrap(title, width - 2 * _PAD) if title else []
-    top = _LINE * len(head) + _PAD
-    height = top + rows * (h + label + _PAD)
+    width = columns * (w + MARGIN) + MARGIN + bar
+    head = _wrap(title, width - 2 * MARGIN) if title else []
+    top = _LINE * len(head) + MARGIN
+    height = top + rows * (h + label + MARGIN)
     fig = plt.figure(figsize=(width / DPI, height / DPI), dpi=DPI)
     for index, (picture, name) in enumerate(zip(data, titles)):
         r, c = divmod(index, columns)
-        x, y = _PAD + c * (w + _PAD), height - top - (r + 1) * (h + label + _PAD) + _PAD
+        x, y = MARGIN + c * (w + MARGIN), height - top - (r + 1) * (h + label + MARGIN) + MARGIN
         ax = fig.add_axes((x / width, y / height, w / width, h / height))
         _show(ax, picture, **style)
         fig.text((x + w / 2) / width, (y + h + 2) / height, "\n".join(_wrap(name, w)),
                  ha="center", va="bottom", fontsize=_FONT - 1)
     if head:
-        fig.text(0.5, 1 - (_PAD / 2) / height, "\n".join(head), ha="center", va="top", fontsize=_FONT)
+        fig.text(0.5, 1 - (MARGIN / 2) / height, "\n".join(head), ha="center", va="top", fontsize=_FONT)
     if white_levels is not None:
-        span = rows * (h + label + _PAD) - _PAD - label
-        cax = fig.add_axes(((width - bar + _BAR[0] - _PAD) / width, _PAD / height, _BAR[1] / width,
+        span = rows * (h + label + MARGIN) - MARGIN - label
+        cax = fig.add_axes(((width - bar + _BAR[0] - MARGIN) / width, MARGIN / height, _BAR[1] / width,
                             span / height))
         fig.colorbar(fig.axes[0].images[0], cax=cax, extend="max", label="error, 8-bit display levels")
     return _save(fig, path)

@@ -24,12 +24,15 @@ import numpy as np
 
 from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
-from phongfx.scene.span_inputs import UNITS, first_pixels, inputs
+from phongfx.scene.span_inputs import UNITS, decode, first_pixels, inputs
 from phongfx.sim.harness import BACKENDS
 
+from .figure import frame_figure
 from .lyon import shade
+from .mesh import intensity
 
-__all__ = ["MESHES", "LIGHT", "frame_spans", "chunk_starts", "rtl_frame", "run_all", "markdown"]
+__all__ = ["MESHES", "LIGHT", "SHOWN", "frame_spans", "chunk_starts", "unit_picture", "rtl_frame",
+           "run_all", "markdown"]
 
 MESHES = ("torus", "sphere")
 #: Default light: up, left and towards the viewer, so the highlight sits on the frame.
@@ -72,8 +75,27 @@ def chunk_starts(first, count, chunk):
     return bounds
 
 
+#: What a unit's picture shows: the Euler and Gouraud units compute ``N·L`` alone, Schlick's
+#: the specular term alone, the others both, blended as :func:`phongfx.render.mesh.intensity`.
+SHOWN = {"euler": "N·L", "gouraud": "N·L", "schlick": "specular",
+         "spherical": "ambient + diffuse + specular", "blinn": "ambient + diffuse + specular",
+         "conventional": "ambient + diffuse + specular"}
+
+
+def unit_picture(unit, spans, outputs, config):
+    """The (height, width) grey [0, 1] picture of ``unit``'s raw ``outputs`` on ``spans``
+    (:data:`SHOWN` says what it shows), black where no surface is visible."""
+    from phongfx.scene import mesh as meshes
+    if unit in ("euler", "gouraud", "schlick"):
+        value = decode(unit, outputs, config)
+    else:
+        diff = decode(unit, outputs, config, "diff")
+        value = intensity(diff[:, 0] if diff.ndim == 2 else diff, decode(unit, outputs, config, "spec"))
+    return meshes.image(spans, np.clip(value, 0.0, 1.0))
+
+
 def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=0, light=LIGHT, n=32,
-              backend="verilator-fast", chunk=16384, progress=None):
+              backend="verilator-fast", chunk=16384, progress=None, png=None):
     """Check one full frame of ``unit`` (one of ``euler``, ``gouraud``, ``spherical``,
     ``schlick``) on the RTL against the golden model, pixel by pixel.
 
@@ -82,7 +104,8 @@ def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=
     just checked.  Returns ``dict(unit, pixels, visible, spans, cycles, mismatches,
     cycles_per_second, seconds, wall_seconds, ...)``: ``seconds`` is the RTL simulation,
     ``wall_seconds`` also the rasterizer, setup, golden model and any Verilator build;
-    ``mismatches`` must be 0.
+    ``mismatches`` must be 0.  With ``png`` (a path) the golden frame, which the RTL
+    matched, is written there titled (:func:`unit_picture`), and the row names it.
     """
     if unit not in UNITS:
         raise ValueError(f"unit must be one of {', '.join(UNITS)}, not {unit!r}")
@@ -94,18 +117,23 @@ def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=
     block = get_block(unit)
     first, count = first_pixels(spans)
     bounds = chunk_starts(first, count, chunk)
-    _, stats = shade(block, raw, backend, progress=progress, bounds=bounds)
+    golden, stats = shade(block, raw, backend, progress=progress, bounds=bounds)
+    if png is not None:
+        frame_figure(png, unit_picture(unit, spans, golden, block.config),
+                     f"{unit} unit, {SHOWN[unit]}: {mesh} {polygons} polygons, frame {frame}, "
+                     f"{width}×{height}; RTL ({backend}) {stats['mismatches']} mismatches")
     return {"unit": unit, "backend": backend, "mesh": mesh, "polygons": polygons, "width": width,
             "height": height, "frame": frame, "pixels": count, "visible": int(np.sum(spans.visible)),
             "spans": len(first), "chunks": len(bounds) - 1, "cycles": stats["cycles"],
             "mismatches": stats["mismatches"], "seconds": round(stats["seconds"], 3),
             "cycles_per_second": round(stats["cycles"] / stats["seconds"], 1) if stats["seconds"] else None,
-            "wall_seconds": round(time.perf_counter() - start, 2), "first_mismatch": stats["first_mismatch"]}
+            "wall_seconds": round(time.perf_counter() - start, 2), "first_mismatch": stats["first_mismatch"],
+            **({"png": os.fspath(png)} if png is not None else {})}
 
 
 def run_all(out_dir="build/frames", units=UNITS, *, quiet=False, **options):
-    """:func:`rtl_frame` for each of ``units`` on the same frame; writes
-    ``out_dir/frames.json`` atomically and returns ``{"frames": [...], "mismatches",
+    """:func:`rtl_frame` for each of ``units`` on the same frame; writes each unit's
+    picture to ``out_dir/<unit>.png`` and ``out_dir/frames.json``, atomically, and returns ``{"frames": [...], "mismatches",
     "wall_seconds"}``.  ``options`` go to :func:`rtl_frame`."""
     from tqdm import tqdm
 
@@ -116,7 +144,8 @@ def run_all(out_dir="build/frames", units=UNITS, *, quiet=False, **options):
     for unit in units:
         with tqdm(unit="px", desc=f"{unit} RTL ({options.get('backend', 'verilator')})",
                   disable=quiet) as bar:
-            rows.append(rtl_frame(unit, progress=bar.update, **options))
+            rows.append(rtl_frame(unit, progress=bar.update, png=os.path.join(out_dir, f"{unit}.png"),
+                                  **options))
     result = {"frames": rows, "mismatches": sum(row["mismatches"] for row in rows),
               "wall_seconds": round(time.perf_counter() - start, 2)}
     text = json.dumps(result, indent=2) + "\n"

@@ -3,13 +3,15 @@
 A frame of a rotating torus or UV sphere (:mod:`phongfx.scene.mesh`) is shaded per span with
 ``I = AMBIENT + KD·diffuse + KS·specular`` (Hast, Barrera & Bengtsson equation 1 plus
 an ambient floor), ``diffuse`` from ``N·L`` and ``specular`` from ``(N·H)^n`` with a
-directional light and the viewer at infinity (``H`` constant).  Methods:
+directional light and the viewer at infinity (``H`` constant).  Methods, float
+(:data:`FLOAT_METHODS`) and fixed point (:data:`UNIT_METHODS`, named as the units of
+``phongfx compile``, so that ``euler`` is the same hardware everywhere):
 
 * ``phong``: the interpolated normal renormalized per pixel (Duff's exact ``p/√q``,
   Hast equation 4) — the reference every other method is measured against;
-* ``gouraud``: the end intensities ``max(N_a·L, 0)``, ``max(N_a·H, 0)^n`` (and at
+* ``gouraud-float``: the end intensities ``max(N_a·L, 0)``, ``max(N_a·H, 0)^n`` (and at
   ``N_b``) interpolated linearly along the span;
-* ``euler`` / ``corrected-euler``: Hast's quadratic recurrences (equations 12–17) for
+* ``euler-float`` / ``corrected-euler``: Hast's quadratic recurrences (equations 12–17) for
   ``N·L`` and for ``N·H`` (their §6.1 uses it for both), then clamped and raised;
 * ``cosn``: spherical interpolation (Szirmay-Kalos equation 17): the exact
   ``cos θ = A·cos(tγ - φ)`` of a normal turning uniformly from ``N_a`` to ``N_b``, raised
@@ -19,11 +21,11 @@ directional light and the viewer at infinity (``H`` constant).  Methods:
 * ``spherical``: the fixed-point spherical unit (:mod:`phongfx.golden.spherical`, ROM of
   ``addr_bits`` address and ``rom_bits`` data bits), fed by
   :func:`phongfx.scene.span_inputs.spherical_inputs`; its diffuse channel reads the ``cos`` ROM;
-* ``euler-unit`` / ``gouraud-unit``: ``N·L`` and ``N·H`` each through the fixed-point
+* ``euler`` / ``gouraud``: ``N·L`` and ``N·H`` each through the fixed-point
   corrected Euler or Gouraud unit (:mod:`phongfx.golden.euler`, ``.gouraud``, default
   formats) fed by :func:`phongfx.scene.span_inputs.euler_inputs` / ``gouraud_inputs``, then
-  clamped and raised like the float methods (so ``gouraud-unit`` interpolates the dot
-  products, not the end intensities as ``gouraud`` does);
+  clamped and raised like the float methods (so ``gouraud`` interpolates the dot
+  products, not the end intensities as ``gouraud-float`` does);
 * ``blinn``: the 16-bit Blinn–Phong baseline (:mod:`phongfx.golden.blinn`:
   reciprocal square root by table and Newton step, ``t^n`` by log2/exp2 tables) on the
   interpolated normal of every pixel, fed by :func:`phongfx.scene.span_inputs.blinn_inputs`;
@@ -34,11 +36,14 @@ directional light and the viewer at infinity (``H`` constant).  Methods:
   shows the difference of the two highlights (``(R·V)^n`` is about ``(N·H)^(4n)``).
 
 Errors are ``255·|I - I_phong|`` over the visible pixels (8-bit levels, as Hast's
-Table 2), for the composite and for each term.
+Table 2), for the composite and for each term.  The names ``euler-unit`` and
+``gouraud-unit`` of the fixed-point units before they took compile's names are still
+accepted (:data:`RENAMED`), with a ``DeprecationWarning``.
 """
 
 import os
 import time
+import warnings
 
 import numpy as np
 from PIL import Image
@@ -51,11 +56,18 @@ from phongfx.scene import mesh as meshes
 from phongfx.scene.span_inputs import (blinn_inputs, conventional_inputs, decode, euler_inputs,
                                        gouraud_inputs, halfway, spherical_inputs)
 
-__all__ = ["METHODS", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
+from .figure import error_figure, frame_figure
+
+__all__ = ["FLOAT_METHODS", "UNIT_METHODS", "METHODS", "RENAMED", "method_name", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
            "shade", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
-METHODS = ("phong", "gouraud", "euler", "corrected-euler", "cosn", "cos2", "spherical",
-           "euler-unit", "gouraud-unit", "blinn", "conventional")
+FLOAT_METHODS = ("phong", "gouraud-float", "euler-float", "corrected-euler", "cosn", "cos2")
+#: The golden fixed-point units, by the names ``phongfx compile`` gives them.
+UNIT_METHODS = ("spherical", "euler", "gouraud", "blinn", "conventional")
+METHODS = FLOAT_METHODS + UNIT_METHODS
+#: Former name -> name: the fixed-point units were ``euler-unit`` and ``gouraud-unit``
+#: here while ``euler`` and ``gouraud`` named the float methods, unlike compile.
+RENAMED = {"euler-unit": "euler", "gouraud-unit": "gouraud"}
 MESHES = ("torus", "sphere")
 #: Up, left and towards the viewer, so the highlight sits on the visible side.
 LIGHT = (-0.4, 0.5, 0.77)
@@ -64,9 +76,16 @@ AMBIENT, KD, KS = 0.1, 0.55, 0.35
 FIGURE_WEIGHTS = (0.05, 0.35, 0.6)
 
 
-def _check_method(method):
+def method_name(method):
+    """``method``'s name in :data:`METHODS`: itself, or for a former name (:data:`RENAMED`)
+    the new one, with a ``DeprecationWarning``; ValueError naming the methods otherwise."""
+    if method in RENAMED:
+        warnings.warn(f"method {method!r} is now called {RENAMED[method]!r} (the fixed-point unit, "
+                      f"named as in phongfx compile)", DeprecationWarning, stacklevel=3)
+        return RENAMED[method]
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
+    return method
 
 
 def build_mesh(mesh="torus", *, polygons=800, stacks=8, slices=16):
@@ -113,16 +132,16 @@ def shade(spans, method, *, light=LIGHT, n=20, addr_bits=6, rom_bits=6):
     (:func:`phongfx.golden.spherical_setup.span_setups`): the wrapping angle register
     would otherwise read the lit cells again.
     """
-    _check_method(method)
+    method = method_name(method)
     light = _unit(light)
     h = halfway(light)
-    if method in ("phong", "euler", "corrected-euler"):
-        key = {"phong": "phong", "euler": "euler", "corrected-euler": "corrected"}[method]
+    if method in ("phong", "euler-float", "corrected-euler"):
+        key = {"phong": "phong", "euler-float": "euler", "corrected-euler": "corrected"}[method]
         span, step = spans.pixel_span(), spans.pixel_step()
         curve = [euler_setup.curves_at(euler_setup.span_setups(spans.na, spans.nb, v, spans.length),
                                        span, step)[key] for v in (light, h)]
         return np.maximum(curve[0], 0.0), _power(curve[1], n)
-    if method == "gouraud":
+    if method == "gouraud-float":
         span, t = spans.pixel_span(), spans.pixel_t()
         ends = [(np.maximum(spans.na @ light, 0), np.maximum(spans.nb @ light, 0)),
                 (_power(spans.na @ h, n), _power(spans.nb @ h, n))]
@@ -130,11 +149,10 @@ def shade(spans, method, *, light=LIGHT, n=20, addr_bits=6, rom_bits=6):
     if method in ("cosn", "cos2"):
         return (_spherical_float(spans, light, 1, False),
                 _spherical_float(spans, h, n, method == "cos2"))
-    if method in ("euler-unit", "gouraud-unit"):
-        unit = method[:-5]
-        block = get_block(unit)
-        feed = euler_inputs if unit == "euler" else gouraud_inputs
-        curve = [decode(unit, block.golden(feed(spans, v, block.config)), block.config)
+    if method in ("euler", "gouraud"):
+        block = get_block(method)
+        feed = euler_inputs if method == "euler" else gouraud_inputs
+        curve = [decode(method, block.golden(feed(spans, v, block.config)), block.config)
                  for v in (light, h)]
         return curve[0], _power(curve[1], n)
     if method in ("blinn", "conventional"):
@@ -183,12 +201,15 @@ def _errors(spans, shaded, reference):
 
 def run(method, *, mesh="torus", polygons=800, stacks=8, slices=16, n=20, addr_bits=6, rom_bits=6,
         width=256, height=256, frame=0, light=LIGHT, out_dir="build/mesh"):
-    """Shade one frame by ``method``, write ``<out_dir>/<name>.png``, return a summary.
+    """Shade one frame by ``method``, write ``<out_dir>/<name>.png`` (the frame, titled
+    with the method, mesh, n and frame) and ``<name>_error.png`` (its composite's error
+    against ``phong`` in 8-bit levels, with a colour bar up to the largest), return a summary.
 
-    The summary holds the PNG ``path``, the geometry counts, the seconds taken and
-    ``error_8bit``: ``{diffuse, specular, total}`` each ``{max, mean}`` against ``phong``.
+    The summary holds the PNG ``path`` and ``error_path``, the method's ``kind`` (float or
+    fixed point), the geometry counts, the seconds taken and ``error_8bit``:
+    ``{diffuse, specular, total}`` each ``{max, mean}`` against ``phong``.
     """
-    _check_method(method)
+    method = method_name(method)
     if isinstance(n, bool) or not isinstance(n, (int, float)) or not n > 0:
         raise ValueError(f"n must be a positive number, not {n!r}")
     start = time.perf_counter()
@@ -200,11 +221,21 @@ def run(method, *, mesh="torus", polygons=800, stacks=8, slices=16, n=20, addr_b
     size = f"{polygons}" if mesh == "torus" else f"{stacks}x{slices}"
     bits = f"-a{addr_bits}d{rom_bits}" if method == "spherical" else ""
     name = f"{mesh}{size}-{method}{bits}-n{n:g}-f{frame}"
-    path = write_png(os.path.join(out_dir, f"{name}.png"), meshes.image(spans, shaded[2]))
-    return {"method": method, "mesh": mesh, "polygons": shape.polygons, "n": n, "frame": frame,
+    kind = "float" if method in FLOAT_METHODS else "fixed point"
+    rom = f", ROM of {addr_bits} address and {rom_bits} data bits"
+    errors = _errors(spans, shaded, reference)
+    what = f"{mesh} {size}{' polygons' if mesh == 'torus' else ''}, n = {n:g}, frame {frame}"
+    path = frame_figure(os.path.join(out_dir, f"{name}.png"), meshes.image(spans, shaded[2]),
+                        f"{method} ({kind}{rom if bits else ''}): {what}")
+    levels = meshes.image(spans, 255 * np.abs(shaded[2] - reference[2]), background=np.nan)
+    total = errors["total"]
+    error_path = error_figure(os.path.join(out_dir, f"{name}_error.png"), levels,
+                              f"|{method} − phong|: {what}; max {total['max']:.2f}, "
+                              f"mean {total['mean']:.3f} levels", max(1.0, total["max"]))
+    return {"method": method, "kind": kind, "mesh": mesh, "polygons": shape.polygons, "n": n, "frame": frame,
             "width": width, "height": height, "addr_bits": addr_bits, "rom_bits": rom_bits,
-            "name": name, "path": path, "spans": int(len(spans.length)),
-            "pixels": int(spans.visible.sum()), "error_8bit": _errors(spans, shaded, reference),
+            "name": name, "path": path, "error_path": error_path, "spans": int(len(spans.length)),
+            "pixels": int(spans.visible.sum()), "error_8bit": errors,
             "seconds": time.perf_counter() - start}
 
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from phongfx.render.figure import MIN_SIZE, TILE_SIZE, contact_sheet, error_figure, frame_figure, scale_for
+from phongfx.render.figure import MARGIN, MIN_SIZE, TILE_SIZE, contact_sheet, error_figure, frame_figure, scale_for
 
 PNG = b"\x89PNG\r\n\x1a\n"
 
@@ -33,7 +33,7 @@ def test_frame_figure_is_an_enlarged_titled_png(tmp_path):
     assert min(image.size) >= MIN_SIZE
     # nearest neighbour at 16× (24 → 384): every frame pixel is one flat 16 × 16 square
     grid = np.asarray(image, dtype=np.int64)
-    inner = grid[-10 - 384:-10, 10:10 + 384].reshape(24, 16, 24, 16)
+    inner = grid[-MARGIN - 384:-MARGIN, MARGIN:MARGIN + 384].reshape(24, 16, 24, 16)
     assert np.all(inner.max(axis=(1, 3)) - inner.min(axis=(1, 3)) <= 1)
     assert np.allclose(inner[:, 0, :, 0], np.round(picture * 255), atol=1)
     # the title is drawn above the picture: dark text on white

@@ -57,6 +57,11 @@ def test_run_all_writes_the_table(tmp_path):
     assert result["mismatches"] == 0
     table = markdown(result)
     assert table.count("\n| gouraud |") == 1 and table.count("\n| schlick |") == 1
+    # and the frames themselves, titled and enlarged (10 × 10 frame pixels → 390 PNG pixels)
+    from PIL import Image
+    for row in result["frames"]:
+        assert row["png"] == str(tmp_path / f"{row['unit']}.png")
+        assert min(Image.open(row["png"]).size) >= 384
 
 
 def test_bad_names_are_refused():

@@ -6,6 +6,7 @@ from PIL import Image
 
 from phongfx.golden import spherical_setup
 from phongfx.render import mesh as mesh_render
+from phongfx.render.figure import MARGIN, scale_for
 from phongfx.render.mesh import LIGHT, METHODS, error_8bit, figure14, figure15, run, shade, write_png
 from phongfx.scene import mesh as meshes
 from phongfx.scene.span_inputs import halfway
@@ -27,7 +28,10 @@ def sphere_spans():
 @pytest.mark.parametrize("method", METHODS)
 def test_each_method_writes_a_frame_on_black(method, tmp_path):
     summary = run(method, mesh="torus", polygons=288, width=48, height=40, frame=37, out_dir=str(tmp_path))
-    picture = np.asarray(Image.open(summary["path"]))
+    # the frame inside its figure: 8 PNG pixels a frame pixel, MARGIN from the bottom left
+    scale = scale_for((40, 48))
+    figure = np.asarray(Image.open(summary["path"]).convert("L"))
+    picture = figure[-MARGIN - 40 * scale:-MARGIN, MARGIN:MARGIN + 48 * scale][::scale, ::scale]
     assert picture.shape == (40, 48) and picture.dtype == np.uint8
     assert os.path.dirname(summary["path"]) == str(tmp_path) and summary["path"].endswith(".png")
     # every visible pixel has at least the ambient 0.1 (26 levels); the rest is background 0
@@ -77,22 +81,22 @@ def test_end_pixels_agree_where_the_method_is_exact_there(torus_spans):
     step, span = torus_spans.pixel_step(), torus_spans.pixel_span()
     ends = (step == 0) | (step == torus_spans.length[span] - 1)
     phong = shade(torus_spans, "phong")
-    for method in ("gouraud", "corrected-euler", "cosn"):  # all interpolate from exact ends
+    for method in ("gouraud-float", "corrected-euler", "cosn"):  # all interpolate from exact ends
         for got, want in zip(shade(torus_spans, method), phong):
             np.testing.assert_allclose(got[ends], want[ends], atol=1e-9)
     # uncorrected Euler misses the far end (Hast Figure 2)
-    euler = shade(torus_spans, "euler")[0]
+    euler = shade(torus_spans, "euler-float")[0]
     last = (step == torus_spans.length[span] - 1) & (torus_spans.length[span] > 4)
     assert np.max(np.abs(euler[last] - phong[0][last])) > 1e-3
 
 
 def test_fixed_point_units_track_their_float_curves(torus_spans):
-    euler = shade(torus_spans, "euler-unit")
+    euler = shade(torus_spans, "euler")
     for got, want in zip(euler, shade(torus_spans, "corrected-euler")):
         assert error_8bit(got, want, torus_spans.visible)["max"] < 0.01  # S1.30 registers
     span, t = torus_spans.pixel_span(), torus_spans.pixel_t()
     chord = [(1 - t) * (torus_spans.na @ v)[span] + t * (torus_spans.nb @ v)[span] for v in (L, H)]
-    diffuse, specular = shade(torus_spans, "gouraud-unit")
+    diffuse, specular = shade(torus_spans, "gouraud")
     np.testing.assert_allclose(diffuse, np.maximum(chord[0], 0), atol=1e-7)
     np.testing.assert_allclose(specular, np.maximum(chord[1], 0) ** 20, atol=1e-6)
 
@@ -123,10 +127,10 @@ def test_the_conventional_unit_is_phongs_reflection_lobe(torus_spans):
 def test_corrected_euler_beats_euler_and_gouraud(torus_spans):
     phong = shade(torus_spans, "phong")[0]
     mean = {m: error_8bit(shade(torus_spans, m)[0], phong, torus_spans.visible)["mean"]
-            for m in ("gouraud", "euler", "corrected-euler")}
+            for m in ("gouraud-float", "euler-float", "corrected-euler")}
     # Hast Table 2, 288 polygons: Gouraud 1.08, Euler 0.75, corrected Euler 0.081
-    assert mean["corrected-euler"] < mean["euler"] < mean["gouraud"]
-    assert mean["corrected-euler"] < mean["gouraud"] / 5
+    assert mean["corrected-euler"] < mean["euler-float"] < mean["gouraud-float"]
+    assert mean["corrected-euler"] < mean["gouraud-float"] / 5
 
 
 def test_spherical_rom_error_falls_with_bits(sphere_spans):
@@ -162,6 +166,25 @@ def test_write_png_is_atomic(tmp_path, monkeypatch):
     assert os.listdir(tmp_path) == ["frame.png"]
 
 
+def test_a_frame_is_written_titled_with_its_error_against_phong(tmp_path):
+    """The README promised a PNG and its error against Phong; the PNG was bare 1:1 pixels."""
+    summary = run("spherical", polygons=288, width=48, height=48, out_dir=str(tmp_path))
+    assert summary["kind"] == "fixed point"
+    frame, error = Image.open(summary["path"]), Image.open(summary["error_path"])
+    assert summary["error_path"] == str(tmp_path / "torus288-spherical-a6d6-n20-f0_error.png")
+    assert min(frame.size) >= 384  # 48 × 48 enlarged 8 times, plus the title
+    assert error.size[0] > frame.size[0] + 60  # the colour bar
+    bar = np.asarray(error.convert("RGB"))[:, frame.size[0]:].reshape(-1, 3)
+    assert len(np.unique(bar, axis=0)) > 50
+
+
+def test_former_unit_names_still_work_with_a_warning(torus_spans):
+    with pytest.warns(DeprecationWarning, match=r"'euler-unit' is now called 'euler'"):
+        old = shade(torus_spans, "euler-unit")
+    for got, want in zip(old, shade(torus_spans, "euler")):
+        np.testing.assert_array_equal(got, want)
+
+
 def test_figures_write_grids_and_report(tmp_path):
     fig15 = figure15(str(tmp_path), size=64)
     assert np.asarray(Image.open(fig15["path"])).shape == (2 * 64 + 4, 3 * 64 + 8)
@@ -175,8 +198,8 @@ def test_figures_write_grids_and_report(tmp_path):
 
 
 @pytest.mark.parametrize("call, message", [
-    (lambda: run("x"), r"^method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
-                       r"spherical, euler-unit, gouraud-unit, blinn, conventional, not 'x'$"),
+    (lambda: run("x"), r"^method must be one of phong, gouraud-float, euler-float, corrected-euler, cosn, "
+                       r"cos2, spherical, euler, gouraud, blinn, conventional, not 'x'$"),
     (lambda: shade(None, "halfway"), r"^method must be one of .*, not 'halfway'$"),
     (lambda: run("phong", mesh="cube"), r"^mesh must be one of torus, sphere, not 'cube'$"),
     (lambda: run("phong", n=0), r"^n must be a positive number, not 0$"),
