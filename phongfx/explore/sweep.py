@@ -13,7 +13,9 @@ rebuilt from the records at the end of every run.
 
 import csv
 import json
+import multiprocessing
 import os
+import signal
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -109,9 +111,35 @@ def _record(point, status, error, seconds, metrics, cost):
             "cost": cost, "scenes": point["scenes"], "synth": point["synth"]}
 
 
+#: Set in a pool worker by :func:`_worker_stop`; a point that sees it ends the worker.
+_stopping = False
+#: Whether this pool worker is inside a point (where a stop can unwind it cleanly).
+_busy = False
+
+
+def _worker_init():
+    """A pool worker answers Ctrl-C through its parent, not itself: the parent stops the
+    sweep and reports once (a terminal sends SIGINT to every process of the group, and a
+    worker's own ``KeyboardInterrupt`` would print a traceback, or be taken for a failed
+    point).  The parent's stop is SIGTERM, which unwinds a running point (the synthesis
+    flow's tools killed, its half-run folder removed) and ends the worker."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _worker_stop)
+
+
+def _worker_stop(signum, frame):
+    global _stopping
+    _stopping = True
+    if not _busy:  # between points: nothing to clean up, and no traceback wanted
+        os._exit(0)
+    raise KeyboardInterrupt
+
+
 def _run_point(evaluate, point):
     """The record of one point: ``evaluate``'s result, or its error (one line)."""
+    global _busy
     start = time.perf_counter()
+    _busy = True
     try:
         result = evaluate(point["method"], dict(point["params"]), scenes=tuple(point["scenes"]),
                           synth=point["synth"], proxy=point.get("proxy"))
@@ -120,6 +148,12 @@ def _run_point(evaluate, point):
         cost = None if cost is None else {key: _plain(value) for key, value in cost.items()}
     except Exception as error:  # recorded; KeyboardInterrupt is not caught
         return _record(point, "failed", _one_line(error), time.perf_counter() - start, {}, None)
+    except KeyboardInterrupt:
+        if _stopping:  # the parent stopped the sweep: the point's cleanup has run
+            os._exit(0)
+        raise
+    finally:
+        _busy = False
     return _record(point, "ok", None, time.perf_counter() - start, metrics, cost)
 
 
@@ -131,12 +165,26 @@ def _collect(future, point):
         return _record(point, "failed", _one_line(error), 0.0, {}, None)
 
 
+def _stop_workers(workers, grace=5.0):
+    """End the pool's ``workers`` now: SIGTERM (each unwinds its point), then SIGKILL for any
+    still alive after ``grace`` seconds in all."""
+    for process in workers:
+        process.terminate()
+    deadline = time.monotonic() + grace
+    for process in workers:
+        process.join(max(0.0, deadline - time.monotonic()))
+        if process.is_alive():
+            process.kill()
+            process.join()
+
+
 def _execute_pool(evaluate, points, record, workers):
     if workers == 1:  # in this process: no pickling, easy to debug
         for point in points:
             record(_run_point(evaluate, point))
         return
-    with ProcessPoolExecutor(min(workers, len(points))) as pool:
+    before = set(multiprocessing.active_children())
+    with ProcessPoolExecutor(min(workers, len(points)), initializer=_worker_init) as pool:
         futures = {pool.submit(_run_point, evaluate, point): point for point in points}
         recorded = set()
         try:
@@ -144,9 +192,11 @@ def _execute_pool(evaluate, points, record, workers):
                 record(_collect(future, futures[future]))
                 recorded.add(future)
         except KeyboardInterrupt:
-            # keep what finishes while the pool winds down; queued points are dropped
-            pool.shutdown(wait=True, cancel_futures=True)
-            for future, point in futures.items():
+            # stop now: queued points are dropped and running ones abandoned (waiting for
+            # them kept a sweep busy for minutes after Ctrl-C); what had finished is kept
+            pool.shutdown(wait=False, cancel_futures=True)
+            _stop_workers(set(multiprocessing.active_children()) - before)
+            for future in futures:
                 if future not in recorded and future.done() and not future.cancelled() \
                         and future.exception() is None:
                     record(future.result())

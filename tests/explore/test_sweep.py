@@ -294,3 +294,71 @@ def test_dask_missing_is_a_clear_error(stub, monkeypatch):
     with pytest.raises(ValueError, match=r"^scheduler 'local' needs Dask, which is not installed: "
                                          r"pip install phongfx\[cluster\]$"):
         run_sweep(GRID, out=stub / "out", scheduler="local", progress=False, evaluate=stub_evaluate)
+
+
+# --- Ctrl-C: a real SIGINT to a child `phongfx sweep` on two workers --------------------------
+
+_SLOW_CHILD = r'''
+import os, subprocess, sys, time
+import phongfx.explore.evaluate as ev
+from phongfx.cli import main
+
+def slow(method, params, *, scenes, synth=None, proxy=None):
+    """addr_bits 4 finishes at once; every other point runs a tool for a minute."""
+    if params["addr_bits"] != 4:
+        script = "import os, sys, time; open(sys.argv[1], 'w').write(str(os.getpid())); time.sleep(60)"
+        subprocess.run([sys.executable, "-c", script, os.path.join(sys.argv[1], f"tool{params['addr_bits']}.pid")])
+    return {"metrics": {"sphere.phong.max": float(params["addr_bits"])}, "cost": None}
+
+ev.evaluate = slow
+sys.exit(main(["sweep", os.path.join(sys.argv[1], "spec.toml"), "--workers", "2", "--quiet",
+               "--out", os.path.join(sys.argv[1], "out")]))
+'''
+
+
+def _alive(pid):
+    """Whether ``pid`` runs; a zombie (killed, its parent gone, not yet reaped by init) does not."""
+    try:
+        with open(f"/proc/{pid}/stat") as file:
+            return file.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+@pytest.mark.parametrize("to", ["group", "parent"])
+def test_ctrl_c_stops_the_workers_at_once_and_a_rerun_resumes(tmp_path, to):
+    # "group" is a terminal's Ctrl-C (every process of the group gets it), "parent" a kill -INT;
+    # before, the parent waited for the running points: a minute here, minutes with synthesis
+    import signal
+    import subprocess
+    import sys
+    import time
+    (tmp_path / "spec.toml").write_text('scenes = ["sphere"]\nproxy = false\n'
+                                        '[[grid]]\nmethod = "spherical"\naddr_bits = [4, 5, 6, 7]\n')
+    child = subprocess.Popen([sys.executable, "-c", _SLOW_CHILD, str(tmp_path)], stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True, start_new_session=True)
+    jsonl, deadline = tmp_path / "out" / "points.jsonl", time.monotonic() + 60
+    while not (jsonl.is_file() and any(tmp_path.glob("tool*.pid"))) and child.poll() is None \
+            and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(0.3)  # the tool is running
+    assert child.poll() is None, "the sweep ended before it could be interrupted"
+    sent = time.monotonic()
+    (os.killpg if to == "group" else os.kill)(child.pid, signal.SIGINT)
+    try:
+        _, err = child.communicate(timeout=20)
+    finally:
+        child.kill()
+    seconds = time.monotonic() - sent
+    assert child.returncode == 130 and seconds < 5, (child.returncode, seconds, err)
+    assert len(err.strip().splitlines()) == 1 and err.startswith("phongfx: interrupted"), err
+    time.sleep(0.3)
+    tools = [int(p.read_text() or 0) for p in tmp_path.glob("tool*.pid")]
+    assert not any(_alive(pid) for pid in tools if pid), "a worker's tool outlived the sweep"
+    kept = load_records(jsonl)
+    assert [(r["params"]["addr_bits"], r["status"]) for r in kept] == [(4, "ok")]
+
+    def quick(method, params, **options):
+        return {"metrics": {"sphere.phong.max": 0.5}, "cost": None}
+    again = run_sweep(tmp_path / "spec.toml", out=tmp_path / "out", workers=1, progress=False, evaluate=quick)
+    assert (again["skipped"], again["ran"], again["ok"]) == (1, 3, 3)
