@@ -23,9 +23,11 @@ sees ``D = -N``, row 11 ``alpha = pi/2`` and row 12 its floor ``(1/(1+n))**2``.
 No floating-point warning is raised.
 """
 
+import re
+
 import numpy as np
 
-__all__ = ["METHODS", "specular", "specular_all"]
+__all__ = ["METHODS", "SHAPE_FORMS", "specular", "specular_all"]
 
 METHODS = (
     "phong",              # 1. (R.L)^n
@@ -41,6 +43,12 @@ METHODS = (
     "torrance-sparrow",   # 11. Blinn D2, Gaussian
     "trowbridge-reitz",   # 12. Blinn D3
 )
+
+
+#: Rows 2-4 and 8-9 at any ``k``: ``lyon-k<k>`` and ``halfway-g2proj-k<k>`` (the
+#: appendix prints k = 0..2 and 1..2; the datapaths' shape function takes k up to 10,
+#: and each datapath's float form is the same row at the datapath's own k).
+SHAPE_FORMS = re.compile(r"^(lyon|halfway-g2proj)-k(\d+)$")
 
 
 def _dot(a, b):
@@ -64,6 +72,40 @@ def _shape(xs, k):
     return amount
 
 
+def _intermediates(N, L, V, n):
+    """The listing's shared vectors: ``rv``, ``hv``, ``hv1`` (``g2``-normalized), ``hv2``
+    (unit) and ``n4``, with the inputs as float arrays."""
+    N, L, V = (np.asarray(a, dtype=np.float64) for a in (N, L, V))
+    for name, a in (("N", N), ("L", L), ("V", V)):
+        if a.ndim == 0 or a.shape[-1] != 3:
+            raise ValueError(f"{name} must have shape (..., 3), got {a.shape}")
+    n = np.asarray(n, dtype=np.float64)
+
+    rv = 2 * N * _dot(V, N)[..., None] - V
+    hv = (L + V) / 2
+    hl = _dot(hv, hv)
+    dl = 1 - hl
+    hv1 = (1 + 0.5 * (dl + dl * dl))[..., None] * hv
+    # hl == 0: a zero reciprocal length (not NaN) gives hv2 = 0 and dot = 0;
+    # ``where`` skips the division there, so no divide-by-zero warning.
+    rlen = np.divide(1.0, np.sqrt(hl), out=np.zeros_like(hl), where=hl > 0)
+    hv2 = rlen[..., None] * hv
+    n4 = 4 * n
+    return N, L, V, n, rv, hv, hv1, hv2, n4
+
+
+def _lyon_xs(L, rv, n):
+    """Row 2's ``x = n/2·|L - R|²``, what ``f_k`` is applied to."""
+    dv = L - rv
+    return _dot(dv, dv) * n / 2
+
+
+def _g2proj_xs(N, hv1, n4):
+    """Row 8's ``x = 4n/2·|H g2(z) - projection|²``."""
+    dv = hv1 - N * _dot(hv1, N)[..., None]
+    return _dot(dv, dv) * n4 / 2
+
+
 def specular_all(N, L, V, n):
     """Evaluate every method of ``specfuns.m``, sharing its intermediates.
 
@@ -81,27 +123,11 @@ def specular_all(N, L, V, n):
         Specular amount of each method, keyed and ordered as :data:`METHODS`,
         each of the broadcast leading shape, float64.
     """
-    N, L, V = (np.asarray(a, dtype=np.float64) for a in (N, L, V))
-    for name, a in (("N", N), ("L", L), ("V", V)):
-        if a.ndim == 0 or a.shape[-1] != 3:
-            raise ValueError(f"{name} must have shape (..., 3), got {a.shape}")
-    n = np.asarray(n, dtype=np.float64)
-
-    rv = 2 * N * _dot(V, N)[..., None] - V
-    hv = (L + V) / 2
-    hl = _dot(hv, hv)
-    dl = 1 - hl
-    hv1 = (1 + 0.5 * (dl + dl * dl))[..., None] * hv
-    # hl == 0: a zero reciprocal length (not NaN) gives hv2 = 0 and dot = 0;
-    # ``where`` skips the division there, so no divide-by-zero warning.
-    rlen = np.divide(1.0, np.sqrt(hl), out=np.zeros_like(hl), where=hl > 0)
-    hv2 = rlen[..., None] * hv
-    n4 = 4 * n
+    N, L, V, n, rv, hv, hv1, hv2, n4 = _intermediates(N, L, V, n)
 
     out = {}
     out["phong"] = _power_if_positive(_dot(rv, L), n)
-    dv = L - rv
-    xs = _dot(dv, dv) * n / 2
+    xs = _lyon_xs(L, rv, n)
     out["lyon-k0"], out["lyon-k1"], out["lyon-k2"] = (_shape(xs, k) for k in (0, 1, 2))
 
     dot = _dot(hv2, N)
@@ -110,8 +136,7 @@ def specular_all(N, L, V, n):
     out["halfway-hnorm-k2"] = _shape(_dot(dv, dv) * n4 / 2, 2)
     dv = hv - N * _dot(hv, N)[..., None]
     out["halfway-proj-k2"] = _shape(_dot(dv, dv) * n4 / 2, 2)
-    dv = hv1 - N * _dot(hv1, N)[..., None]
-    xs = _dot(dv, dv) * n4 / 2
+    xs = _g2proj_xs(N, hv1, n4)
     out["halfway-g2proj-k2"] = _shape(xs, 2)
     out["halfway-g2proj-k1"] = _shape(xs, 1)  # row 9 reuses row 8's xs, as printed
     dv = hv1 - N
@@ -132,7 +157,7 @@ def specular(method, N, L, V, n):
     Parameters
     ----------
     method : str
-        One of :data:`METHODS`.
+        One of :data:`METHODS`, or a row of :data:`SHAPE_FORMS` at another ``k``.
     N, L, V, n
         As for :func:`specular_all`.
 
@@ -146,6 +171,11 @@ def specular(method, N, L, V, n):
     ValueError
         If ``method`` is not in :data:`METHODS`.
     """
+    form = SHAPE_FORMS.match(method)
+    if form and method not in METHODS:
+        N, L, V, n, rv, _hv, hv1, _hv2, n4 = _intermediates(N, L, V, n)
+        xs = _lyon_xs(L, rv, n) if form[1] == "lyon" else _g2proj_xs(N, hv1, n4)
+        return np.asarray(_shape(xs, int(form[2])))
     if method not in METHODS:
         raise ValueError(
             f"unknown specular method {method!r}; valid methods: {', '.join(METHODS)}")

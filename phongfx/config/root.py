@@ -3,7 +3,7 @@
 from dataclasses import dataclass
 
 from .base import BlockConfig, check_format, check_fraction_format, check_int, check_integer_format
-from .shape import ShapeConfig
+from .shape import K_MAX, ShapeConfig
 
 __all__ = ["RootConfig"]
 
@@ -42,7 +42,7 @@ class RootConfig(BlockConfig):
         check_int("m_max", self.m_max, 1, check_integer_format("m", self.m).max_raw)
         check_int("m_const", self.m_const, 0, self.m_max)
         check_fraction_format("frac", self.frac)
-        check_int("k", self.k, 0, 4)
+        check_int("k", self.k, 0, K_MAX)
         check_format("t", self.t, signed=False, holds_one=True)
 
     @property

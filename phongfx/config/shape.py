@@ -4,7 +4,12 @@ from dataclasses import dataclass
 
 from .base import BlockConfig, check_format, check_int
 
-__all__ = ["ShapeConfig"]
+__all__ = ["K_MAX", "ShapeConfig"]
+
+#: Largest ``k`` of ``f_k``: ``2^k = n`` makes ``f_k(n·D²/2)`` Phong's ``(R·L)^n``, so
+#: k = 10 reaches n = 1024; each k adds one squarer to the chain (and its latency), and the
+#: default ``x2`` (13 integer bits) holds ``x/2^k`` up to k = 11.
+K_MAX = 10
 
 
 @dataclass(frozen=True)
@@ -22,7 +27,7 @@ class ShapeConfig(BlockConfig):
 
     def validate(self):
         x2 = check_format("x2", self.x2, signed=False)
-        check_int("k", self.k, 0, 4)
+        check_int("k", self.k, 0, K_MAX)
         if x2.int_bits < self.k + 2:
             raise ValueError(f"x2 must have at least k+2 = {self.k + 2} integer bits so that "
                              f"x/2^k reaches 1, not {x2}")

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from phongfx.config.shape import K_MAX
 from phongfx.core.registry import REGISTRY, get_block
 from phongfx.golden import euler_setup
 from phongfx.golden.reference import specular
@@ -257,14 +258,14 @@ def _run_conventional(spec, config, p, scene):
 _VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)
 METHODS = {spec.name: spec for spec in (
     MethodSpec("fig7", "fig7", {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (0, 2), "n": _N,
+               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (0, K_MAX), "n": _N,
                 "lights": _LIGHTS}, _shape_datapath("fig7"), _run_fig7),
     MethodSpec("fig8", "fig8", {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": (0, 2), "n": (1, 63 * 63),
+               {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": (0, K_MAX), "n": (1, 63 * 63),
                 "lights": _LIGHTS}, _build_fig8, _run_fig8),
     MethodSpec("halfway", "halfway_datapath",
                {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, 2), "n": _N,
+               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, K_MAX), "n": _N,
                 "lights": _LIGHTS}, _shape_datapath("halfway_datapath"), _run_halfway),
     MethodSpec("spherical", "spherical", {"addr_bits": 6, "rom_bits": 6, "theta_frac": 11, "n": 16},
                {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},

@@ -225,3 +225,24 @@ def test_unknown_method():
 def test_rejects_non_3_vectors():
     with pytest.raises(ValueError, match=r"^L must have shape \(\.\.\., 3\)"):
         specular_all(Z, [1.0, 0.0], Z, 1)
+
+
+def test_shape_rows_at_any_k():
+    # the datapaths' float form at their own k: row 2 (lyon) and row 8 (halfway-g2proj)
+    rng = np.random.default_rng(11)
+    N = rng.normal(size=(200, 3))
+    N /= np.linalg.norm(N, axis=1)[:, None]
+    L, V = np.array([0.36, 0.48, 0.8]), np.array([0.0, 0.0, 1.0])
+    # at 2^k = n, f_k(n/2·|L-R|²) = (R·L)^n wherever R·L > 0 (x = n(1 - R·L) <= 2^k)
+    phong = specular("phong", N, L, V, 16)
+    lit = phong > 0
+    np.testing.assert_allclose(specular("lyon-k4", N, L, V, 16)[lit], phong[lit], atol=1e-12)
+    R = 2 * N * (N @ V)[:, None] - V
+    x = 40 / 2 * np.sum((L - R) ** 2, axis=1)
+    np.testing.assert_allclose(specular("lyon-k7", N, L, V, 40), np.where(x > 128, 0, 1 - x / 128) ** 128)
+    # the printed rows come out of the same formula
+    for k in (1, 2):
+        np.testing.assert_array_equal(specular(f"halfway-g2proj-k{k}", N, L, V, 9),
+                                      specular_all(N, L, V, 9)[f"halfway-g2proj-k{k}"])
+    with pytest.raises(ValueError, match="unknown specular method 'lyon-kx'"):
+        specular("lyon-kx", N, L, V, 16)

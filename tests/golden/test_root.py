@@ -204,8 +204,8 @@ def test_config_errors_name_the_field():
         RootConfig(frac="1.9")
     with pytest.raises(ValueError, match=r"^frac must be an unsigned format \(n\.m\), not S0\.9$"):
         RootConfig(frac="S0.9")
-    with pytest.raises(ValueError, match=r"^k must be an integer in 0\.\.4, not 5$"):
-        RootConfig(k=5)
+    with pytest.raises(ValueError, match=r"^k must be an integer in 0\.\.10, not 11$"):
+        RootConfig(k=11)
     with pytest.raises(ValueError, match=r"^t must hold exactly 1\.0 \(at least 1 integer bit\), "
                                          r"not 0\.16$"):
         RootConfig(t="0.16")

@@ -2,6 +2,7 @@ import numpy as np
 import pytest
 
 from phongfx.config import DifferenceConfig, ShapeConfig
+from phongfx.config.shape import K_MAX
 from phongfx.core.registry import get_block
 from phongfx.golden.difference import difference
 from phongfx.golden.fixed import Fixed
@@ -33,7 +34,7 @@ def sweep(config):
 
 
 @pytest.mark.parametrize("rounding", ["round_half_up", "round_half_even", "truncate"])
-@pytest.mark.parametrize("k", range(5))
+@pytest.mark.parametrize("k", [*range(5), 7, K_MAX])
 def test_matches_float_within_bound(k, rounding):
     config = ShapeConfig(k=k, rounding=rounding)
     raw, spec = sweep(config)
@@ -93,8 +94,8 @@ def test_difference_then_shape_follows_the_float_chain():
 
 
 def test_config_errors_name_the_field():
-    with pytest.raises(ValueError, match=r"^k must be an integer in 0\.\.4, not 5$"):
-        ShapeConfig(k=5)
+    with pytest.raises(ValueError, match=r"^k must be an integer in 0\.\.10, not 11$"):
+        ShapeConfig(k=11)
     with pytest.raises(ValueError, match=r"^x2 must have at least k\+2 = 5 integer bits so that "
                                          r"x/2\^k reaches 1, not 4\.12$"):
         ShapeConfig(x2="4.12", k=3)

@@ -1,13 +1,14 @@
 import pytest
 
 from phongfx.config import ShapeConfig
+from phongfx.config.shape import K_MAX
 from phongfx.core.registry import get_block
 from phongfx.hdl.shape import Shape
 from phongfx.sim.harness import check
 from phongfx.sim.stimulus.shape import stimulus
 
 
-@pytest.mark.parametrize("k", range(5))
+@pytest.mark.parametrize("k", range(K_MAX + 1))
 def test_latency_and_ports(k):
     dut = Shape(ShapeConfig(k=k))
     assert dut.latency == 1 + k
@@ -26,7 +27,7 @@ def test_harness(backend, bubbles):
     check(get_block("shape"), backend=backend, bubbles=bubbles, count=300, seed=7).raise_on_mismatch()
 
 
-@pytest.mark.parametrize("k", range(5))
+@pytest.mark.parametrize("k", [*range(5), K_MAX])
 def test_harness_every_k(k):
     block = get_block("shape", k=k)
     inputs = stimulus(block.config, count=200, seed=k, limit=1024)
