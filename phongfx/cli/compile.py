@@ -11,14 +11,41 @@ from phongfx.core.files import check_folder
 
 from .commands import exit_on_mismatch, target_device
 
-__all__ = ["cmd_compile"]
+__all__ = ["add_arguments", "cmd_compile"]
+
+
+#: Where compile keeps the width points it measured, per scene, for a rerun to resume.
+JOURNAL = "build/compile"
+
+
+def add_arguments(p):
+    """``phongfx compile``'s arguments, on its subparser ``p``."""
+    p.add_argument("scene", help="scene file (TOML), e.g. scenes/torus.toml")
+    p.add_argument("-o", "--output", required=True, help="output folder")
+    p.add_argument("--synth", action="store_true", help="cost by synthesis (yowasp; OpenSTA on asic) instead of the proxy")
+    p.add_argument("--target", default="ecp5", choices=("ecp5", "ice40", "asic"),
+                   help="what cost means: ecp5 (default) or ice40 LUT-eq, asic area in µm²")
+    p.add_argument("--device", help="FPGA part (ecp5 25k/45k/85k, ice40 up5k/hx8k/hx1k)")
+    p.add_argument("--library", help="standard cells for --target asic: osu018 (default) or osu035")
+    p.add_argument("--freq", type=float, default=150, help="clock given to synthesis in MHz (default 150)")
+    p.add_argument("--seed", type=int, default=1, help="nextpnr's placement seed (default 1)")
+    p.add_argument("--max-error", type=float, metavar="LEVELS",
+                   help="instead of the scene's requirement.max_error_levels (display levels, > 0)")
+    p.add_argument("--methods", help="comma-separated methods to consider (default all)")
+    p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
+    p.add_argument("--testbench", action="store_true",
+                   help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench (Icarus, Verilator)")
+    p.add_argument("--vcd", metavar="FILE", help="waveform of the RTL check (Verilator --trace)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
 
 
 def _cost(cost):
     """``LUT-eq 1234`` or ``area 56,789 µm²`` of a compile cost dict; why it is missing."""
     value = cost.get("cost")
     if value is None:
-        return f"cost unknown ({cost.get('why', 'not costed')})"
+        log = f"; log {cost['log']}" if cost.get("log") else ""
+        return f"cost unknown ({cost.get('why', 'not costed')}{log})"
     if cost.get("unit") == "µm²":
         return f"area {value:,.0f} µm²"
     return f"LUT-eq {value:.0f}"
@@ -44,10 +71,12 @@ def cmd_compile(args):
 
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.compile.emit import emit
-    from phongfx.scene.file import load_scene
+    from phongfx.scene.file import load_scene, with_requirement
     methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
     device = target_device(args.target, args.device, args.library)
     spec = load_scene(args.scene)
+    if args.max_error is not None:
+        spec = with_requirement(spec, args.max_error)
     check_folder(args.output)
     with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
               bar_format="{desc}: {n} steps {elapsed}") as bar:
@@ -55,7 +84,7 @@ def cmd_compile(args):
             bar.set_description(f"compile {spec.name}: {step}")
             bar.update(1)
         compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
-                                 freq=args.freq, progress=progress)
+                                 freq=args.freq, seed=args.seed, progress=progress, journal=JOURNAL)
         data = emit(compiled, args.output, check=not args.no_check, progress=progress,
                     testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
@@ -65,17 +94,32 @@ def cmd_compile(args):
         if r["feasible"]:
             print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({default})")
         else:
-            print(f"  {name:12s} infeasible: max {_levels(r['max'])} even at {r['params']} ({default})")
+            print(f"  {name:12s} infeasible: best max {_levels(r['max'])} at {r['params']} ({default})")
+            for why in r.get("why", []):
+                print(f"  {'':12s}   {why}")
     print(f"cost model: {data['cost_model']}; wrote {args.output}/manifest.json")
     if data["chosen"] is None:
         print(f"phongfx: no method meets max_error_levels = {spec.requirement.max_error_levels} "
               f"against {spec.requirement.against} on {spec.name}; see {args.output}/manifest.json",
               file=sys.stderr)
+        for line in (data["hint"] or {}).get("text", []):
+            print(f"phongfx: hint: {line}", file=sys.stderr)
         return 1
     error = data["error"]
     print(f"chosen {data['chosen']} ({data['module']}): max {_levels(error['max'])} at out_r/g/b, "
           f"mean {error['mean']:.4f} ({error['max_unrounded']:.3f} against the unrounded reference), "
           f"{_cost(data['cost'])}, latency {data['latency']}")
+    tie = data["tie"]
+    if tie:
+        runner = _cost({"cost": tie["runner_up_cost"], "unit": data["cost"].get("unit")})
+        print(f"  tie: {tie['runner_up']} is within {tie['within']:.0%} ({runner}, max "
+              f"{_levels(tie['runner_up_max'])}); decided by {tie['decided_by']}")
+    where = data["cost"]
+    if where.get("utilisation"):
+        used = ", ".join(f"{name} {u['percent']:g}%" for name, u in where["utilisation"].items()
+                         if u["percent"] is not None)
+        print(f"  on {where.get('part') or where['device']} at {where['freq']:g} MHz, seed {where['seed']}: "
+              f"{used} of the device (the synthesis harness included)")
     default = data["default_widths"]
     misses = default["max"] > spec.requirement.max_error_levels
     print(f"  against its default widths: max {_levels(default['max'])}, {_cost(default['cost'])}"

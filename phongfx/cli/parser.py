@@ -188,19 +188,6 @@ def build_parser():
     p.set_defaults(run=commands.cmd_tables)
     p = sub.add_parser("compile", help="the cheapest datapath meeting a scene's pixel error "
                                        "requirement: Verilog, manifest, frames, RTL check")
-    p.add_argument("scene", help="scene file (TOML), e.g. scenes/torus.toml")
-    p.add_argument("-o", "--output", required=True, help="output folder")
-    p.add_argument("--synth", action="store_true", help="cost by synthesis (yowasp; OpenSTA on asic) instead of the proxy")
-    p.add_argument("--target", default="ecp5", choices=("ecp5", "ice40", "asic"),
-                   help="what cost means: ecp5 (default) or ice40 LUT-eq, asic area in µm²")
-    p.add_argument("--device", help="FPGA part (ecp5 25k/45k/85k, ice40 up5k/hx8k/hx1k)")
-    p.add_argument("--library", help="standard cells for --target asic: osu018 (default) or osu035")
-    p.add_argument("--freq", type=float, default=150, help="clock given to synthesis in MHz (default 150)")
-    p.add_argument("--methods", help="comma-separated methods to consider (default all)")
-    p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
-    p.add_argument("--testbench", action="store_true",
-                   help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench (Icarus, Verilator)")
-    p.add_argument("--vcd", metavar="FILE", help="waveform of the RTL check (Verilator --trace)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    compile_command.add_arguments(p)
     p.set_defaults(run=compile_command.cmd_compile)
     return parser

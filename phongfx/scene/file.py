@@ -9,13 +9,14 @@ turns a spec into per-frame pixels.
 import math
 import os
 import tomllib
+import dataclasses
 from dataclasses import dataclass
 
 from .lyon import Scene
 from .mesh import torus, uv_sphere
 from .obj import ObjError, load_obj
 
-__all__ = ["SceneError", "SceneSpec", "Camera", "Light", "Material", "SceneObject", "Frames",
+__all__ = ["SceneError", "SceneSpec", "with_requirement", "Camera", "Light", "Material", "SceneObject", "Frames",
            "Output", "Requirement", "load_scene", "parse_scene", "OBJECT_TYPES"]
 
 N_MAX = 8000
@@ -350,10 +351,21 @@ def parse_scene(source, name=None, base_dir=".", path=None):
     against = req.get("against", "phong")
     if against not in ("phong", "self"):
         r.fail(f"requirement.against must be \"phong\" or \"self\", not {against!r}")
-    requirement = Requirement(r.number(req.get("max_error_levels", 1.0),
-                                       "requirement.max_error_levels", 0, 65535, open_lo=True), against)
+    requirement = Requirement(_max_error(r, req.get("max_error_levels", 1.0), "requirement.max_error_levels"),
+                              against)
     return SceneSpec(scene_name, None if path is None else os.fspath(path), camera, lights,
                      materials, objects, frames, output, requirement)
+
+
+def _max_error(r, value, field):
+    return r.number(value, field, 0, 65535, open_lo=True)
+
+
+def with_requirement(spec, max_error_levels):
+    """``spec`` with ``requirement.max_error_levels`` replaced (``phongfx compile --max-error``),
+    checked as the file's own value is."""
+    value = _max_error(_Reader("--max-error"), max_error_levels, "max_error_levels")
+    return dataclasses.replace(spec, requirement=dataclasses.replace(spec.requirement, max_error_levels=value))
 
 
 def load_scene(path):

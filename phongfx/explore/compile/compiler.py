@@ -42,9 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from phongfx.core.registry import get_block
 from phongfx.explore.methods import METHODS
-from phongfx.explore.synth import SynthError
 from phongfx.golden.blend import blend
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.reference import specular
@@ -52,10 +50,14 @@ from phongfx.golden.shader import shader_terms
 from phongfx.scene.geometry import frames, pixel_error, shade, terminator_lit
 
 from . import run as runs
-from .analysis import analyse
+from phongfx.explore.progress import Candidates
 
-__all__ = ["Compiled", "SceneEval", "COST_UNITS", "compile_scene", "check_methods", "width_params", "search_widths",
-           "cost"]
+from .analysis import analyse
+from .costing import COST_UNITS, TIE_MARGIN, costed, tie
+from .infeasible import hint, summary
+from .journal import Journal, scene_key
+
+__all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "widest", "search_widths"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -71,6 +73,8 @@ class Compiled:
     chosen: str = None                  # method name, None if nothing met the requirement
     results: dict = field(default_factory=dict)   # method -> search result dict
     rejected: dict = field(default_factory=dict)  # method -> reason
+    hint: dict = None                   # nothing feasible: infeasible.hint's way forward
+    tie: dict = None                    # the runner-up within TIE_MARGIN of the chosen cost
 
     @property
     def best(self):
@@ -79,13 +83,14 @@ class Compiled:
 
 def width_params(method, against="phong"):
     """``{name: (default, (lo, hi))}`` of the widths the search lowers; against ``"phong"``
-    Lyon's datapaths add the shape function's ``k`` (up to :data:`~phongfx.explore.compile.run.K_MAX`;
-    against ``"self"`` it stays at the default, as it defines the reference)."""
+    Lyon's datapaths add the shape function's ``k`` (its range up to
+    :data:`~phongfx.config.shape.K_MAX`; against ``"self"`` it stays at the default, as it
+    defines the reference)."""
     spec = METHODS[method]
     out = {k: (v, spec.ranges[k]) for k, v in spec.params.items() if k not in _FIXED}
     out.update(runs.EXTRA.get(method, {}))
     if against == "phong" and method in runs.DATAPATHS:
-        out["k"] = (spec.params["k"], (spec.ranges["k"][0], runs.K_MAX))
+        out["k"] = (spec.params["k"], spec.ranges["k"])
     return out
 
 
@@ -102,7 +107,7 @@ def _diffuse(g):
 class SceneEval:
     """The scene's renders (frames × shininess variants) and their Phong references."""
 
-    def __init__(self, spec, geometries=None):
+    def __init__(self, spec, geometries=None, journal=None):
         self.spec = spec
         self.geometries = frames(spec) if geometries is None else geometries
         if not any(len(g) for g in self.geometries):
@@ -113,9 +118,14 @@ class SceneEval:
         self.shininess_variants = []
         variants = self._variants()
         self.renders = [(g, n) for g in self.geometries for n in variants(g)]
+        #: per render, the index of its shininess variant (0 when every n is single)
+        self.variant_of = [i for g in self.geometries for i, _ in enumerate(variants(g))]
         #: per render, true Phong's (lights, P) specular terms (the diffuse is the same for all)
         self.reference = [self._phong(g, n) for g, n in self.renders]
-        self.cache = {}
+        #: ``journal``: a folder where measured points are kept for a rerun (:mod:`.journal`)
+        self.journal = None if journal is None else Journal(journal, scene_key(spec, self.geometries))
+        self.cache = {} if self.journal is None else self.journal.load()
+        self.resumed = len(self.cache)
 
     def _variants(self):
         """Per frame, the per-pixel n arrays of the shininess variants (module docstring)."""
@@ -171,6 +181,8 @@ class SceneEval:
         key = (method, tuple(sorted(params.items())))
         if key not in self.cache:
             self.cache[key] = self._error(method, params)
+            if self.journal is not None:
+                self.journal.add(key, self.cache[key])
         return self.cache[key]
 
     def _error(self, method, params):
@@ -180,11 +192,26 @@ class SceneEval:
         except (ValueError, OverflowError) as error:
             inf = float("inf")
             return {"max": inf, "mean": inf, "max_unrounded": inf, "why": str(error)}
-        e = np.concatenate([pixel_error(codes, ref, self.bits).ravel() for codes, ref in renders])
+        each = [pixel_error(codes, ref, self.bits).ravel() for codes, ref in renders]
+        e = np.concatenate(each)
         scale = (1 << self.bits) - 1
         raw = np.concatenate([np.abs(codes - ref * scale).ravel() for codes, ref in renders])
         return {"max": float(e.max(initial=0.0)), "mean": float(e.mean()) if e.size else 0.0,
-                "max_unrounded": float(raw.max(initial=0.0))}
+                "max_unrounded": float(raw.max(initial=0.0)),
+                "per_render": [float(r.max(initial=0.0)) for r in each]}
+
+    def form_error(self, method, params):
+        """Max over every render of ``|I_form - I_ref|·(2^bits - 1)``: how far the method's
+        own float form (at ``params``' ``k``) is from true Phong, before any rounding."""
+        config = runs.build(method, params, self.analysis)
+        scale, worst = (1 << self.bits) - 1, 0.0
+        for (g, n), ref in zip(self.renders, self.reference):
+            lit = terminator_lit(_cosines(g), None, self.bits)
+            own = runs.own_specular(method, config, params, g, n)
+            diff = _diffuse(g)
+            worst = max(worst, float(np.max(np.abs(shade(g, diff, own, lit) - shade(g, diff, ref, lit)),
+                                            initial=0.0)) * scale)
+        return worst
 
 
 def _passes(scene, method, params):
@@ -203,14 +230,28 @@ def _lowest(scene, method, params, name, lo):
     return good
 
 
+def widest(scene, method, widths):
+    """The fallback start: every width at its range maximum, and the shape function's ``k``
+    (when searched) at the value of its range with the lowest error there, since ``f_k`` is
+    Phong's power only where ``2^k = n`` (a larger k is not closer).  Returns the params
+    and ``{k: error}`` of the scan (empty without ``k``)."""
+    top = {k: r[1] for k, (_, r) in widths.items()}
+    if "k" not in widths:
+        return top, {}
+    lo, hi = widths["k"][1]
+    scan = {k: scene.error(method, {**top, "k": k}) for k in range(lo, hi + 1)}
+    return {**top, "k": min(scan, key=lambda k: (scan[k]["max"], scan[k]["mean"], k))}, scan
+
+
 def search_widths(scene, method, progress=None):
-    """The width search of the module docstring; returns a result dict."""
+    """The width search of the module docstring; returns a result dict (an infeasible
+    method's is :func:`~phongfx.explore.compile.infeasible.summary`)."""
     widths = width_params(method, scene.spec.requirement.against)
     default = {k: v for k, (v, _) in widths.items()}
-    start = default if _passes(scene, method, default) else {k: r[1] for k, (_, r) in widths.items()}
+    start, scan = (default, {}) if _passes(scene, method, default) else widest(scene, method, widths)
     result = {"method": method, "default": {"params": default, **scene.error(method, default)}}
     if not _passes(scene, method, start):
-        return {**result, "feasible": False, "params": start, **scene.error(method, start)}
+        return {**result, **summary(scene, method, start, scan)}
     params, changed = dict(start), True
     while changed:
         changed = False
@@ -237,41 +278,6 @@ def search_widths(scene, method, progress=None):
     return {**result, "feasible": True, "params": params, **scene.error(method, params), "proof": proof}
 
 
-#: Per target: the key of the compared cost and its unit.
-COST_UNITS = {"ecp5": ("lut_eq", "LUT-eq"), "ice40": ("lut_eq", "LUT-eq"), "asic": ("area_um2", "µm²")}
-
-
-def cost(method, config, synth=False, copies=1, *, target="ecp5", device=None, freq=150, seed=1):
-    """Cost of ``copies`` of ``method``'s block at ``config`` on ``target``: synthesis
-    (``synth``) or the tool-free proxy.  ``cost`` is the compared number for every copy
-    (LUT-eq on an FPGA, µm² on standard cells), also under its own key (``lut_eq`` or
-    ``area_um2``); the other keys are per copy, and ``target``, ``device``, ``freq``,
-    ``seed`` and ``model`` say what produced it."""
-    from phongfx.explore.asic import DEFAULT_LIBRARY
-
-    block = get_block(runs.block_name(method), config=config)
-    key, unit_name = COST_UNITS[target]
-    if target == "asic":
-        device = device or DEFAULT_LIBRARY
-    where = {"target": target, "device": device, "freq": freq if synth else None,
-             "seed": seed if synth and target != "asic" else None,
-             "model": f"{target}-synth" if synth else f"{target}-proxy", "unit": unit_name}
-    if not synth:
-        from phongfx.explore.cost_proxy import proxy_estimate
-        unit = proxy_estimate(block, target, device)
-    else:
-        from phongfx.explore.synth import synth as run_synth
-        result = run_synth(block.name, config=config, target=target, device=device, freq=freq, seed=seed)
-        if target == "asic":
-            keys = ("area_um2", "cell_count", "ff", "fmax_mhz", "latency", "critical_path")
-            unit = {k: result[k] for k in keys}
-        else:
-            keys = ("lut4", "ff", "carry", "dsp", "bram_bits", "fmax_mhz", "latency")
-            unit = {"lut_eq": result["lut4"] + 958 * result["dsp"], **{k: result[k] for k in keys}}
-    total = copies * unit[key]
-    return {**unit, key: total, "cost": total, "copies": copies, **where}
-
-
 def check_methods(methods):
     """``methods`` as a list (all of :data:`~phongfx.explore.methods.METHODS` for None), each checked."""
     names = list(METHODS) if methods is None else list(methods)
@@ -281,8 +287,8 @@ def check_methods(methods):
     return names
 
 
-def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, progress=None,
-                  geometries=None):
+def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, seed=1,
+                  progress=None, geometries=None, journal=None):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
     Parameters
@@ -291,42 +297,48 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         Keys of :data:`~phongfx.explore.methods.METHODS` to consider (default all).
     synth : bool
         Cost by synthesis instead of the proxy.
-    target, device, freq : str, str, float
+    target, device, freq, seed : str, str, float, int
         What the cost is measured on: ``"ecp5"`` (LUT-eq), ``"ice40"`` or ``"asic"``
-        (µm²; ``device`` the library, default ``osu018``), and the clock given to the tools.
+        (µm²; ``device`` the library, default ``osu018``), the clock given to the tools
+        and nextpnr's placement seed.
     progress : callable, optional
-        Called with a short description of each step.
+        Called with a short description of each step; each synthesis as "synthesizing
+        candidate i of N (method, widths) T s" and its flow's stages.
+    journal : path, optional
+        A folder where every measured width point is kept, so that a rerun of the same
+        scene (and code) skips them (:mod:`phongfx.explore.compile.journal`).
 
     Returns
     -------
     Compiled
     """
     names = check_methods(methods)
-    scene = SceneEval(spec, geometries)
     if target not in COST_UNITS:
         raise ValueError(f"target must be one of {', '.join(COST_UNITS)}, not {target!r}")
+    scene = SceneEval(spec, geometries, journal=journal)
     out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy")
     for name in names:
         reason = runs.rejection(name, spec, scene.analysis, scene.geometries)
         if reason:
             out.rejected[name] = reason
             continue
-        result = search_widths(scene, name, progress)
-        # the default widths are costed always (the manifest's "saved against the defaults"),
-        # the searched ones only when they meet the requirement
-        for where in (result["default"], result) if result["feasible"] else (result["default"],):
-            try:
-                # the shader holds every copy of the unit and the blend: one design to cost
-                where["cost"] = cost(name, runs.build(name, where["params"], scene.analysis), synth,
-                                     1, target=target, device=device,
-                                     freq=freq)
-            except (ValueError, SynthError) as error:  # a tool failure costs that design only
-                where["cost"] = {"cost": None, "why": str(error).splitlines()[0]}
-        out.results[name] = result
+        out.results[name] = search_widths(scene, name, progress)
         if progress:
-            progress(f"{name} done")
+            progress(f"{name} searched")
+    # the default widths are costed always (the manifest's "saved against the defaults"),
+    # the searched ones only when they meet the requirement; an infeasible method's
+    # defaults by the proxy only, since its synthesis (minutes) cannot change the choice
+    designs = [(name, where, synth and r["feasible"]) for name, r in out.results.items()
+               for where in ((r["default"], r) if r["feasible"] else (r["default"],))]
+    steps = Candidates(sum(by_synth for *_, by_synth in designs), progress or (lambda text: None))
+    for name, where, by_synth in designs:
+        stage = steps.next(name, where["params"]) if by_synth else None
+        where["cost"] = costed(name, runs.build(name, where["params"], scene.analysis), by_synth,
+                               target=target, device=device, freq=freq, seed=seed, progress=stage)
     feasible = [r for r in out.results.values() if r["feasible"]]
     if feasible:  # an uncosted design (its synthesis failed) is chosen only if nothing else meets it
-        out.chosen = min(feasible, key=lambda r: (r["cost"]["cost"] is None,
-                                                  r["cost"]["cost"] or 0))["method"]
+        ranked = sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
+        out.chosen = ranked[0]["method"]
+        out.tie = tie(ranked, TIE_MARGIN)
+    out.hint = hint(out)
     return out

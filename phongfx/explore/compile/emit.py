@@ -94,6 +94,11 @@ def _baseline(compiled, method):
     return {"why_not": compiled.rejected.get(method, "not among the methods considered")}
 
 
+#: What the manifest keeps of each method's search result (an infeasible one adds its
+#: best point's reasons: :func:`phongfx.explore.compile.infeasible.summary`).
+_METHOD_KEYS = ("feasible", "params", "max", "mean", "cost", "default", "widest", "why", "k_scan")
+
+
 def manifest(compiled, module=None, instances=None, check=None):
     """The manifest dict (module docstring of :mod:`phongfx.explore.compile.emit`)."""
     spec, best = compiled.spec, compiled.best
@@ -102,11 +107,13 @@ def manifest(compiled, module=None, instances=None, check=None):
                            "against": spec.requirement.against},
            "analysis": compiled.analysis.as_dict(), "cost_model": compiled.cost_model,
            "evaluation": {"frames": len(compiled.scene.geometries), "renders": len(compiled.scene.renders),
-                          "shininess_variants": compiled.scene.shininess_variants},
-           "chosen": compiled.chosen,
+                          "shininess_variants": compiled.scene.shininess_variants,
+                          "points_measured": len(compiled.scene.cache),
+                          "points_resumed": compiled.scene.resumed,
+                          "journal": compiled.scene.journal and compiled.scene.journal.path},
+           "chosen": compiled.chosen, "tie": compiled.tie, "hint": compiled.hint,
            "rejected": dict(compiled.rejected),
-           "methods": {name: {k: r.get(k) for k in ("feasible", "params", "max", "mean", "cost", "default")}
-                       for name, r in compiled.results.items()},
+           "methods": {name: {k: r[k] for k in _METHOD_KEYS if k in r} for name, r in compiled.results.items()},
            "conventional_baseline": _baseline(compiled, "conventional"),
            "blinn_baseline": _baseline(compiled, "blinn")}
     if best is not None:

@@ -42,7 +42,7 @@ from phongfx.scene.mesh import unit
 from phongfx.scene.span_inputs import VIEWER, blinn_codes, conventional_codes, spherical_inputs
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["DATAPATHS", "EXTRA", "K_MAX", "COEF_DEFAULT", "rejection", "unit_config", "build", "frame_inputs",
+__all__ = ["DATAPATHS", "EXTRA", "COEF_DEFAULT", "rejection", "unit_config", "build", "frame_inputs",
            "visible", "frame_codes", "own_specular", "block_name", "copies"]
 
 #: Methods built as a :class:`~phongfx.config.DatapathConfig`.
@@ -54,9 +54,6 @@ COEF_DEFAULT = 8
 #: the normalizers' order (g1 = 1, g2 = 2; Lyon's datapaths).
 EXTRA = {name: {"coef": (COEF_DEFAULT, (0, 16)), **({"order": (2, (1, 2))} if name in DATAPATHS else {})}
          for name in METHODS}
-#: Largest shape-function ``k`` (:class:`~phongfx.config.ShapeConfig`): against true Phong
-#: the compiler searches ``k`` too, since ``f_k(n·D²/2)`` is ``(R·L)^n`` exactly at ``2^k = n``.
-K_MAX = 4
 _BLINN = ("blinn", "spherical")
 #: The units fed the visible pixels only, each with its own vectors (one stream per light).
 _PER_PIXEL = ("blinn", "conventional")
@@ -107,13 +104,9 @@ def unit_config(method, params, analysis, light=None):
     ``n``.  ``light``: the light of a copy of a one-light unit (its L local or not)."""
     spec = METHODS[method]
     own = {k: v for k, v in params.items() if k in spec.params}
-    k = own.pop("k", None)
     if method in DATAPATHS:
         own["lights"] = analysis.lights
     config = spec.build(spec.resolve(own))
-    if k is not None:  # past the sweep's range: the shape function takes k up to 4
-        config = (config.replace(root=config.root.replace(k=k)) if method == "fig8"
-                  else config.replace(shape=config.shape.replace(k=k)))
     if method not in DATAPATHS:
         if method in _PER_PIXEL:
             top = _n_hi(analysis, method)

@@ -278,7 +278,7 @@ def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
     monkeypatch.setattr(synth_module, "synth", broken)
     compiled = compile_scene(_torus(), methods=["fig7"], synth=True)
     assert compiled.chosen == "fig7" and compiled.cost_model == "ecp5-synth"
-    assert compiled.best["cost"] == {"cost": None, "why": "Yosys did not finish (exit code 1); log x:"}
+    assert compiled.best["cost"] == {"cost": None, "why": "Yosys did not finish (exit code 1)", "log": "x"}
 
 
 def test_the_conventional_unit_meets_phong_where_blinn_cannot():

@@ -1,0 +1,80 @@
+"""Costing a compiled design: a close margin is a tie, a tool failure names its log, a
+synthesized cost carries its part, seed and utilisation, and synthesis says where it is."""
+
+import pytest
+
+from phongfx.explore.compile.compiler import compile_scene
+from phongfx.explore.compile.costing import TIE_MARGIN, costed, tie, utilisation
+from phongfx.explore.compile.run import build
+from phongfx.scene.file import parse_scene
+
+TORUS = """
+name = "tiny"
+[[lights]]
+direction = [1, 1, 1]
+[materials.shiny]
+kd = 0.6
+ks = 0.4
+n = 16
+[[objects]]
+type = "torus"
+material = "shiny"
+polygons = 72
+[output]
+width = 24
+height = 24
+"""
+
+
+def _result(method, value, max_error=1.0, mean=0.1):
+    return {"method": method, "cost": {"cost": value, "model": "ecp5-synth"}, "max": max_error, "mean": mean}
+
+
+def test_a_margin_below_the_model_resolution_is_a_tie():
+    found = tie([_result("fig7", 1000), _result("fig8", 1001.5, 0.0, 0.05)])
+    assert found["chosen"] == "fig7" and found["runner_up"] == "fig8"
+    assert found["margin"] == pytest.approx(0.0015) and found["within"] == TIE_MARGIN
+    assert "0.15% apart" in found["decided_by"] and found["runner_up_max"] == 0.0
+    assert tie([_result("fig7", 1000), _result("fig8", 1000 * (1 + TIE_MARGIN) + 1)]) is None
+    assert tie([_result("fig7", 1000)]) is None and tie([_result("a", 1), _result("b", None)]) is None
+
+
+def test_a_failed_synthesis_names_its_log_without_a_dangling_colon(monkeypatch):
+    import phongfx.explore.synth as synth_module
+
+    def broken(name, **options):
+        raise synth_module.SynthError("nextpnr failed (exit code 1); log build/x/nextpnr.log:\nERROR: ...")
+    monkeypatch.setattr(synth_module, "synth", broken)
+    scene = compile_scene(parse_scene(TORUS, name="tiny"), methods=["fig7"]).scene
+    got = costed("fig7", build("fig7", {"k": 4}, scene.analysis), True)
+    assert got == {"cost": None, "why": "nextpnr failed (exit code 1)", "log": "build/x/nextpnr.log"}
+
+
+def test_utilisation_is_a_share_of_the_device():
+    assert utilisation({"TRELLIS_COMB": [1200, 24288], "MULT18X18D": [28, 28]}) == {
+        "TRELLIS_COMB": {"used": 1200, "available": 24288, "percent": 4.94},
+        "MULT18X18D": {"used": 28, "available": 28, "percent": 100.0}}
+
+
+def test_synthesis_reports_each_candidate_and_the_manifest_keys(monkeypatch):
+    import phongfx.explore.synth as synth_module
+    seen = []
+
+    def fake(name, *, config=None, progress=None, seed=1, **options):
+        progress("yosys")
+        seen.append(seed)
+        return {"lut4": 500, "ff": 1, "carry": 1, "dsp": 2, "bram_bits": 0, "fmax_mhz": 80.0, "latency": 9,
+                "part": "LFE5U-25F", "placed": {"MULT18X18D": [2, 28]}}
+    monkeypatch.setattr(synth_module, "synth", fake)
+    lines = []
+    compiled = compile_scene(parse_scene(TORUS, name="tiny"), methods=["fig7", "conventional"], synth=True,
+                             seed=3, progress=lines.append)
+    synth_lines = [line for line in lines if line.startswith("synthesizing")]
+    assert synth_lines[0].startswith("synthesizing candidate 1 of 4 (fig7, vec_frac=")
+    assert synth_lines[1].startswith("synthesizing candidate 1 of 4 (fig7,") and ": yosys" in synth_lines[1]
+    assert synth_lines[-1].startswith("synthesizing candidate 4 of 4 (conventional,") and seen == [3] * 4
+    cost = compiled.best["cost"]
+    assert cost["part"] == "LFE5U-25F" and cost["seed"] == 3 and cost["freq"] == 150
+    assert cost["utilisation"]["MULT18X18D"]["percent"] == pytest.approx(7.14)
+    # the same fake cost for both: a tie, flagged
+    assert compiled.tie["runner_up"] in ("fig7", "conventional") and compiled.tie["margin"] == 0

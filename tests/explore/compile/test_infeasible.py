@@ -1,0 +1,95 @@
+"""When a scene is infeasible: k past the old cap, the best point and why, a computed hint,
+no synthesis of a method that cannot be chosen."""
+
+import json
+
+import pytest
+
+from phongfx.cli import main
+from phongfx.explore.compile.compiler import compile_scene
+from phongfx.scene.file import parse_scene
+
+SPHERE = """
+name = "wide"
+[[lights]]
+direction = [1, 1, 1]
+[materials.clay]
+kd = 0.7
+ks = 0.3
+n = {n}
+[[objects]]
+type = "sphere"
+material = "clay"
+[output]
+width = 24
+height = 24
+[requirement]
+max_error_levels = 1.0
+"""
+
+
+def _scene(n, size=24):
+    return parse_scene(SPHERE.format(n=n).replace("24", str(size)), name="wide")
+
+
+def test_a_high_shininess_gets_a_k_past_four():
+    # n = 1000 wants 2^k near n: at k = 4 (the old cap) even the widest formats miss
+    compiled = compile_scene(_scene(1000, size=48), methods=["fig7"])
+    assert compiled.chosen == "fig7" and compiled.best["params"]["k"] >= 5 and compiled.best["max"] <= 1
+    widest = {**compiled.best["params"], "vec_frac": 16, "x2_frac": 20, "shape_t_frac": 24, "coef": 16,
+              "order": 2, "k": 4}
+    assert compiled.scene.error("fig7", widest)["max"] > 1
+
+
+@pytest.fixture(scope="module")
+def wide():
+    return compile_scene(_scene("[4, 128]"), methods=["fig7"])
+
+
+def test_an_infeasible_method_reports_its_best_point_and_why(wide):
+    result = wide.results["fig7"]
+    assert not result["feasible"]
+    measured = [e["max"] for (method, _), e in wide.scene.cache.items() if method == "fig7"]
+    assert result["max"] == min(measured) and result["max"] <= result["widest"]["max"]
+    assert result["max"] <= result["default"]["max"]
+    assert wide.scene.error("fig7", result["params"])["max"] == result["max"]
+    assert list(result["k_scan"]) == list(range(0, 11))
+    why = " ".join(result["why"])
+    assert "its own float form is itself" in why and "scanned over 0..10" in why
+
+
+def test_a_shininess_range_no_k_serves_gets_a_computed_split(wide):
+    hint = wide.hint
+    assert hint["best"]["method"] == "fig7" and hint["best"]["max"] == wide.results["fig7"]["max"]
+    assert hint["command"].endswith(f"--max-error {int(-(-hint['best']['max'] // 1))}")
+    split = hint["split"]
+    (low, high), = split["ranges"].values()
+    assert low[0] == 4 and high[1] == 128 and low[1] + 1 == high[0]
+    k_low, k_high = split["k"]
+    scan = wide.results["fig7"]["k_scan"]
+    # each part is met at its samples by its own k, and no one k meets them all
+    cut = next(i for i, s in enumerate(wide.scene.shininess_variants) if s["clay"] >= high[0])
+    assert all(e <= 1 for e in scan[k_low]["per_variant"][:cut])
+    assert all(e <= 1 for e in scan[k_high]["per_variant"][cut:])
+    assert not any(all(e <= 1 for e in s["per_variant"]) for s in scan.values())
+
+
+def test_the_cli_prints_the_hint_and_the_relaxed_requirement_is_met(tmp_path, capsys):
+    path = tmp_path / "wide.toml"
+    path.write_text(SPHERE.format(n="[4, 128]"))
+    out = tmp_path / "out"
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--quiet", "--no-check"]) == 1
+    err = capsys.readouterr().err
+    hint = json.loads((out / "manifest.json").read_text())["hint"]
+    assert f"phongfx: hint: {hint['text'][0]}" in err and "split it into two materials" in err
+    levels = hint["command"].rpartition(" ")[2]
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--quiet", "--no-check",
+                 "--max-error", levels]) == 0
+
+
+def test_an_infeasible_method_is_not_synthesized(monkeypatch):
+    import phongfx.explore.synth as synth_module
+    calls = []
+    monkeypatch.setattr(synth_module, "synth", lambda *a, **k: calls.append(a) or {})
+    compiled = compile_scene(_scene("[4, 128]"), methods=["fig7"], synth=True)
+    assert calls == [] and compiled.results["fig7"]["default"]["cost"]["model"] == "ecp5-proxy"
