@@ -106,32 +106,69 @@ def markdown(table):
     return "\n".join(lines) + "\n"
 
 
-def _write(out_dir, scene, rows, table):
+def _pyplot():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    return plt
 
+
+def _save(fig, path):
+    fig.tight_layout()
+    atomic_write(path, lambda p: fig.savefig(p, dpi=90, format="png"))
+    _pyplot().close(fig)
+
+
+def _pictures(out_dir, rows):
+    """``figure9.png``: every row, float then fixed point, grey as Lyon printed it."""
+    plt = _pyplot()
     columns = 1 + max(len(row["fixed"]) for row in rows)
-    for kind, title in (("figure9", "Lyon's Figure 9: float (left), fixed point through the datapaths"),
-                        ("figure9_diff", "|fixed − float| of the picture × 32 (black: equal, brightest: ≥ 8 levels; float-only rows blank)")):
-        fig, axes = plt.subplots(len(rows), columns, figsize=(5.2 * columns, 1.9 * len(rows)))
-        for r, row in enumerate(rows):
-            panels = [("float " + row["method"], row["float"])] if kind == "figure9" else [(row["method"], None)]
-            panels += [(f["label"], f["image"] if kind == "figure9" else np.abs(f["image"] - row["float"]) * 32)
-                       for f in row["fixed"]]
-            for c in range(columns):
-                ax = axes[r, c]
-                ax.axis("off")
-                if c < len(panels) and panels[c][1] is not None:
-                    ax.imshow(panels[c][1], cmap="gray" if kind == "figure9" else "inferno",
-                              vmin=0, vmax=255, interpolation="nearest")
-                    ax.set_title(f"{r + 1}. {panels[c][0]}", fontsize=8)
-                elif c == 0:
-                    ax.set_title(f"{r + 1}. {panels[0][0]} (float only)", fontsize=8)
-        fig.suptitle(title)
-        fig.tight_layout()
-        atomic_write(os.path.join(out_dir, f"{kind}.png"), lambda p: fig.savefig(p, dpi=90, format="png"))
-        plt.close(fig)
+    fig, axes = plt.subplots(len(rows), columns, figsize=(5.2 * columns, 1.9 * len(rows)))
+    for r, row in enumerate(rows):
+        panels = [("float " + row["method"], row["float"])] + [(f["label"], f["image"]) for f in row["fixed"]]
+        for c in range(columns):
+            ax = axes[r, c]
+            ax.axis("off")
+            if c < len(panels):
+                ax.imshow(panels[c][1], cmap="gray", vmin=0, vmax=255, interpolation="nearest")
+                ax.set_title(f"{r + 1}. {panels[c][0]}", fontsize=8)
+    fig.suptitle("Lyon's Figure 9: float (left), fixed point through the datapaths")
+    _save(fig, os.path.join(out_dir, "figure9.png"))
+
+
+def _differences(out_dir, rows):
+    """``figure9_diff.png``: ``|fixed − float|`` of the picture for the rows that have a
+    datapath, in 8-bit levels on one colour scale up to the largest difference (a fixed
+    ×32 gain left most of it black), square-root, so that the common one-level differences
+    show beside a rare large one; with its colour bar.  Returns that largest difference."""
+    from matplotlib.colors import PowerNorm
+    plt = _pyplot()
+    shown = [(r, row, fixed) for r, row in enumerate(rows) for fixed in row["fixed"]]
+    diffs = [np.abs(fixed["image"] - row["float"]) for _, row, fixed in shown]
+    top = max(1.0, max(float(d.max()) for d in diffs))
+    columns = max(len(row["fixed"]) for row in rows)
+    fixed_rows = [r for r, row in enumerate(rows) if row["fixed"]]
+    fig, axes = plt.subplots(len(fixed_rows), columns, figsize=(5.6 * columns, 1.9 * len(fixed_rows)),
+                             squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    image = None
+    for (r, row, fixed), diff in zip(shown, diffs):
+        ax = axes[fixed_rows.index(r), row["fixed"].index(fixed)]
+        image = ax.imshow(diff, cmap="inferno", norm=PowerNorm(0.5, vmin=0, vmax=top), interpolation="nearest")
+        ax.set_title(f"{r + 1}. {fixed['label']} vs float {row['method']}: max {diff.max():.1f} levels",
+                     fontsize=8)
+    fig.suptitle(f"|fixed − float| of the picture in 8-bit levels (black: equal; square-root colour "
+                 f"scale 0–{top:.1f}, the largest difference; rows without a datapath left out)", fontsize=10)
+    fig.colorbar(image, ax=axes, fraction=0.03, label="8-bit levels")
+    atomic_write(os.path.join(out_dir, "figure9_diff.png"), lambda p: fig.savefig(p, dpi=90, format="png"))
+    plt.close(fig)
+    return top
+
+
+def _write(out_dir, scene, rows, table):
+    _pictures(out_dir, rows)
+    table["diff_scale_levels"] = round(_differences(out_dir, rows), 3)
     atomic_write(os.path.join(out_dir, "figure9.json"),
                  lambda p: open(p, "w").write(json.dumps(table, indent=2) + "\n"))
     atomic_write(os.path.join(out_dir, "figure9.md"), lambda p: open(p, "w").write(markdown(table)))

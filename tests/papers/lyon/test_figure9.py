@@ -2,6 +2,7 @@ import json
 import math
 
 import numpy as np
+from PIL import Image
 
 from phongfx.papers.lyon.figure9 import FIXED_ROWS, float_rows, run
 from phongfx.render.lyon import composite
@@ -59,6 +60,11 @@ def test_small_figure_is_checked_through_the_rtl(tmp_path):
     assert written["rtl_pixels_checked"] == table["rtl_pixels_checked"]
     for name in ("figure9.png", "figure9_diff.png"):
         assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the difference picture is scaled to its largest difference, which its colour bar shows
+    assert written["diff_scale_levels"] == table["diff_scale_levels"] >= 1
+    picture = np.asarray(Image.open(tmp_path / "figure9_diff.png").convert("RGB"))
+    bar = picture[:, int(picture.shape[1] * 0.85):].reshape(-1, 3)
+    assert len(np.unique(bar, axis=0)) > 50
     md = (tmp_path / "figure9.md").read_text()
     assert "| 4 | lyon-k2 | Figure 7, k = 2 |" in md and "| 1 | phong | (float only) |" in md
     # each fixed row tracks its own float method far better than it tracks Phong
