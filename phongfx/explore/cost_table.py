@@ -23,6 +23,7 @@ import sys
 
 from phongfx.config import DifferenceConfig, RootConfig
 
+from .progress import Candidates
 from .report import DSP_LUT_WEIGHT, lut_equivalent
 from .synth import SynthError, synth
 
@@ -66,12 +67,13 @@ def cost_of(row):
     return row["area_um2"] if "area_um2" in row else row["lut_eq"]
 
 
-def _synthesize(block, target, device, freq, workdir, index, total):
-    where = f"{target}{' ' + device if device else ''}"
-    print(f"cost: synthesizing block {index} of {total}: {block} ({where}, {freq:g} MHz; cached runs are "
-          f"instant)", file=sys.stderr)
+def _to_stderr(text):
+    print(f"cost: {text}", file=sys.stderr, flush=True)
+
+
+def _synthesize(block, target, device, freq, workdir, stage):
     try:
-        result = synth(block, target=target, device=device, freq=freq, workdir=workdir)
+        result = synth(block, target=target, device=device, freq=freq, workdir=workdir, progress=stage)
     except SynthError as error:
         return {"block": block, "what": WHAT.get(block, block), "error": str(error).splitlines()[0]}
     keys = _ASIC_KEYS if target == "asic" else _KEYS
@@ -107,17 +109,22 @@ def _accuracy(methods, n):
     return result
 
 
-def cost_table(blocks=BLOCKS, *, target="ecp5", device=None, freq=150, n=N, workdir="build/synth"):
+def cost_table(blocks=BLOCKS, *, target="ecp5", device=None, freq=150, n=N, workdir="build/synth",
+               progress=None):
     """Rows of synthesis results for ``blocks`` plus ``difference+shape``; accuracy of the
     whole datapaths and the Phong baseline.  ``target`` ``"asic"`` with ``device`` a
     library (``osu018``, ``osu035``) prices in µm² instead of LUT-eq.
 
-    A block whose synthesis fails gets a row with ``error`` instead of numbers.
+    A block whose synthesis fails gets a row with ``error`` instead of numbers.  Each block
+    takes up to minutes, so ``progress(text)`` (default: a ``cost:`` line on stderr) hears
+    "synthesizing candidate i of N (block) T s" and the flow's stages
+    (:class:`~phongfx.explore.progress.Candidates`).
     """
     unknown = [b for b in blocks if b not in BLOCKS]
     if unknown:
         raise ValueError(f"blocks must be among {', '.join(BLOCKS)}, not {unknown[0]!r}")
-    rows = {b: _synthesize(b, target, device, freq, workdir, i + 1, len(blocks)) for i, b in enumerate(blocks)}
+    steps = Candidates(len(blocks), progress or _to_stderr)
+    rows = {b: _synthesize(b, target, device, freq, workdir, steps.next(b)) for b in blocks}
     if all(b in rows and "error" not in rows[b] for b in ("difference", "shape")):
         rows["difference+shape"] = _combined(rows["difference"], rows["shape"], "difference+shape",
                                              "Figure 7c + 7d in series")
@@ -131,7 +138,7 @@ def cost_table(blocks=BLOCKS, *, target="ecp5", device=None, freq=150, n=N, work
 
 def run_table(name, out_dir=None, blocks=BLOCKS, **options):
     """The table called ``name`` (``"cost"``); nothing is written to ``out_dir``.  ``options``
-    go to :func:`cost_table` (``target``, ``device``, ``freq``, ``n``, ``workdir``)."""
+    go to :func:`cost_table` (``target``, ``device``, ``freq``, ``n``, ``workdir``, ``progress``)."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
     return cost_table(blocks, **options)

@@ -17,9 +17,12 @@ Deterministic: synthesis runs with fixed placement seeds and is cached on disk.
 
 import json
 import os
+import sys
 
 from phongfx.config import MAX_PIPELINE
 from phongfx.core.registry import get_block
+
+from .progress import Candidates
 
 __all__ = ["TABLES", "NAMES", "DEPTHS", "SEEDS", "FREQ", "pipeline_rows", "run_table", "markdown",
            "to_json", "plot"]
@@ -43,6 +46,10 @@ _KEYS = ("fmax_mhz", "lut4", "ff", "dsp", "latency", "critical_path")
 _ASIC_KEYS = ("fmax_mhz", "area_um2", "ff", "latency", "critical_path")
 
 
+def _to_stderr(text):
+    print(f"pipeline: {text}", file=sys.stderr, flush=True)
+
+
 def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", device=None, freq=FREQ, seeds=SEEDS,
                   workdir="build/synth", progress=None):
     """Rows ``{name, depth, fmax_mhz, fmax_seeds, lut4, ff, dsp, latency, critical_path,
@@ -50,22 +57,27 @@ def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", device=None, fre
     standard-cell flow has no placement seed), one per (name, depth), from
     :func:`phongfx.explore.synth.synth`: ``fmax_mhz`` is the median over ``seeds``, the
     other values those of the median run; on an FPGA, ``fmax_bound_mhz`` also caps it
-    where nextpnr leaves a DSP's internal multiply untimed (``dsp_untimed`` DSPs)."""
+    where nextpnr leaves a DSP's internal multiply untimed (``dsp_untimed`` DSPs).
+
+    Every run takes up to minutes, so ``progress(text)`` (default: a ``pipeline:`` line on
+    stderr) hears "synthesizing candidate i of N (name, pipeline=d seed=s) T s" and the
+    flow's stages (:class:`~phongfx.explore.progress.Candidates`)."""
     from . import synth as synth_module
 
     rows = []
     asic = target == "asic"
     keys = _ASIC_KEYS if asic else _KEYS
+    runs = (1,) if asic else tuple(seeds)
+    steps = Candidates(len(names) * len(depths) * len(runs), progress or _to_stderr)
     for name in names:
         for depth in depths:
             config = get_block(name, pipeline=depth).config
             results = []
-            for seed in (1,) if asic else seeds:
-                if progress is not None:
-                    progress(name, depth, seed)
+            for seed in runs:
                 options = {} if asic else {"seed": seed}
+                stage = steps.next(name, {"pipeline": depth, **options})
                 results.append(synth_module.synth(name, config=config, target=target, device=device,
-                                                  freq=freq, workdir=workdir, **options))
+                                                  freq=freq, workdir=workdir, progress=stage, **options))
             ranked = sorted(results, key=lambda result: result["fmax_mhz"])
             median = ranked[(len(ranked) - 1) // 2]
             row = {"name": name, "depth": depth, **{key: median[key] for key in keys}}
@@ -78,13 +90,13 @@ def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", device=None, fre
     return rows
 
 
-def run_table(name, out_dir=None, target="ecp5", device=None):
+def run_table(name, out_dir=None, target="ecp5", device=None, progress=None):
     """The table called ``name`` (:data:`TABLES`) on ``target`` (``device``: the FPGA part or
     the standard-cell library); writes ``pipeline_fmax.png`` into ``out_dir`` when given
     (its path is the result's ``plot``)."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
-    rows = pipeline_rows(target=target, device=device)
+    rows = pipeline_rows(target=target, device=device, progress=progress)
     result = {"source": "Fmax against pipeline depth: pipelining to a target frequency",
               "target": target, "device": device, "freq": FREQ,
               "seeds": [1] if target == "asic" else list(SEEDS), "rows": rows, "plot": None}

@@ -11,7 +11,9 @@ FAKE = {"difference": (150, 5, 90.0, 4), "shape": (20, 2, 110.0, 3), "root": (16
         "fig7": (1000, 39, 45.0, 17), "fig8": (1100, 39, 46.0, 15)}
 
 
-def fake_synth(name, *, target, freq, workdir, **kwargs):
+def fake_synth(name, *, target, freq, workdir, progress=None, **kwargs):
+    for stage in ("yosys", "nextpnr") if progress else ():
+        progress(stage)
     if name == "blinn":
         raise SynthError("design does not fit on LFE5U-45F: needs MULT18X18D 80/72\nlog tail")
     lut, dsp, fmax, latency = FAKE[name]
@@ -26,6 +28,15 @@ def fake(monkeypatch):
 
 def row(text, block):
     return next(line for line in text.splitlines() if line.startswith(f"| {block} |"))
+
+
+def test_progress_names_each_candidate_and_its_stages_in_order(fake, capsys):
+    import re
+    cost_table.run_table("cost", blocks=("difference", "shape", "blinn"))  # blinn fails: still counted
+    lines = [re.sub(r" \d+ s$", "", line) for line in capsys.readouterr().err.splitlines()]
+    assert lines == [f"cost: synthesizing candidate {i} of 3 ({block}){stage}"
+                     for i, block in enumerate(("difference", "shape", "blinn"), 1)
+                     for stage in ("", ": yosys", ": nextpnr")]
 
 
 def test_side_by_side_with_claim(fake):

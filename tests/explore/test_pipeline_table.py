@@ -15,8 +15,10 @@ def _fake_synth(calls):
     higher, seed 1 MHz below and seed 3 5 MHz above seed 2, latency from the config as the
     real one reports it, the DSPs' internal multiply untimed from depth 1."""
 
-    def fake(name, *, config, target, freq, workdir, device=None, seed=1):
+    def fake(name, *, config, target, freq, workdir, device=None, seed=1, progress=None):
         calls.append((name, config.pipeline, target, freq, seed))
+        if progress is not None:
+            progress("yosys")
         fmax = 30.0 + 35 * config.pipeline + (40 if name == "normalize" else 0) + {1: -1, 2: 0, 3: 5}[seed]
         return {"fmax_mhz": fmax, "lut4": 1000 - 10 * config.pipeline + seed, "ff": 2000 + 500 * config.pipeline,
                 "dsp": 39, "latency": get_block(name, config=config).latency,
@@ -32,6 +34,18 @@ def fake(monkeypatch):
     calls = []
     monkeypatch.setattr(synth, "synth", _fake_synth(calls))
     return calls
+
+
+def test_progress_counts_every_run_and_passes_the_stages_through(fake):
+    lines = []
+    pipeline_rows(names=("fig7", "fig8"), depths=(0, 3), seeds=(1, 2), progress=lines.append)
+    assert [re.sub(r" \d+ s$", "", line) for line in lines[:4]] == [
+        "synthesizing candidate 1 of 8 (fig7, pipeline=0 seed=1)",
+        "synthesizing candidate 1 of 8 (fig7, pipeline=0 seed=1): yosys",
+        "synthesizing candidate 2 of 8 (fig7, pipeline=0 seed=2)",
+        "synthesizing candidate 2 of 8 (fig7, pipeline=0 seed=2): yosys"]
+    assert re.sub(r" \d+ s$", "", lines[-2]) == "synthesizing candidate 8 of 8 (fig8, pipeline=3 seed=2)"
+    assert len(lines) == 16
 
 
 def test_rows_cover_every_name_and_depth_and_take_the_median_seed(fake):

@@ -214,3 +214,21 @@ def test_standard_cell_records_are_compared_in_square_microns(tmp_path):
     front = pareto_plot(records, tmp_path / "p.png")
     assert ids(front["area_um2"]) == ["B"]  # the front over synthesized points only
     assert front["plotted"] == 3 and (tmp_path / "p.png").read_bytes().startswith(PNG)
+
+
+def test_build_report_shows_the_synthesis_progress_of_its_tables(tmp_path, monkeypatch, capsys):
+    # `phongfx report` synthesizes for minutes: every candidate is named, counted and timed
+    import re
+
+    from phongfx.explore import cost_table
+
+    def fake(name, *, target, freq, workdir, progress=None, **kwargs):
+        progress("yosys")
+        return {"lut4": 10, "ff": 20, "carry": 1, "dsp": 1, "bram_bits": 0, "fmax_mhz": 99.0, "met": False,
+                "pixels_per_second": 99e6, "latency": 3, "cached": True}
+
+    monkeypatch.setattr(cost_table, "synth", fake)
+    build_report(out_dir=tmp_path / "r", sweep_dir=tmp_path / "none", tables=("cost",), quick=True)
+    lines = [re.sub(r" \d+ s$", "", line) for line in capsys.readouterr().err.splitlines()]
+    assert lines == [f"cost: synthesizing candidate {i} of 3 ({block}){stage}"
+                     for i, block in enumerate(("difference", "shape", "root"), 1) for stage in ("", ": yosys")]
