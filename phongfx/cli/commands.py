@@ -151,13 +151,48 @@ def exit_on_mismatch(count, where=""):
     return 0
 
 
+#: Defaults of ``render``'s own options, which are None when not given so that a target
+#: (``mesh``, ``frames``) can tell an option it takes from one it would silently ignore.
+RENDER_DEFAULTS = {"backend": "verilator-fast", "radius": 64, "span": 8, "out": "build/sim"}
+#: ``render``'s options that mean nothing to a target, and what they do apply to.
+_SCENE_ONLY = {"radius": "Lyon's scene", "span": "Lyon's scene", "set": "Lyon's scene",
+               "backend": "Lyon's scene and frames (mesh runs no RTL)"}
+
+
+def _target_option(args, name, own, default):
+    """A target's option ``own`` (``mesh_out`` ...): its own value, else ``render``'s ``name``,
+    else ``default``; given both ways and different, an error naming both."""
+    mine, outer = getattr(args, own), getattr(args, name)
+    if mine is not None and outer is not None and mine != outer:
+        raise ValueError(f"render --{name} {outer} and render {args.target} --{name} {mine} disagree; give one")
+    return next((value for value in (mine, outer) if value is not None), default)
+
+
+def _refuse_scene_options(args, also=()):
+    """Refuse ``render --radius/--span/--set`` (and ``also``) before a target that would
+    ignore them: an option silently dropped looks like one that worked."""
+    for name in ("radius", "span", "set", *also):
+        if getattr(args, name) is not None:
+            raise ValueError(f"render --{name} applies to {_SCENE_ONLY[name]}, not to render {args.target}; "
+                             f"drop it")
+
+
 def cmd_render(args):
     if args.target == "mesh":
+        _refuse_scene_options(args, also=("backend",))
+        args.mesh_out = _target_option(args, "out", "mesh_out", "build/mesh")
         return cmd_render_mesh(args)
     if args.target == "frames":
+        _refuse_scene_options(args)
+        args.frames_out = _target_option(args, "out", "frames_out", "build/frames")
+        args.frames_backend = _target_option(args, "backend", "frames_backend", RENDER_DEFAULTS["backend"])
+        args.quiet = args.quiet or args.frames_quiet
         return cmd_render_frames(args)
     from phongfx.config import fig7_config
     from phongfx.render.lyon import run
+    for name, value in RENDER_DEFAULTS.items():
+        if getattr(args, name) is None:
+            setattr(args, name, value)
     config = apply_settings(fig7_config(), args.set or [])
     check_folder(args.out)
     summary = run(config, radius=args.radius, span=args.span, backend=args.backend,
@@ -183,6 +218,11 @@ def _check_size(size):
 def cmd_render_mesh(args):
     from phongfx.render import mesh as mesh_render
     _check_size(args.size)
+    if args.method in mesh_render.RENAMED:
+        new = mesh_render.RENAMED[args.method]
+        print(f"phongfx: note: --method {args.method} is now called {new} (the fixed-point unit, named "
+              f"as in compile; the float {new} is {new}-float)", file=sys.stderr)
+        args.method = new
     check_folder(args.mesh_out)
     if args.figure:
         figure = {"14": mesh_render.figure14, "15": mesh_render.figure15}[args.figure]
@@ -205,7 +245,7 @@ def cmd_render_frames(args):
                      backend=args.frames_backend, polygons=args.polygons, width=args.size,
                      height=args.size, frame=args.frame)
     print(markdown(result))
-    print(f"wrote {args.frames_out}/frames.json")
+    print(f"wrote {args.frames_out}/frames.json and {', '.join(os.path.basename(row['png']) for row in result['frames'])}")
     return exit_on_mismatch(result["mismatches"])
 
 

@@ -1,5 +1,10 @@
 """The ``phongfx`` argument parser: subcommands, their options and help texts.
 
+Every list of accepted names in a help text is made from the names the code accepts
+(:data:`~phongfx.render.mesh.METHODS`, :data:`~phongfx.scene.span_inputs.UNITS`,
+:data:`~phongfx.explore.tables.TABLES` ...), not written out, so that a name added there
+is never missing here (hand-written lists had lost five).
+
 Usage errors come out as one ``phongfx: error:`` line (after the usage), like every
 other bad input, with exit code 2.
 """
@@ -8,8 +13,13 @@ import argparse
 import sys
 
 from phongfx.core.registry import block_names
+from phongfx.explore.asic import LIBRARIES
 from phongfx.explore.netlist import NETLIST_TARGETS
+from phongfx.explore.synth import ALL_TARGETS
+from phongfx.explore.tables import TABLES
 from phongfx.hdl.dsp import DSP_TARGETS
+from phongfx.render.mesh import FLOAT_METHODS, RENAMED, UNIT_METHODS
+from phongfx.scene.span_inputs import UNITS
 from phongfx.sim.harness import BACKENDS
 
 from . import commands
@@ -30,9 +40,15 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"phongfx: error: {where + ': ' if where else ''}{message}\n")
 
 
+def _names(names):
+    return ", ".join(names)
+
+
 def _mesh_parser(p):
+    renamed = ", ".join(f"{old} is now {new}" for old, new in RENAMED.items())
     p.add_argument("--method", default="phong",
-                   help="phong, gouraud, euler, corrected-euler, cosn, spherical (default phong)")
+                   help=f"float: {_names(FLOAT_METHODS)}; fixed point, the units as compile names them: "
+                        f"{_names(UNIT_METHODS)} (default phong; {renamed})")
     p.add_argument("--figure", choices=("14", "15"),
                    help="reproduce Szirmay-Kalos et al. Figure 14 (n = 5, 10, 20) or 15 (4- vs 6-bit ROM)")
     p.add_argument("--mesh", choices=("sphere", "torus"), default="torus")
@@ -44,17 +60,18 @@ def _mesh_parser(p):
     p.add_argument("--rom-bits", type=int, default=6, help="spherical unit ROM data bits")
     p.add_argument("--size", type=int, default=256, help="frame width and height in pixels")
     p.add_argument("--frame", type=int, default=0, help="frame of the 200-frame rotation")
-    p.add_argument("--out", dest="mesh_out", default="build/mesh", help="output folder")
+    p.add_argument("--out", dest="mesh_out", metavar="DIR", help="output folder (default: render's --out, else build/mesh)")
 
 
 def _frames_parser(p):
-    p.add_argument("--units", nargs="+", metavar="UNIT", help="euler gouraud spherical schlick (default all)")
-    p.add_argument("--backend", dest="frames_backend", choices=BACKENDS, default="verilator-fast")
+    p.add_argument("--units", nargs="+", metavar="UNIT", help=f"any of {' '.join(UNITS)} (default all)")
+    p.add_argument("--backend", dest="frames_backend", choices=BACKENDS,
+                   help="default: render's --backend, else verilator-fast")
     p.add_argument("--polygons", type=int, default=800, help="torus polygons")
     p.add_argument("--size", type=int, default=256, help="frame width and height in pixels")
     p.add_argument("--frame", type=int, default=0, help="frame of the 200-frame rotation")
-    p.add_argument("--out", dest="frames_out", default="build/frames", help="output folder")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--out", dest="frames_out", metavar="DIR", help="output folder (default: render's --out, else build/frames)")
+    p.add_argument("--quiet", dest="frames_quiet", action="store_true", help="no progress bar")
 
 
 def _version():
@@ -127,9 +144,9 @@ def build_parser():
                                      "DSPs, Fmax; on standard cells (--target asic: Yosys + OpenSTA) "
                                      "area, cells, critical path, Fmax")
     with_block(p)
-    p.add_argument("--target", default="ecp5", help="ecp5 (default), ice40 or asic")
+    p.add_argument("--target", default="ecp5", help=f"{_names(ALL_TARGETS)} (default ecp5)")
     p.add_argument("--device", help="part size: ecp5 25k/45k/85k (default 45k), ice40 up5k/hx8k/hx1k")
-    p.add_argument("--library", help="standard cells for --target asic: osu018 (default) or osu035")
+    p.add_argument("--library", help=f"standard cells for --target asic: {_names(LIBRARIES)} (default osu018)")
     p.add_argument("--freq", type=float, default=150, help="target clock in MHz (default 150)")
     p.add_argument("--seed", type=int, default=1, help="placer seed")
     p.add_argument("--workdir", default="build/synth", help="cache and run folder")
@@ -154,18 +171,19 @@ def build_parser():
     p.set_defaults(run=commands.cmd_report)
 
     p = sub.add_parser("render", help="shade Lyon's scene through Figure 7 (what `make sim` runs)")
-    p.add_argument("--backend", choices=BACKENDS, default="verilator-fast")
-    p.add_argument("--radius", type=int, default=64, help="sphere radius in pixels")
-    p.add_argument("--span", type=int, default=8, help="span length for interpolated normals")
-    p.add_argument("--out", default="build/sim", help="output folder")
-    p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a DatapathConfig field")
+    p.add_argument("--backend", choices=BACKENDS, help="default verilator-fast (also frames')")
+    p.add_argument("--radius", type=int, help="sphere radius in pixels (default 64; Lyon's scene only)")
+    p.add_argument("--span", type=int, help="span length for interpolated normals (default 8; Lyon's scene only)")
+    p.add_argument("--out", help="output folder (default build/sim; also mesh's and frames')")
+    p.add_argument("--set", action="append", metavar="FIELD=VALUE",
+                   help="change a DatapathConfig field (Lyon's scene only)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=commands.cmd_render, target=None)
     targets = p.add_subparsers(dest="target", metavar="{mesh,frames}",
                                help="instead of Lyon's scene: a triangle mesh, or RTL full frames")
     _mesh_parser(targets.add_parser("mesh", help="shade a tessellated sphere or torus by method (PNG)"))
     _frames_parser(targets.add_parser(
-        "frames", help="one full torus frame through the RTL of the euler, gouraud, spherical and schlick units"))
+        "frames", help=f"one full torus frame through the RTL of the units {_names(UNITS)} (PNG per unit)"))
 
     p = sub.add_parser("figure9", help="Lyon's Figure 9: float rows and fixed-point rows, RTL-checked")
     p.add_argument("--out", default="build/figure9", help="output folder")
@@ -178,8 +196,9 @@ def build_parser():
                                          "`tables hast` (Hast et al. Tables 1–2), `tables cost` (synthesis: Figure 7 "
                                          "vs Figure 8 vs the Phong and Blinn–Phong baselines; --target asic for "
                                          "standard cells), `tables proxy` (the area proxy against synthesis), "
-                                         "`tables pipeline` (Fmax against pipeline depth)")
-    p.add_argument("table", help="which table (lyon, szirmay, schlick, hast, cost, proxy, pipeline, extremes)")
+                                         "`tables pipeline` (Fmax against pipeline depth), `tables extremes` "
+                                         "(every block at its extreme inputs)")
+    p.add_argument("table", help=f"which table: {_names(TABLES)}")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--target", help="cost, pipeline: ecp5 (default) or asic (proxy: always asic)")
     p.add_argument("--library", help="cost, pipeline, proxy with asic: osu018 (default) or osu035")

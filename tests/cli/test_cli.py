@@ -1,5 +1,6 @@
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -130,8 +131,8 @@ def test_tables_schlick_prints_figure1(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["render", "mesh", "--method", "nope", "--out", "OUT"],
-     r"phongfx: error: method must be one of phong, gouraud, euler, corrected-euler, cosn, cos2, "
-     r"spherical, euler-unit, gouraud-unit, blinn, conventional, not 'nope'\n"),
+     r"phongfx: error: method must be one of phong, gouraud-float, euler-float, corrected-euler, cosn, "
+     r"cos2, spherical, euler, gouraud, blinn, conventional, not 'nope'\n"),
     (["render", "frames", "--units", "euler", "nope", "--out", "OUT"],
      r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, blinn, conventional, "
      r"not 'nope'\n"),
@@ -149,6 +150,60 @@ def test_render_mesh_writes_a_png_and_reports_its_error(tmp_path, capsys):
     summary = __import__("json").loads(capsys.readouterr().out)
     assert (tmp_path / "torus288-corrected-euler-n20-f0.png").stat().st_size > 0
     assert summary["pixels"] > 1000 and summary["error_8bit"]["diffuse"]["max"] < 2
+
+
+def _accepted_names():
+    from phongfx.explore.asic import LIBRARIES
+    from phongfx.explore.synth import ALL_TARGETS
+    from phongfx.explore.tables import TABLES
+    from phongfx.render.mesh import METHODS, RENAMED
+    from phongfx.scene.span_inputs import UNITS
+    return [(["render", "mesh", "--help"], [*METHODS, *RENAMED]), (["render", "frames", "--help"], UNITS),
+            (["render", "--help"], ["frames"]), (["tables", "--help"], TABLES), (["--help"], TABLES),
+            (["synth", "--help"], [*ALL_TARGETS, *LIBRARIES])]
+
+
+def test_help_names_every_accepted_value(capsys, monkeypatch):
+    """The hand-written lists had lost extremes, cos2, euler-unit, gouraud-unit and conventional."""
+    monkeypatch.setenv("COLUMNS", "2000")  # one line per option: no name split at its hyphen
+    for argv, names in _accepted_names():
+        assert main(argv) == 0
+        text = capsys.readouterr().out
+        missing = [name for name in names if not re.search(rf"(?<![\w-]){re.escape(name)}(?![\w-])", text)]
+        assert not missing, f"phongfx {' '.join(argv)} does not name {missing}"
+
+
+def test_render_out_applies_to_its_targets(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # where the target's own default would have written
+    out = tmp_path / "chosen"
+    assert main(["render", "--out", str(out), "mesh", "--polygons", "288", "--size", "16"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["torus288-phong-n20-f0.png", "torus288-phong-n20-f0_error.png"]
+    assert not (tmp_path / "build").exists()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["render", "--out", "A", "mesh", "--out", "B"], "render --out A and render mesh --out B disagree; give one"),
+    (["render", "--set", "shape.k=1", "mesh"], "render --set applies to Lyon's scene, not to render mesh; drop it"),
+    (["render", "--radius", "6", "frames"], "render --radius applies to Lyon's scene, not to render frames; drop it"),
+    (["render", "--backend", "amaranth", "mesh"],
+     "render --backend applies to Lyon's scene and frames (mesh runs no RTL), not to render mesh; drop it"),
+    (["render", "--backend", "amaranth", "frames", "--backend", "verilator"],
+     "render --backend amaranth and render frames --backend verilator disagree; give one"),
+])
+def test_render_options_a_target_would_ignore_are_refused(argv, message, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    assert capsys.readouterr().err == f"phongfx: error: {message}\n"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_render_mesh_former_unit_name_works_with_a_note(tmp_path, capsys):
+    assert main(["render", "mesh", "--method", "gouraud-unit", "--polygons", "288", "--size", "16",
+                 "--out", str(tmp_path)]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == ("phongfx: note: --method gouraud-unit is now called gouraud (the fixed-point unit, "
+                            "named as in compile; the float gouraud is gouraud-float)\n")
+    assert json.loads(captured.out)["method"] == "gouraud"
 
 
 @pytest.mark.verilator
