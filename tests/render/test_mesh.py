@@ -179,9 +179,9 @@ def test_a_frame_is_written_titled_with_its_error_against_phong(tmp_path):
 
 
 def test_former_unit_names_still_work_with_a_warning(torus_spans):
-    with pytest.warns(DeprecationWarning, match=r"'euler-unit' is now called 'euler'"):
-        old = shade(torus_spans, "euler-unit")
-    for got, want in zip(old, shade(torus_spans, "euler")):
+    with pytest.warns(DeprecationWarning, match=r"'gouraud-unit' is now called 'gouraud'"):
+        old = shade(torus_spans, "gouraud-unit")
+    for got, want in zip(old, shade(torus_spans, "gouraud")):
         np.testing.assert_array_equal(got, want)
 
 
