@@ -1,54 +1,23 @@
-"""Sweep results read back: Pareto fronts, plot, summary and ``build/report/index.md``.
+"""Sweep results read back: the cheapest invisible-error datapaths, summary and
+``build/report/index.md``.
 
 A sweep (:mod:`phongfx.explore.sweep`) writes one JSON record per point to ``points.jsonl``
 (``id, method, params, status, error, seconds, metrics, cost``).  This module answers the
 user's question from those records: for each method, the cheapest datapath whose max
 error is at most one 8-bit level, and which points are Pareto-optimal in error against
-cost.
-
-Cost is counted in **LUT-equivalents**: ``lut4 + W·dsp`` with ``W`` =
-:data:`DSP_LUT_WEIGHT`, the LUT4 count of an 18×18 signed multiplier (the size of one
-ECP5 ``MULT18X18D``) built from logic, measured with Yosys 0.70 ``synth_ecp5 -nodsp``
-after ``booth`` (958 LUT4 and 18 CCU2C; Yosys' default array mapping takes 1868 LUT4).
-Speed is ``cost["mpixels_per_s"]`` (one pixel per clock), where higher is better.
+cost.  How records are costed and ranked (LUT-equivalents, µm², the Pareto front) is
+:mod:`phongfx.explore.sweep_front`, the plots :mod:`phongfx.explore.sweep_plot`; both are
+re-exported here, where the report's readers have always found them.
 """
 
-import math
 import os
+
+from .sweep_front import (DSP_LUT_WEIGHT, INVISIBLE, MAXIMIZE, cost_key, is_proxy, lut_equivalent, pareto,
+                          target_label, value)
+from .sweep_plot import pareto_plot
 
 __all__ = ["DSP_LUT_WEIGHT", "MAXIMIZE", "INVISIBLE", "load", "value", "cost_key", "is_proxy", "lut_equivalent", "pareto", "BASELINES",
            "cheapest_invisible", "pareto_plot", "summary_markdown", "build_report"]
-
-#: LUT4s one MULT18X18D stands for (Booth 18×18 signed soft multiplier, Yosys 0.70, ECP5).
-DSP_LUT_WEIGHT = 958
-
-#: Cost keys where a larger value is better (the others are minimized).
-MAXIMIZE = frozenset({"mpixels_per_s", "fmax_mhz"})
-
-#: Largest max error, in 8-bit levels, that a display cannot show.
-INVISIBLE = 1.0
-
-_COST_LABEL = {"lut_eq": f"cost (LUT4 + {DSP_LUT_WEIGHT}·DSP LUT-equivalents)",
-               "area_um2": "area (µm², standard cells)",
-               "mpixels_per_s": "Mpixel/s (Fmax at 1 pixel/clock)"}
-
-
-def is_proxy(record):
-    """Whether a record's cost is a tool-free proxy's estimate, not a synthesis result."""
-    return str((record.get("cost") or {}).get("model", "")).endswith("-proxy")
-
-
-def cost_key(records):
-    """The cost the records are compared by: ``"area_um2"`` when they were synthesized onto
-    standard cells, else ``"lut_eq"``."""
-    return "area_um2" if any((r.get("cost") or {}).get("area_um2") is not None for r in records) else "lut_eq"
-
-
-def _target(records):
-    synth = next((r.get("synth") for r in records if r.get("synth")), None) or {}
-    target = synth.get("target", "ecp5")
-    device = synth.get("device") or ("osu018" if target == "asic" else None)
-    return target + (f" {device}" if device else "")
 
 
 def load(path):
@@ -59,147 +28,6 @@ def load(path):
     if not os.path.exists(path):
         raise FileNotFoundError(f"no sweep results at {path}: run `make sweep` first")
     return load_records(path)
-
-
-def lut_equivalent(cost, dsp_weight=DSP_LUT_WEIGHT):
-    """``lut4 + dsp_weight·dsp`` of a record's ``cost``, or ``None`` when not synthesized."""
-    if cost and cost.get("lut4") is None and cost.get("lut_eq") is not None:
-        return float(cost["lut_eq"])  # a proxy's estimate
-    if not cost or cost.get("lut4") is None:
-        return None
-    return float(cost["lut4"]) + dsp_weight * float(cost.get("dsp") or 0)
-
-
-def value(record, key, dsp_weight=DSP_LUT_WEIGHT):
-    """``key`` of a record: ``"lut_eq"``, a metric (``"torus.phong.max"``) or a cost key; else ``None``."""
-    if key == "lut_eq":
-        result = lut_equivalent(record.get("cost"), dsp_weight)
-    elif key in (record.get("metrics") or {}):
-        result = record["metrics"][key]
-    else:
-        result = (record.get("cost") or {}).get(key)
-    if result is None or isinstance(result, bool):
-        return None
-    result = float(result)
-    return result if math.isfinite(result) else None
-
-
-def _usable(records, error_key, cost_key, dsp_weight):
-    return [r for r in records if r.get("status") == "ok" and value(r, error_key) is not None
-            and value(r, cost_key, dsp_weight) is not None]
-
-
-def pareto(records, error_key, cost_key, *, maximize=None, dsp_weight=DSP_LUT_WEIGHT):
-    """The non-dominated ``ok`` records in (error, cost), best cost first (so error falls along it).
-
-    Error is always minimized; cost is minimized, unless ``maximize`` (default: ``cost_key``
-    in :data:`MAXIMIZE`, e.g. ``"mpixels_per_s"``).  A record is dominated when another is
-    no worse in both and strictly better in one, so records tied in both are all kept.
-    Records that failed or lack either value are ignored.
-    """
-    if maximize is None:
-        maximize = cost_key in MAXIMIZE
-    sign = -1.0 if maximize else 1.0
-    points = sorted(((sign * value(r, cost_key, dsp_weight), value(r, error_key), i, r)
-                     for i, r in enumerate(_usable(records, error_key, cost_key, dsp_weight))),
-                    key=lambda p: p[:3])
-    front, best_error, best_cost = [], math.inf, None
-    for cost, error, _, record in points:  # each point sees every cheaper-or-equal one first
-        if error < best_error:
-            best_error, best_cost = error, cost
-            front.append(record)
-        elif error == best_error and cost == best_cost:
-            front.append(record)
-    return front
-
-
-_MARKERS = "osD^v<>pPX*h"
-
-
-def _style(methods):
-    import matplotlib
-
-    colours = matplotlib.colormaps["tab10"].colors
-    return {m: (colours[i % len(colours)], _MARKERS[i % len(_MARKERS)]) for i, m in enumerate(methods)}
-
-
-def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
-    """Write a two-panel PNG: ``error_key`` against cost (LUT-equivalents on an FPGA, µm² on
-    standard cells: :func:`cost_key`) and against Mpixel/s.
-
-    Every method in one picture (one colour and marker each), the Pareto front over all
-    of them drawn as a staircase with its points ringed, and a dashed line at :data:`INVISIBLE` level.  The
-    error axis (and the cost axis) is logarithmic when its values span more than a
-    factor of 20 (zero errors are drawn at a floor of 0.01 level).  Written atomically
-    (:func:`phongfx.render.lyon.atomic_write`).
-
-    Returns
-    -------
-    dict
-        ``{<cost key>: front, "mpixels_per_s": front, "plotted": int, "skipped": int}``:
-        each front as :func:`pareto` gives it; ``skipped`` counts the ``ok`` records
-        without cost (failed records are never plotted).
-    """
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from phongfx.core.files import atomic_write
-
-    ok = [r for r in records if r.get("status") == "ok" and value(r, error_key) is not None]
-    methods = sorted({r["method"] for r in ok})
-    style = _style(methods)
-    fig, axes = plt.subplots(1, 2, figsize=(14, 5.5))
-    result = {"plotted": 0, "skipped": 0}
-    errors = [value(r, error_key) for r in ok]
-    positive = [e for e in errors if e > 0]
-    log = bool(positive) and max(positive) / min(positive + [INVISIBLE]) > 20
-    floor = 0.01
-    for ax, key in zip(axes, (cost_key(ok), "mpixels_per_s")):
-        usable = _usable(ok, error_key, key, dsp_weight)
-        result["plotted"] = max(result["plotted"], len(usable))
-        result["skipped"] = max(result["skipped"], len(ok) - len(usable))
-        for method in methods:
-            for proxy in (False, True):  # proxy-costed points hollow: estimates, not synthesis
-                pts = [r for r in usable if r["method"] == method and is_proxy(r) == proxy]
-                if pts:
-                    colour, marker = style[method]
-                    ax.scatter([value(r, key, dsp_weight) for r in pts],
-                               [max(value(r, error_key), floor) if log else value(r, error_key) for r in pts],
-                               marker=marker, s=30, alpha=0.75, label=f"{method}{' (proxy cost)' if proxy else ''}",
-                               **({"facecolors": "none", "edgecolors": colour} if proxy else {"color": colour}))
-        # the front over synthesized points where there are any: proxies only estimate
-        synthesized = [r for r in usable if not is_proxy(r)]
-        front = pareto(synthesized or usable, error_key, key, dsp_weight=dsp_weight)
-        result[key] = front
-        if front:
-            xs = [value(r, key, dsp_weight) for r in front]
-            ys = [max(value(r, error_key), floor) if log else value(r, error_key) for r in front]
-            order = sorted(range(len(xs)), key=xs.__getitem__)
-            ax.step([xs[i] for i in order], [ys[i] for i in order], "k-", lw=1.2, alpha=0.7,
-                    where="pre" if key in MAXIMIZE else "post", label="Pareto front")
-            ax.scatter(xs, ys, s=130, facecolors="none", edgecolors="k", linewidths=1.5)
-        ax.axhline(INVISIBLE, color="tab:red", ls="--", lw=1, label=f"{INVISIBLE:g} level")
-        if log:
-            ax.set_yscale("log")
-        xs = [value(r, key, dsp_weight) for r in usable]
-        if key not in MAXIMIZE and xs and min(xs) > 0 and max(xs) / min(xs) > 20:
-            ax.set_xscale("log")
-        better = "→ faster (better)" if key in MAXIMIZE else "← cheaper (better)"
-        ax.set(xlabel=f"{_COST_LABEL[key]}  {better}", ylabel=f"{error_key} (8-bit levels)",
-               title=f"error vs {'speed' if key in MAXIMIZE else 'cost'} ({len(usable)} points)")
-        ax.grid(alpha=0.3, which="both")
-    handles = {}
-    for ax in axes:  # one legend for both panels, below them, so it hides no point
-        for handle, label in zip(*ax.get_legend_handles_labels()):
-            handles.setdefault(label, handle)
-    fig.legend(list(handles.values()), list(handles), loc="lower center", ncol=min(len(handles), 10), fontsize=9)
-    skipped = f"; {result['skipped']} points without cost not drawn" if result["skipped"] else ""
-    fig.suptitle(f"Sweep: {error_key} against hardware cost, {_target(ok)}{skipped}")
-    fig.tight_layout(rect=(0, 0.07, 1, 1))
-    atomic_write(str(path), lambda p: fig.savefig(p, dpi=100, format="png"))
-    plt.close(fig)
-    return result
 
 
 def _params(record):
@@ -266,7 +94,7 @@ def _row(label, record, error_key, dsp_weight, note="", asic=False):
 def summary_markdown(records, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
     """Per method, the cheapest point with max error <= 1 level (or "none"), then the failed points."""
     asic = cost_key(records) == "area_um2"
-    unit = f"area on {_target(records)}" if asic else f"LUT4 + {dsp_weight}·DSP"
+    unit = f"area on {target_label(records)}" if asic else f"LUT4 + {dsp_weight}·DSP"
     lines = [f"Cheapest point per method with `{error_key}` ≤ {INVISIBLE:g} level "
              f"(cost = {unit}; – = not synthesized):", "", *_head(asic)]
     for label, (record, invisible) in cheapest_invisible(records, error_key, dsp_weight=dsp_weight).items():
