@@ -2,13 +2,18 @@
 
 Every output (PNG, JSON, Markdown, CSV, Verilog) goes through :func:`atomic_write`: the
 bytes go to a temporary file beside the target, which then replaces it in one step, so
-a failed or interrupted run never leaves a half-written file.
+a failed or interrupted run never leaves a half-written file.  A folder of outputs that
+belong together (the scene compiler's Verilog, frames and manifest) goes through
+:func:`staged_folder`: it is built beside its place and renamed into it when complete, so
+the folder is a complete result of one run, or the previous one, never a mix.
 """
 
+import contextlib
 import os
+import shutil
 import tempfile
 
-__all__ = ["atomic_write", "check_folder"]
+__all__ = ["atomic_write", "check_folder", "staged_folder"]
 
 
 def check_folder(path, what="output folder"):
@@ -41,12 +46,44 @@ def atomic_write(path, write):
     except OSError as error:
         raise OSError(error.errno, error.strerror, path) from None
     os.close(fd)
-    umask = os.umask(0)
-    os.umask(umask)
     try:
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes it private; outputs are for reading
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes it private; outputs are for reading
         write(tmp)
         os.replace(tmp, path)
     except BaseException:
         os.unlink(tmp)
         raise
+
+
+@contextlib.contextmanager
+def staged_folder(path):
+    """A context whose value is a fresh hidden folder beside ``path``; on a normal exit it
+    replaces ``path`` (an existing folder there is removed only after the new one is in
+    place), on an exception or an interrupt it is removed and ``path`` is left as it was."""
+    path = os.path.abspath(check_folder(path))
+    parent, name = os.path.split(path)
+    os.makedirs(parent, exist_ok=True)
+    work = tempfile.mkdtemp(prefix=f".{name}.", suffix=".partial", dir=parent)
+    old = None
+    try:
+        os.chmod(work, 0o777 & ~_umask())  # mkdtemp makes it private; outputs are for reading
+        yield work
+        if os.path.lexists(path):
+            old = tempfile.mkdtemp(prefix=f".{name}.", suffix=".old", dir=parent)
+            os.rmdir(old)
+            os.rename(path, old)
+        os.rename(work, path)
+    except BaseException:
+        if old is not None and not os.path.lexists(path):
+            os.rename(old, path)  # interrupted between the two renames: the previous result back
+            old = None
+        shutil.rmtree(work, ignore_errors=True)
+        raise
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def _umask():
+    umask = os.umask(0)
+    os.umask(umask)
+    return umask

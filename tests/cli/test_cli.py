@@ -62,7 +62,7 @@ def test_vcd_is_written(tmp_path):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["sim", "shape", "--set", "k=9"], r"phongfx: error: k must be an integer in 0\.\.4, not 9\n"),
+    (["sim", "shape", "--set", "k=11"], r"phongfx: error: k must be an integer in 0\.\.10, not 11\n"),
     (["sim", "shape", "--set", "q=1"], r"phongfx: error: --set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding, pipeline\n"),
     (["sim", "shape", "--set", "k=two"], r"phongfx: error: --set k: k must be an integer, not 'two'\n"),
     (["render", "--radius", "2", "--out", "OUT"], r"phongfx: error: radius must be an integer in 4\.\.4096, not 2\n"),
@@ -308,7 +308,7 @@ def test_testbench_writes_and_passes_under_icarus(tmp_path, capsys):
     (["--seed", "-2"], "--seed must be a non-negative integer, not -2"),
     (["--stall", "1"], "--stall must be a probability in 0..0.95, not 1.0"),
     (["--bubbles", "nan"], "--bubbles must be a probability in 0..0.95, not nan"),
-    (["--set", "k=9"], "k must be an integer in 0..4, not 9"),
+    (["--set", "k=11"], "k must be an integer in 0..10, not 11"),
     (["--set", "q=1"], "--set q: ShapeConfig has no field 'q'; fields: x2, k, t, rounding, pipeline"),
 ])
 def test_testbench_bad_input_exits_2_and_writes_nothing(argv, message, capsys, tmp_path):

@@ -51,3 +51,36 @@ def test_ctrl_c_during_synthesis_exits_130_in_one_line_and_leaves_no_temporary_f
     assert code == 130
     assert err.strip().splitlines() == ["phongfx: interrupted"]
     assert _hidden(tmp_path / "build") == []
+
+
+TINY = """
+name = "tiny"
+[[lights]]
+direction = [1, 1, 1]
+[materials.shiny]
+kd = 0.6
+ks = 0.4
+n = 16
+[[objects]]
+type = "torus"
+material = "shiny"
+polygons = 72
+[output]
+width = 24
+height = 24
+"""
+
+
+@pytest.mark.verilator
+def test_ctrl_c_during_compile_keeps_the_previous_result_whole(tmp_path):
+    (tmp_path / "tiny.toml").write_text(TINY)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "manifest.json").write_text('{"previous": true}\n')
+    # the search takes about a second; then the folder is staged (hidden, beside out) while the
+    # frames are drawn and the RTL check's Verilator build runs: the SIGINT lands there
+    code, err = _interrupted(["compile", "tiny.toml", "-o", "out", "--methods", "fig7", "--quiet"], tmp_path, ".")
+    assert code == 130 and err.strip().splitlines() == ["phongfx: interrupted"]
+    assert sorted(p.name for p in out.iterdir()) == ["manifest.json"]
+    assert (out / "manifest.json").read_text() == '{"previous": true}\n'
+    assert _hidden(tmp_path) == []

@@ -173,7 +173,7 @@ def test_bad_method_and_params():
         evaluate("fig9", {})
     with pytest.raises(ValueError, match=r"^vec_frac must be an integer in 4\.\.16, not 3$"):
         evaluate("fig7", {"vec_frac": 3})
-    with pytest.raises(ValueError, match=r"^k must be an integer in 0\.\.2, not 2\.0$"):
+    with pytest.raises(ValueError, match=r"^k must be an integer in 0\.\.10, not 2\.0$"):
         evaluate("fig7", {"k": 2.0})
     with pytest.raises(ValueError, match=r"^bogus is not a parameter of schlick; "
                                          r"parameters: t_frac, out_frac, n$"):

@@ -4,8 +4,9 @@
 design: the named-port top of :mod:`phongfx.hdl.top` around exactly the chosen shader's
 blocks, without the simulation-only overflow checks, what the cost is of),
 ``DIR/frames/frame_NNN.png`` (the shader's r, g, b codes of each frame at its first
-shininess variant) and ``DIR/error/frame_NNN.png`` (its error in display levels against the
-reference, the worst channel; white = twice the requirement), and a cycle-by-cycle check
+shininess variant, titled and enlarged) and ``DIR/error/frame_NNN.png`` (its error in
+display levels against the reference, the worst channel, with a colour bar; white = twice
+the requirement), each also as one contact sheet ``sheet.png``, and a cycle-by-cycle check
 of the shader against the golden model on the whole first frame
 (:func:`phongfx.sim.harness.check`, ``verilator-fast``, with random ``out_ready`` stalls
 and a reset in the middle of the stream; ``vectors`` is the frame's pixels, every span
@@ -25,10 +26,10 @@ from collections import Counter
 import numpy as np
 
 from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
-from phongfx.core.files import atomic_write
+from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
-from phongfx.render.mesh import write_png
+from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
 
@@ -132,10 +133,11 @@ def manifest(compiled, module=None, instances=None, check=None):
     return _clean(out)
 
 
-def _picture(geometry, values):
-    """An (H, W) or (H, W, 3) picture of per-pixel ``values`` (P,) or (P, 3); black elsewhere."""
+def _picture(geometry, values, fill=0.0):
+    """An (H, W) or (H, W, 3) picture of per-pixel ``values`` (P,) or (P, 3); ``fill``
+    (black, or NaN: "no surface" in an error picture) elsewhere."""
     values = np.asarray(values, dtype=np.float64)
-    image = np.zeros((geometry.height, geometry.width) + values.shape[1:])
+    image = np.full((geometry.height, geometry.width) + values.shape[1:], fill)
     image[geometry.row, geometry.col] = values
     return image
 
@@ -150,10 +152,17 @@ CHECK_STALLS = 0.2
 
 
 def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=None):
-    """Write the outputs of ``compiled`` under ``out_dir``; returns the manifest dict.
+    """Write the outputs of ``compiled`` as the folder ``out_dir``; returns the manifest dict.
 
-    ``testbench``: also write ``testbench/`` (frame 0's vectors and expected outputs);
-    ``vcd``: a waveform file of the RTL check."""
+    The folder is built beside its place and renamed into it when complete
+    (:func:`~phongfx.core.files.staged_folder`): it holds this run's result whole, or, after a
+    failure or an interrupt, the previous run's.  ``testbench``: also write ``testbench/``
+    (frame 0's vectors and expected outputs); ``vcd``: a waveform file of the RTL check."""
+    with staged_folder(out_dir) as work:
+        return _write(compiled, work, check, progress, testbench, vcd)
+
+
+def _write(compiled, out_dir, check, progress, testbench, vcd):
     from phongfx.hdl.emit import verilog
     from phongfx.hdl.top import port_map, top_verilog
     from phongfx.scene.geometry import pixel_error
@@ -171,17 +180,25 @@ def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=N
     text = verilog(block.component(), module, emit_src=False)  # only to name the instances
     shipped = top_verilog(block.component(), module)
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
-    done, result, written = set(), None, None
+    done, result, written, sheets = set(), None, None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
+    against = "true Phong" if compiled.spec.requirement.against == "phong" else f"{method}'s float form"
     for index, (g, _n) in enumerate(scene.renders):
         if g.frame in done:
             continue
         done.add(g.frame)
         codes, reference, raw, out = scene.render(method, config, best["params"], index)
         top_level = (1 << compiled.spec.output.bits) - 1
-        write_png(os.path.join(out_dir, "frames", f"frame_{g.frame:03d}.png"), _picture(g, codes / top_level))
-        error = pixel_error(codes, reference, compiled.spec.output.bits).max(axis=-1)
-        write_png(os.path.join(out_dir, "error", f"frame_{g.frame:03d}.png"), _picture(g, error / scale))
+        name = f"frame_{g.frame:03d}.png"
+        picture = _picture(g, codes / top_level)
+        frame_figure(os.path.join(out_dir, "frames", name), picture,
+                     f"{compiled.spec.name}: {method}, frame {g.frame} ({g.width}×{g.height})")
+        error = _picture(g, pixel_error(codes, reference, compiled.spec.output.bits).max(axis=-1), np.nan)
+        error_figure(os.path.join(out_dir, "error", name), error,
+                     f"{compiled.spec.name}: {method}, frame {g.frame}: error against {against}, worst "
+                     f"channel, max {np.nanmax(error, initial=0):g} levels", scale)
+        for sheet, value in zip(sheets, (picture, error, f"frame {g.frame}")):
+            sheet.append(value)
         if check and result is None:
             if progress:
                 progress(f"RTL check of frame {g.frame} ({len(next(iter(raw.values())))} pixels)")
@@ -201,8 +218,16 @@ def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=N
                 progress(f"testbench of frame {g.frame}")
             write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module)
             written = (g.frame, len(next(iter(out.values()))))
+    title = f"{compiled.spec.name}: {method}, {len(done)} frame(s)"
+    contact_sheet(os.path.join(out_dir, "frames", "sheet.png"), sheets[0], sheets[2], title=title)
+    contact_sheet(os.path.join(out_dir, "error", "sheet.png"), sheets[1], sheets[2], white_levels=scale,
+                  title=f"{title}: error against {against} (display levels)")
     data = manifest(compiled, module, submodules(text, module), result)
     data["error_png_white_levels"] = scale
+    data["pictures"] = {"frames": "frames/frame_NNN.png, frames/sheet.png (all frames)",
+                        "error": "error/frame_NNN.png, error/sheet.png: worst channel's error in display "
+                                 f"levels against {against}, white = {scale:g} levels or more, "
+                                 "the colour bar beside"}
     data["top"] = {"module": f"{module}_top", "file": f"verilog/{module}_top.v", "latency": block.latency,
                    "ports": port_map(block.config)}
     if written is not None:

@@ -77,14 +77,19 @@ def test_a_shininess_range_no_k_serves_gets_a_computed_split(wide):
 def test_the_cli_prints_the_hint_and_the_relaxed_requirement_is_met(tmp_path, capsys):
     path = tmp_path / "wide.toml"
     path.write_text(SPHERE.format(n="[4, 128]"))
-    out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--quiet", "--no-check"]) == 1
+    out, relaxed = tmp_path / "out", tmp_path / "relaxed"
+    args = ["--methods", "fig7", "--quiet", "--no-check"]
+    assert main(["compile", str(path), "-o", str(out), *args]) == 1
     err = capsys.readouterr().err
     hint = json.loads((out / "manifest.json").read_text())["hint"]
     assert f"phongfx: hint: {hint['text'][0]}" in err and "split it into two materials" in err
     levels = hint["command"].rpartition(" ")[2]
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--quiet", "--no-check",
-                 "--max-error", levels]) == 0
+    assert main(["compile", str(path), "-o", str(relaxed), *args, "--max-error", levels]) == 0
+    assert (relaxed / "verilog").is_dir() and (relaxed / "frames" / "sheet.png").is_file()
+    # an infeasible rerun into that folder leaves no Verilog or frames of the earlier result
+    assert main(["compile", str(path), "-o", str(relaxed), *args]) == 1
+    assert sorted(p.name for p in relaxed.iterdir()) == ["manifest.json"]
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
 
 
 def test_an_infeasible_method_is_not_synthesized(monkeypatch):
