@@ -31,7 +31,8 @@ def add_arguments(p):
     p.add_argument("--seed", type=int, default=1, help="nextpnr's placement seed (default 1)")
     p.add_argument("--max-error", type=float, metavar="LEVELS",
                    help="instead of the scene's requirement.max_error_levels (display levels, > 0)")
-    p.add_argument("--methods", help="comma-separated methods to consider (default all)")
+    from phongfx.explore.methods import METHODS
+    p.add_argument("--methods", help=f"comma-separated methods to consider: {', '.join(METHODS)} (default all)")
     p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
     p.add_argument("--testbench", action="store_true",
                    help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench (Icarus, Verilator)")
@@ -125,7 +126,9 @@ def cmd_compile(args):
     print(f"  against its default widths: max {_levels(default['max'])}, {_cost(default['cost'])}"
           + (" (the defaults miss the requirement)" if misses else _saving(data['cost'], default['cost'])))
     baseline = data["conventional_baseline"]
-    if "why_not" in baseline:
+    if data["chosen"] == "conventional":
+        print("  the chosen design is conventional Phong itself")
+    elif "why_not" in baseline:
         print(f"  against conventional Phong: {baseline['why_not']}")
     elif baseline["feasible"]:
         print(f"  against conventional Phong meeting the same requirement: max {_levels(baseline['max'])}, "

@@ -154,13 +154,14 @@ def test_render_mesh_writes_a_png_and_reports_its_error(tmp_path, capsys):
 
 def _accepted_names():
     from phongfx.explore.asic import LIBRARIES
+    from phongfx.explore.methods import METHODS as COMPILE_METHODS
     from phongfx.explore.synth import ALL_TARGETS
     from phongfx.explore.tables import TABLES
     from phongfx.render.mesh import METHODS, RENAMED
     from phongfx.scene.span_inputs import UNITS
     return [(["render", "mesh", "--help"], [*METHODS, *RENAMED]), (["render", "frames", "--help"], UNITS),
             (["render", "--help"], ["frames"]), (["tables", "--help"], TABLES), (["--help"], TABLES),
-            (["synth", "--help"], [*ALL_TARGETS, *LIBRARIES])]
+            (["synth", "--help"], [*ALL_TARGETS, *LIBRARIES]), (["compile", "--help"], COMPILE_METHODS)]
 
 
 def test_help_names_every_accepted_value(capsys, monkeypatch):
