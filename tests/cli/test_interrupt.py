@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.explore.compile.test_compiler import TORUS
+
 
 def _interrupted(args, cwd, folder):
     """Run ``python -m phongfx.cli ARGS`` in ``cwd``, SIGINT it once its work has begun (a hidden
@@ -53,27 +55,11 @@ def test_ctrl_c_during_synthesis_exits_130_in_one_line_and_leaves_no_temporary_f
     assert _hidden(tmp_path / "build") == []
 
 
-TINY = """
-name = "tiny"
-[[lights]]
-direction = [1, 1, 1]
-[materials.shiny]
-kd = 0.6
-ks = 0.4
-n = 16
-[[objects]]
-type = "torus"
-material = "shiny"
-polygons = 72
-[output]
-width = 24
-height = 24
-"""
 
 
 @pytest.mark.verilator
 def test_ctrl_c_during_compile_keeps_the_previous_result_whole(tmp_path):
-    (tmp_path / "tiny.toml").write_text(TINY)
+    (tmp_path / "tiny.toml").write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"
     out.mkdir()
     (out / "manifest.json").write_text('{"previous": true}\n')

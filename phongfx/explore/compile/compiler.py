@@ -5,8 +5,10 @@ method of :data:`phongfx.explore.methods.METHODS` either records why it cannot r
 scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
 
 1. start from the method's default widths; if they miss the requirement, from every
-   width at its range maximum; if that misses too the method is infeasible (its
-   measured error is kept);
+   width at its range maximum and ``k`` at its best value there (:func:`widest`); if that
+   misses too the method is infeasible, and
+   :func:`~phongfx.explore.compile.infeasible.summary` reports its best measured point
+   and why;
 2. greedily lower each width (binary search, then verified) while every frame, rendered
    through the golden model and shaded (:func:`phongfx.scene.geometry.shade`), stays
    within ``requirement.max_error_levels``; passes repeat until no single width can drop;
@@ -43,6 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from phongfx.explore.methods import METHODS
+from phongfx.explore.progress import Candidates
 from phongfx.golden.blend import blend
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.reference import specular
@@ -50,8 +53,6 @@ from phongfx.golden.shader import shader_terms
 from phongfx.scene.geometry import frames, pixel_error, shade, terminator_lit
 
 from . import run as runs
-from phongfx.explore.progress import Candidates
-
 from .analysis import analyse
 from .costing import COST_UNITS, TIE_MARGIN, costed, tie
 from .infeasible import hint, summary

@@ -7,23 +7,9 @@ from phongfx.explore.compile.compiler import compile_scene
 from phongfx.explore.compile.costing import TIE_MARGIN, costed, tie, utilisation
 from phongfx.explore.compile.run import build
 from phongfx.scene.file import parse_scene
+from tests.explore.compile.test_compiler import TORUS as TINY
 
-TORUS = """
-name = "tiny"
-[[lights]]
-direction = [1, 1, 1]
-[materials.shiny]
-kd = 0.6
-ks = 0.4
-n = 16
-[[objects]]
-type = "torus"
-material = "shiny"
-polygons = 72
-[output]
-width = 24
-height = 24
-"""
+TORUS = TINY.format(error=1.0, against="phong")
 
 
 def _result(method, value, max_error=1.0, mean=0.1):

@@ -4,8 +4,7 @@ from phongfx.explore.compile import compiler
 from phongfx.explore.compile.compiler import SceneEval, compile_scene
 from phongfx.explore.compile.journal import Journal, scene_key
 from phongfx.scene.file import parse_scene
-
-from .test_costing import TORUS
+from tests.explore.compile.test_costing import TORUS
 
 
 def _counting(monkeypatch):
