@@ -40,9 +40,10 @@ independent copies), while :meth:`MethodSpec.config`, which synthesis sees, keep
 import numpy as np
 
 from .methods import METHODS, SCENES, MethodSpec, Scene
+from .sweep_scene import file_views, is_scene_file
 
 __all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "PIXEL_COEF", "COST_KEYS",
-           "ASIC_COST_KEYS", "error_metrics", "pixel_metrics", "evaluate"]
+           "ASIC_COST_KEYS", "error_metrics", "pixel_metrics", "pixel_errors", "evaluate"]
 
 STATS = ("max", "mean", "psnr", "pct_over1")
 REFERENCES = ("phong", "self")
@@ -80,6 +81,12 @@ def pixel_metrics(terms, reference_spec, scene):
     """:func:`error_metrics` of a shader's 8-bit display codes (module docstring) from the unit's
     raw ``terms`` (``{"diff": (codes, Format) or None, "spec": (codes, Format)}``) against the
     float blend of exact diffuse and ``reference_spec``, over the scene's visible pixels."""
+    return _stats(pixel_errors(terms, reference_spec, scene), scene.data["visible"])
+
+
+def pixel_errors(terms, reference_spec, scene):
+    """Per pixel, the display codes' distance of :func:`pixel_metrics` (every pixel, visible
+    or not), so that several frames can be pooled into one set of statistics."""
     from phongfx.config import BlendConfig
     from phongfx.core.registry import get_block
     from phongfx.render.mesh import AMBIENT, KD, KS
@@ -99,7 +106,7 @@ def pixel_metrics(terms, reference_spec, scene):
     lit = terminator_lit(cosine, diff[0] > 0 if diff else None, 8)
     exact = (KD * np.maximum(cosine, 0.0) if diff else 0.0) + KS * np.where(lit, reference_spec, 0.0)
     reference = levels(np.clip(AMBIENT + exact, 0.0, 1.0), 8)
-    return _stats(np.abs(codes - reference), d["visible"])  # whole codes, exactly
+    return np.abs(codes - reference)  # whole codes, exactly
 
 
 def _cost(block, config, options):
@@ -139,7 +146,9 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=No
     params : dict
         Parameters of the method; missing ones take their defaults.
     scenes : sequence of str
-        Keys of :data:`SCENES`.
+        Keys of :data:`SCENES`, or paths of scene files (``.toml``,
+        :mod:`phongfx.explore.sweep_scene`: every frame and light pooled, metrics named
+        after the file's stem).
     synth : dict, optional
         Options of :func:`phongfx.explore.synth.synth` (``target``, ``freq``, ``device``, ``seed``,
         ``workdir``); None skips synthesis.
@@ -166,21 +175,33 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=No
         raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
     if isinstance(scenes, str):
         scenes = (scenes,)
-    for name in scenes:
-        if name not in SCENES:
-            raise ValueError(f"scene must be one of {', '.join(SCENES)}, not {name!r}")
+    views = {}
+    for name in scenes:  # every scene checked before any is run
+        if name in SCENES:
+            views[name] = (SCENES[name],)
+        elif is_scene_file(name):
+            label, frames = file_views(name)
+            views[label] = frames
+        else:
+            raise ValueError(f"scene must be one of {', '.join(SCENES)} or a scene file (.toml), not {name!r}")
     spec = METHODS[method]
     p = spec.resolve(params)
     config = spec.build(p)
     metrics = {}
-    for name in scenes:
-        scene = SCENES[name]
-        fixed, floats, terms = spec.run(spec, config, p, scene)
+    for name, frames in views.items():
+        runs = [spec.run(spec, config, p, frame) for frame in frames]
+        visible = np.concatenate([frame.data["visible"] for frame in frames])
         for ref in REFERENCES:
-            for stat, value in error_metrics(fixed, floats[ref], scene.data["visible"]).items():
+            # a scene file's frames and lights pool into one set of statistics
+            errors = np.concatenate([255 * np.abs(np.asarray(fixed, dtype=np.float64)
+                                                  - np.asarray(floats[ref], dtype=np.float64))
+                                     for fixed, floats, _ in runs])
+            for stat, value in _stats(errors, visible).items():
                 metrics[f"{name}.{ref}.{stat}"] = value
-            if terms is not None:
-                for stat, value in pixel_metrics(terms, floats[ref], scene).items():
+            if runs[0][2] is not None:
+                codes = np.concatenate([pixel_errors(terms, floats[ref], frame)
+                                        for (_, floats, terms), frame in zip(runs, frames)])
+                for stat, value in _stats(codes, visible).items():
                     metrics[f"{name}.pixel-{ref}.{stat}"] = value
     if synth is not None:
         cost = _cost(spec.block, config, synth)

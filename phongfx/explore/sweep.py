@@ -106,9 +106,12 @@ def _plain(value):
 
 
 def _record(point, status, error, seconds, metrics, cost):
-    return {"id": point["id"], "method": point["method"], "params": point["params"],
-            "status": status, "error": error, "seconds": seconds, "metrics": metrics,
-            "cost": cost, "scenes": point["scenes"], "synth": point["synth"]}
+    record = {"id": point["id"], "method": point["method"], "params": point["params"],
+              "status": status, "error": error, "seconds": seconds, "metrics": metrics,
+              "cost": cost, "scenes": point["scenes"], "synth": point["synth"]}
+    if point.get("scene_files"):
+        record["scene_files"] = point["scene_files"]
+    return record
 
 
 #: Set in a pool worker by :func:`_worker_stop`; a point that sees it ends the worker.
@@ -141,7 +144,9 @@ def _run_point(evaluate, point):
     start = time.perf_counter()
     _busy = True
     try:
-        result = evaluate(point["method"], dict(point["params"]), scenes=tuple(point["scenes"]),
+        files = point.get("scene_files") or {}  # a scene file is evaluated from its path
+        scenes = tuple(files.get(scene, scene) for scene in point["scenes"])
+        result = evaluate(point["method"], dict(point["params"]), scenes=scenes,
                           synth=point["synth"], proxy=point.get("proxy"))
         metrics = {key: float(value) for key, value in result["metrics"].items()}
         cost = result.get("cost")

@@ -35,14 +35,35 @@ def is_int(value):
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-def _check_scenes(value, where, known):
+def _check_scenes(value, where, known, base_dir="."):
+    """``(labels, files)``: the metric names of the scenes (a built-in name, or a scene file's
+    stem) and ``{label: absolute path}`` of the files among them, resolved from ``base_dir``
+    (the sweep file's folder) and checked (:func:`~phongfx.explore.sweep_scene.check_scene_file`)."""
+    from .sweep_scene import check_scene_file, is_scene_file, scene_label
+    allowed = f"scenes: {', '.join(known)}, or a scene file (.toml) relative to the sweep file"
     if not isinstance(value, list) or not value or not all(isinstance(s, str) for s in value):
-        raise SweepSpecError(f"{where} must be a non-empty list of scene names, not {value!r}; "
-                             f"scenes: {', '.join(known)}")
-    for scene in value:
-        if scene not in known:
-            raise SweepSpecError(f"{where}: unknown scene {scene!r}; scenes: {', '.join(known)}")
-    return tuple(value)
+        raise SweepSpecError(f"{where} must be a non-empty list of scene names, not {value!r}; {allowed}")
+    labels, files = [], {}
+    for index, scene in enumerate(value):
+        if scene in known:
+            label = scene
+        elif is_scene_file(scene):
+            path = os.path.abspath(os.path.join(base_dir, scene))
+            if not os.path.isfile(path):
+                raise SweepSpecError(f"{where}[{index}]: no scene file {scene!r} (looked for {path}); {allowed}")
+            try:
+                check_scene_file(path)
+            except ValueError as error:
+                raise SweepSpecError(f"{where}[{index}] {scene!r}: {error}") from None
+            label = scene_label(path)
+            files[label] = path
+        else:
+            raise SweepSpecError(f"{where}: unknown scene {scene!r}; {allowed}")
+        if label in labels:
+            raise SweepSpecError(f"{where}[{index}]: {scene!r} names its metrics {label!r} as an earlier "
+                                 f"scene does; rename the file")
+        labels.append(label)
+    return tuple(labels), files
 
 
 def _check_synth(value, where):
@@ -88,7 +109,7 @@ def _check_value(value, default, where):
     return value
 
 
-def _entry(table, where, kind, methods, scenes, synth, known_scenes, proxy=None):
+def _entry(table, where, kind, methods, scenes, synth, known_scenes, proxy=None, base_dir="."):
     """The points of one ``[[grid]]`` or ``[[points]]`` table."""
     if not isinstance(table, dict):
         raise SweepSpecError(f"{where} must be a table, not {table!r}")
@@ -99,7 +120,7 @@ def _entry(table, where, kind, methods, scenes, synth, known_scenes, proxy=None)
         raise SweepSpecError(f"{where}.method: unknown method {name!r}; methods: {', '.join(methods)}")
     spec = methods[name]
     if "scenes" in table:
-        scenes = _check_scenes(table["scenes"], f"{where}.scenes", known_scenes)
+        scenes = _check_scenes(table["scenes"], f"{where}.scenes", known_scenes, base_dir)
     if "synth" in table:
         option = table["synth"]
         if isinstance(option, bool):
@@ -138,17 +159,26 @@ def _brief(params):
     return " ".join(f"{k}={v}" for k, v in params.items()) or "defaults"
 
 
-def point_id(method, params, scenes, synth):
-    """A point's identity: sha256 of method, sorted params, scenes and synth options, 16 hex digits."""
-    key = json.dumps({"method": method, "params": params, "scenes": list(scenes), "synth": synth},
-                     sort_keys=True, separators=(",", ":"))
+def point_id(method, params, scenes, synth, files=None):
+    """A point's identity: sha256 of method, sorted params, scenes and synth options, 16 hex
+    digits; with scene ``files`` (``{label: path}``) their contents too, so an edited scene
+    file runs again (without, the hash is what it always was: old sweeps resume)."""
+    from .sweep_scene import file_digest
+    fields = {"method": method, "params": params, "scenes": list(scenes), "synth": synth}
+    if files:
+        fields["scene_files"] = {label: file_digest(path) for label, path in files.items()}
+    key = json.dumps(fields, sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(key.encode()).hexdigest()[:16]
 
 
 def _point(method, params, scenes, synth, proxy=None):
     # the proxy is not part of the identity: a point's error does not depend on it
-    return {"id": point_id(method, params, scenes, synth), "method": method, "params": params,
-            "scenes": list(scenes), "synth": synth, "proxy": None if synth else proxy}
+    labels, files = scenes
+    point = {"id": point_id(method, params, labels, synth, files), "method": method, "params": params,
+             "scenes": list(labels), "synth": synth, "proxy": None if synth else proxy}
+    if files:
+        point["scene_files"] = dict(files)
+    return point
 
 
 def _check_proxy(value, where, synth):
@@ -169,7 +199,10 @@ def load_spec(spec):
 
     Returns ``{"scenes": tuple, "synth": dict | None, "points": [point, ...]}``, the
     points expanded and without duplicates (each a dict with ``id``, ``method``,
-    ``params`` (every parameter of the method, defaults filled in), ``scenes``, ``synth``).
+    ``params`` (every parameter of the method, defaults filled in), ``scenes`` (the names
+    their metrics carry), ``synth``, and ``scene_files`` ``{name: absolute path}`` where
+    scene files were given, resolved from the spec file's folder (a dict spec: the
+    working directory)).
 
     Raises
     ------
@@ -178,9 +211,9 @@ def load_spec(spec):
         field: the message names the field, the bad value and what is allowed.
     """
     if isinstance(spec, dict):
-        where, data = "sweep spec", spec
+        where, data, base_dir = "sweep spec", spec, "."
     else:
-        where = f"sweep spec {os.fspath(spec)}"
+        where, base_dir = f"sweep spec {os.fspath(spec)}", os.path.dirname(os.fspath(spec))
         try:
             with open(spec, "rb") as file:
                 data = tomllib.load(file)
@@ -192,7 +225,7 @@ def load_spec(spec):
     for key in data:
         if key not in _TOP_KEYS:
             raise SweepSpecError(f"{where}: unknown key {key!r}; keys: {', '.join(_TOP_KEYS)}")
-    scenes = _check_scenes(data.get("scenes", ["torus", "sphere"]), f"{where}: scenes", known_scenes)
+    scenes = _check_scenes(data.get("scenes", ["torus", "sphere"]), f"{where}: scenes", known_scenes, base_dir)
     synth = _check_synth(data["synth"], f"{where}: synth") if "synth" in data else None
     proxy = _check_proxy(data.get("proxy"), f"{where}: proxy", synth)
     points = {}
@@ -202,11 +235,11 @@ def load_spec(spec):
             raise SweepSpecError(f"{where}: {kind} must be an array of tables ([[{kind}]]), not {tables!r}")
         for index, table in enumerate(tables):
             for point in _entry(table, f"{where}: {kind}[{index}]", kind, methods, scenes, synth,
-                                known_scenes, proxy):
+                                known_scenes, proxy, base_dir):
                 points.setdefault(point["id"], point)
     if not points:
         raise SweepSpecError(f"{where}: no points; add a [[grid]] or [[points]] table")
-    return {"scenes": scenes, "synth": synth, "proxy": proxy, "points": list(points.values())}
+    return {"scenes": scenes[0], "synth": synth, "proxy": proxy, "points": list(points.values())}
 
 
 def expand(spec):

@@ -182,7 +182,7 @@ def test_bad_method_and_params():
         evaluate("euler", {"p_frac": 20})
     with pytest.raises(ValueError, match=r"^addr_bits must be an integer in 2\.\.9, not 10$"):
         METHODS["spherical"].config({"theta_frac": 8, "addr_bits": 10})
-    with pytest.raises(ValueError, match=r"^scene must be one of torus, sphere, not 'cube'$"):
+    with pytest.raises(ValueError, match=r"^scene must be one of torus, sphere or a scene file \(\.toml\), not 'cube'$"):
         evaluate("schlick", {}, scenes=("cube",))
     with pytest.raises(ValueError, match=r"^synth option 'speed' is not one of target, freq, device, "
                                          r"seed, workdir$"):

@@ -195,9 +195,9 @@ SPEC_ERRORS = [
     ({"grid": [{"method": "alpha", "a": [4, 17]}]},
      r"^sweep spec: grid\[0\] \(alpha, a=17\): a must be in \[1, 16\], not 17$"),
     ({"scenes": ["cube"], "grid": [{"method": "beta"}]},
-     r"^sweep spec: scenes: unknown scene 'cube'; scenes: torus, sphere$"),
+     r"^sweep spec: scenes: unknown scene 'cube'; scenes: torus, sphere, or a scene file \(\.toml\) relative to the sweep file$"),
     ({"scenes": [], "grid": [{"method": "beta"}]},
-     r"^sweep spec: scenes must be a non-empty list of scene names, not \[\]; scenes: torus, sphere$"),
+     r"^sweep spec: scenes must be a non-empty list of scene names, not \[\]; scenes: torus, sphere, or a scene file \(\.toml\) relative to the sweep file$"),
     ({"synth": {"freq": -1}, "grid": [{"method": "beta"}]},
      r"^sweep spec: synth\.freq must be a number of MHz in \(0, 1000\], not -1$"),
     ({"synth": {"target": "xc7"}, "grid": [{"method": "beta"}]},
@@ -212,7 +212,7 @@ SPEC_ERRORS = [
      r"^sweep spec: points\[0\]\.synth\.freq must be a number of MHz in \(0, 1000\], not 0$"),
     ({"points": [{"method": "beta", "scenes": ["torus", 3]}]},
      r"^sweep spec: points\[0\]\.scenes must be a non-empty list of scene names, not \['torus', 3\]; "
-     r"scenes: torus, sphere$"),
+     r"scenes: torus, sphere, or a scene file \(\.toml\) relative to the sweep file$"),
     ({"grid": [{"method": "beta", "synth": True}]},
      r"^sweep spec: grid\[0\]\.synth = true needs a top-level \[synth\] table"),
     ({"grids": [{"method": "beta"}]}, r"^sweep spec: unknown key 'grids'; keys: scenes, synth, proxy, grid, points$"),
@@ -362,3 +362,94 @@ def test_ctrl_c_stops_the_workers_at_once_and_a_rerun_resumes(tmp_path, to):
         return {"metrics": {"sphere.phong.max": 0.5}, "cost": None}
     again = run_sweep(tmp_path / "spec.toml", out=tmp_path / "out", workers=1, progress=False, evaluate=quick)
     assert (again["skipped"], again["ran"], again["ok"]) == (1, 3, 3)
+
+
+# --- scene files -----------------------------------------------------------------------------
+
+TINY_SCENE = """name = "tiny"
+[camera]
+at = "infinity"
+[[lights]]
+direction = [1, 1, 1]
+[[lights]]
+direction = [-1, 0.5, 1]
+[materials.m]
+kd = 0.6
+ks = 0.4
+n = 16
+[[objects]]
+type = "sphere"
+material = "m"
+[frames]
+count = 2
+axis = [0, 1, 0]
+degrees = 30
+[output]
+width = 32
+height = 32
+"""
+
+
+def test_a_scene_file_is_a_sweep_scene_resolved_from_the_sweep_file(tmp_path, monkeypatch):
+    from phongfx.explore.evaluate import evaluate
+    (tmp_path / "study").mkdir()
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "scenes" / "tiny.toml").write_text(TINY_SCENE)
+    spec = tmp_path / "study" / "spec.toml"
+    spec.write_text('scenes = ["../scenes/tiny.toml", "sphere"]\nproxy = false\n'
+                    '[[grid]]\nmethod = "schlick"\nt_frac = [8, 12]\n')
+    monkeypatch.chdir(tmp_path)  # not the sweep file's folder: the path is the spec's
+    points = load_spec(spec)["points"]
+    assert [p["scenes"] for p in points] == [["tiny", "sphere"]] * 2
+    assert points[0]["scene_files"] == {"tiny": str(tmp_path / "scenes" / "tiny.toml")}
+    summary = run_sweep(spec, out=tmp_path / "out", workers=1, progress=False)
+    assert (summary["ok"], summary["failed"]) == (2, 0)
+    record = load_records(tmp_path / "out" / "points.jsonl")[0]
+    direct = evaluate("schlick", {"t_frac": 8}, scenes=(str(tmp_path / "scenes" / "tiny.toml"),))["metrics"]
+    assert record["metrics"]["tiny.phong.max"] == direct["tiny.phong.max"] > 0
+    assert "sphere.phong.max" in record["metrics"] and "tiny.pixel-self.mean" in record["metrics"]
+    # an edited scene file is a new point; an unchanged one is skipped
+    again = run_sweep(spec, out=tmp_path / "out", workers=1, progress=False)
+    assert (again["skipped"], again["ran"]) == (2, 0)
+    (tmp_path / "scenes" / "tiny.toml").write_text(TINY_SCENE.replace("degrees = 30", "degrees = 40"))
+    assert {p["id"] for p in load_spec(spec)["points"]}.isdisjoint(p["id"] for p in points)
+
+
+def test_the_example_torus_scene_pools_its_frames():
+    from phongfx.explore.evaluate import METHODS, error_metrics, evaluate
+    from phongfx.explore.sweep_scene import file_views
+    here = os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "torus.toml")
+    label, views = file_views(here)
+    assert (label, [v.frame for v in views]) == ("torus", [0, 1, 2, 3])
+    pooled = evaluate("schlick", {"t_frac": 8}, scenes=(here,))["metrics"]
+    spec = METHODS["schlick"]
+    p = spec.resolve({"t_frac": 8})
+    each = []
+    for view in views:
+        fixed, floats, _ = spec.run(spec, spec.build(p), p, view)
+        each.append(error_metrics(fixed, floats["phong"], view.data["visible"])["max"])
+    assert pooled["torus.phong.max"] == max(each) > 0 and len(pooled) == 16
+
+
+SCENE_ERRORS = [
+    ('scenes = ["my.toml"]', "my.toml", None,
+     r"^sweep spec \S+spec\.toml: scenes\[0\]: no scene file 'my\.toml' \(looked for \S+/my\.toml\); "
+     r"scenes: torus, sphere, or a scene file \(\.toml\) relative to the sweep file$"),
+    ('scenes = ["lit.toml"]', "lit.toml", TINY_SCENE.replace("direction = [1, 1, 1]", "position = [3, 3, 3]"),
+     r"^sweep spec \S+: scenes\[0\] 'lit\.toml': lights\[0\] is a point light; sweeps take lights at infinity"),
+    ('scenes = ["bad.toml"]', "bad.toml", TINY_SCENE.replace("kd = 0.6", "kd = 6"),
+     r"^sweep spec \S+: scenes\[0\] 'bad\.toml': \S+bad\.toml: materials\.m\.kd must be"),
+    ('scenes = ["sphere", "sphere.toml"]', "sphere.toml", TINY_SCENE,
+     r"^sweep spec \S+: scenes\[1\]: 'sphere\.toml' names its metrics 'sphere' as an earlier scene does; "
+     r"rename the file$"),
+]
+
+
+@pytest.mark.parametrize("top, name, text, message", SCENE_ERRORS)
+def test_scene_file_errors_name_the_field_and_the_value(stub, top, name, text, message):
+    if text is not None:
+        (stub / name).write_text(text)
+    spec = stub / "spec.toml"
+    spec.write_text(f'{top}\n[[grid]]\nmethod = "alpha"\n')
+    with pytest.raises(SweepSpecError, match=message):
+        load_spec(spec)
