@@ -415,22 +415,6 @@ def test_a_scene_file_is_a_sweep_scene_resolved_from_the_sweep_file(tmp_path, mo
     assert {p["id"] for p in load_spec(spec)["points"]}.isdisjoint(p["id"] for p in points)
 
 
-def test_the_example_torus_scene_pools_its_frames():
-    from phongfx.explore.evaluate import METHODS, error_metrics, evaluate
-    from phongfx.explore.sweep_scene import file_views
-    here = os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "torus.toml")
-    label, views = file_views(here)
-    assert (label, [v.frame for v in views]) == ("torus", [0, 1, 2, 3])
-    pooled = evaluate("schlick", {"t_frac": 8}, scenes=(here,))["metrics"]
-    spec = METHODS["schlick"]
-    p = spec.resolve({"t_frac": 8})
-    each = []
-    for view in views:
-        fixed, floats, _ = spec.run(spec, spec.build(p), p, view)
-        each.append(error_metrics(fixed, floats["phong"], view.data["visible"])["max"])
-    assert pooled["torus.phong.max"] == max(each) > 0 and len(pooled) == 16
-
-
 SCENE_ERRORS = [
     ('scenes = ["my.toml"]', "my.toml", None,
      r"^sweep spec \S+spec\.toml: scenes\[0\]: no scene file 'my\.toml' \(looked for \S+/my\.toml\); "
