@@ -41,15 +41,17 @@ def add_arguments(p):
 
 
 
-def _cost(cost):
+def _cost(cost, synth=False):
     """``LUT-eq 1234`` or ``area 56,789 µm²`` of a compile cost dict; why it is missing."""
     value = cost.get("cost")
     if value is None:
         log = f"; log {cost['log']}" if cost.get("log") else ""
         return f"cost unknown ({cost.get('why', 'not costed')}{log})"
+    # under --synth an infeasible method's defaults keep the proxy's cost: say which it is
+    model = " by the proxy" if synth and str(cost.get("model")).endswith("-proxy") else ""
     if cost.get("unit") == "µm²":
-        return f"area {value:,.0f} µm²"
-    return f"LUT-eq {value:.0f}"
+        return f"area {value:,.0f} µm²{model}"
+    return f"LUT-eq {value:.0f}{model}"
 
 
 def _saving(cost, other):
@@ -91,7 +93,7 @@ def cmd_compile(args):
     for name, reason in data["rejected"].items():
         print(f"  {name:12s} rejected: {reason}")
     for name, r in data["methods"].items():
-        default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'])}"
+        default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'], args.synth)}"
         if r["feasible"]:
             print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({default})")
         else:
