@@ -4,7 +4,7 @@ highlights (``R`` near ``V``) and, where the config normalizes them, non-unit ``
 
 import numpy as np
 
-from . import AXES, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
+from . import AXES, axis_pairs, codes, concat, perpendicular_pairs, unit_vectors
 from .blinn import edge_n, mixed
 from .extreme import Extreme, all_of, exactly, vectors_at_shininess_ends, zero
 

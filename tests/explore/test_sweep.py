@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import pytest
 
-from phongfx.explore import sweep, sweep_spec
+from phongfx.explore import sweep_spec
 from phongfx.explore.sweep import SweepSpecError, load_records, load_spec, run_sweep
 
 

@@ -4,7 +4,6 @@ import pytest
 from phongfx.config import DifferenceConfig, ShapeConfig
 from phongfx.config.shape import K_MAX
 from phongfx.core.registry import get_block
-from phongfx.golden.difference import difference
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.shape import shape
 from phongfx.sim.stimulus.shape import nonzero_codes, threshold

@@ -7,7 +7,7 @@ from phongfx.config import SphericalConfig
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
 from phongfx.golden.fixed import Fixed
-from phongfx.golden.spherical import interpolate, rom_angles, rom_bound, rom_contents, spherical
+from phongfx.golden.spherical import interpolate, rom_angles, rom_bound, rom_contents
 from phongfx.golden.spherical_setup import quantize_setup, solve_a, span_setup
 from phongfx.papers.szirmay import PAPER_TABLE1
 
