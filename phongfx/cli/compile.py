@@ -22,7 +22,8 @@ def add_arguments(p):
     """``phongfx compile``'s arguments, on its subparser ``p``."""
     p.add_argument("scene", help="scene file (TOML), e.g. scenes/torus.toml")
     p.add_argument("-o", "--output", required=True, help="output folder")
-    p.add_argument("--synth", action="store_true", help="cost by synthesis (yowasp; OpenSTA on asic) instead of the proxy")
+    p.add_argument("--synth", action="store_true",
+                   help="cost by synthesis (yowasp; OpenSTA on asic) instead of the proxy")
     p.add_argument("--target", default="ecp5", choices=("ecp5", "ice40", "asic"),
                    help="what cost means: ecp5 (default) or ice40 LUT-eq, asic area in µm²")
     p.add_argument("--device", help="FPGA part (ecp5 25k/45k/85k, ice40 up5k/hx8k/hx1k)")
@@ -32,10 +33,12 @@ def add_arguments(p):
     p.add_argument("--max-error", type=float, metavar="LEVELS",
                    help="instead of the scene's requirement.max_error_levels (display levels, > 0)")
     from phongfx.explore.methods import METHODS
-    p.add_argument("--methods", help=f"comma-separated methods to consider: {', '.join(METHODS)} (default all)")
+    p.add_argument("--methods",
+                   help=f"comma-separated methods to consider: {', '.join(METHODS)} (default all)")
     p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
     p.add_argument("--testbench", action="store_true",
-                   help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench (Icarus, Verilator)")
+                   help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench "
+                        "(Icarus, Verilator)")
     p.add_argument("--vcd", metavar="FILE", help="waveform of the RTL check (Verilator --trace)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 

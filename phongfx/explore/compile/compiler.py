@@ -58,7 +58,8 @@ from .costing import COST_UNITS, TIE_MARGIN, costed, tie
 from .infeasible import hint, summary
 from .journal import Journal, scene_key
 
-__all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "widest", "search_widths"]
+__all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "widest",
+           "search_widths"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -201,6 +202,10 @@ class SceneEval:
                 "max_unrounded": float(raw.max(initial=0.0)),
                 "per_render": [float(r.max(initial=0.0)) for r in each]}
 
+    def measured(self, method, params):
+        """:meth:`error` without its per-render list: what a result and the manifest keep."""
+        return {k: v for k, v in self.error(method, params).items() if k != "per_render"}
+
     def form_error(self, method, params):
         """Max over every render of ``|I_form - I_ref|·(2^bits - 1)``: how far the method's
         own float form (at ``params``' ``k``) is from true Phong, before any rounding."""
@@ -250,7 +255,7 @@ def search_widths(scene, method, progress=None):
     widths = width_params(method, scene.spec.requirement.against)
     default = {k: v for k, (v, _) in widths.items()}
     start, scan = (default, {}) if _passes(scene, method, default) else widest(scene, method, widths)
-    result = {"method": method, "default": {"params": default, **scene.error(method, default)}}
+    result = {"method": method, "default": {"params": default, **scene.measured(method, default)}}
     if not _passes(scene, method, start):
         return {**result, **summary(scene, method, start, scan)}
     params, changed = dict(start), True
@@ -276,7 +281,7 @@ def search_widths(scene, method, progress=None):
                 proof[name] = {"value": params[name], "lower": params[name] - 1,
                                **{k: measured[k] for k in ("max", "why") if k in measured}}
                 proof[name]["max_error"] = proof[name].pop("max")
-    return {**result, "feasible": True, "params": params, **scene.error(method, params), "proof": proof}
+    return {**result, "feasible": True, "params": params, **scene.measured(method, params), "proof": proof}
 
 
 def check_methods(methods):

@@ -35,7 +35,8 @@ def per_variant(scene, error):
 
 def _best(scene, method):
     """The measured point of ``method`` with the lowest max (then mean) error, or None."""
-    points = [(dict(key[1]), error) for key, error in scene.cache.items() if key[0] == method and _finite(error)]
+    points = [(dict(key[1]), error) for key, error in scene.cache.items()
+              if key[0] == method and _finite(error)]
     if not points:
         return None
     return min(points, key=lambda p: (p[1]["max"], p[1]["mean"]))
@@ -71,7 +72,8 @@ def _why(scene, method, best, widest_point, scan, requirement):
         near = ", ".join(f"k = {v}: {scan[v]['max']:g}" for v in (k - 1, k + 1) if v in scan)
         out.append(f"the shape function's k, scanned over {lo}..{hi} with every other width at its maximum, "
                    f"is best at k = {k} ({_levels(scan[k]['max'])}{'; ' + near if near else ''})"
-                   + (f"; {hi} is the cap (phongfx.config.shape.K_MAX, n = 2^k = {2 ** hi})" if k == hi else ""))
+                   + (f"; {hi} is the cap (phongfx.config.shape.K_MAX, n = 2^k = {2 ** hi})"
+                      if k == hi else ""))
     return out
 
 
@@ -81,7 +83,7 @@ def summary(scene, method, widest_point, scan):
     ``why`` (sentences) and ``k_scan`` (per ``k``: max error, and per shininess variant)."""
     requirement = scene.spec.requirement.max_error_levels
     best = _best(scene, method) or (widest_point, scene.error(method, widest_point))
-    out = {"feasible": False, "params": _ordered(best[0], widest_point), **best[1],
+    out = {"feasible": False, "params": _ordered(best[0], widest_point), **scene.measured(method, best[0]),
            "widest": {"params": widest_point, "max": scene.error(method, widest_point)["max"]},
            "why": _why(scene, method, best, widest_point, scan, requirement)}
     if scan:
@@ -142,11 +144,13 @@ def hint(compiled):
             found["method"] = r["method"]
             break
     if found:
-        parts = "; ".join(f"{name} n = {a[0]}..{a[1]} and {b[0]}..{b[1]}" for name, (a, b) in found["ranges"].items())
+        parts = "; ".join(f"{name} n = {a[0]}..{a[1]} and {b[0]}..{b[1]}"
+                          for name, (a, b) in found["ranges"].items())
         samples = ", ".join(f"n = {'/'.join(map(str, s['n'].values()))}: k = {s['k']} ({_levels(s['max'])})"
                             for s in found["at"])
-        text.append(f"no single k serves the whole shininess range, but each part does ({found['method']}, measured "
-                    f"at {samples}): split it into two materials ({parts}) or two units, at k = {found['k'][0]} "
+        text.append(f"no single k serves the whole shininess range, but each part does ({found['method']}, "
+                    f"measured at {samples}): split it into two materials ({parts}) or two units, "
+                    f"at k = {found['k'][0]} "
                     f"and k = {found['k'][1]}")
     return {"best": {"method": best["method"], "max": best["max"], "params": best["params"]},
             "command": command, "split": found, "text": text}
