@@ -22,7 +22,7 @@ model did not predict.  Synthesis builds under
 :func:`~phongfx.hdl.overflow.overflow_checks` ``(False)``, where the field is 0.
 """
 
-from amaranth.hdl import Const, Module
+from amaranth.hdl import Const, Module, Signal
 from amaranth.lib import data, wiring
 from amaranth.lib.wiring import In, Out
 
@@ -30,7 +30,7 @@ from phongfx.config import BlockConfig
 from phongfx.core.format import Format
 
 from .fixed import FixedValue, FixedVector, align, delay
-from .overflow import overflow_flags, report_overflow
+from .overflow import add_probe, overflow_flags, probing, report_overflow
 
 __all__ = ["OVERFLOW", "checked_outputs", "payload_layout", "stream_signature", "unbuilt", "PipelinedBlock"]
 
@@ -144,6 +144,13 @@ class PipelinedBlock(wiring.Component):
         _drive(m, self.o.payload, self.config.outputs, outputs, f"{type(self).__name__} output")
         m.d.comb += self.o.valid.eq(valid)
         m.d.comb += self.o.payload[OVERFLOW].eq(self._overflow(flags) & valid if flags else Const(0))
+        if flags is not None and probing():
+            for claim in flags.static:
+                add_probe(type(self).__name__, claim, None)
+            for index, flag in enumerate(f for f in flags if f.claim is not None):
+                probe = Signal(name=f"overflow_probe{index}")
+                m.d.comb += probe.eq(flag.at(self.latency).value & valid)
+                add_probe(type(self).__name__, flag.claim, probe)
         return m
 
     def _overflow(self, flags):

@@ -33,7 +33,7 @@ from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
 from phongfx.core.format import Format, check_overflow, check_rounding
 
-from .overflow import collecting_overflow, report_overflow
+from .overflow import caller, collecting_overflow, report_overflow, report_static
 
 __all__ = ["FixedValue", "FixedVector", "fit", "quantize", "overflowed", "stage", "delay", "cut", "align",
            "quantize_cut"]
@@ -261,8 +261,11 @@ class FixedValue:
         to = Format.parse(to)
         if overflow == "error" and collecting_overflow():
             bad = overflowed(self.value, self.fmt, to, rounding)
+            claim = f"{self.fmt} -> {to} ({rounding}) at {caller(('fixed.py', 'dsp.py'))}"
             if bad is not None:
-                report_overflow(self.flag(bad, "overflow"))
+                report_overflow(self.flag(bad, "overflow"), claim)
+            else:
+                report_static(claim)
         return FixedValue(quantize(self.value, self.fmt, to, rounding, overflow, parallel_clamp), to,
                           self.cycle, self.module)
 

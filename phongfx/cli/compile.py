@@ -40,6 +40,11 @@ def add_arguments(p):
                    help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench "
                         "(Icarus, Verilator)")
     p.add_argument("--vcd", metavar="FILE", help="waveform of the RTL check (Verilator --trace)")
+    p.add_argument("--prove", action="store_true",
+                   help="prove the chosen design's overflow=\"error\" claims (phongfx prove; minutes per claim "
+                        "on a datapath); a design with a counterexample is not chosen")
+    p.add_argument("--prove-timeout", type=float, default=600, metavar="S",
+                   help="with --prove: seconds per claim before it is reported unknown (default 600)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -90,7 +95,8 @@ def cmd_compile(args):
             bar.set_description(f"compile {spec.name}: {step}")
             bar.update(1)
         compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
-                                 freq=args.freq, seed=args.seed, progress=progress, journal=JOURNAL)
+                                 freq=args.freq, seed=args.seed, progress=progress, journal=JOURNAL,
+                                 prove=args.prove, prove_timeout=args.prove_timeout)
         data = emit(compiled, args.output, check=not args.no_check, progress=progress,
                     testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
@@ -141,6 +147,11 @@ def cmd_compile(args):
     else:
         print(f"  conventional Phong misses the requirement: max {_levels(baseline['max'])} even at "
               f"{baseline['params']}")
+    proof = data["overflow_proof"]
+    if "claims" in proof:
+        print(f"  overflow claims: {len(proof['claims'])}; proven {proof['proven']}, by width {proof['static']}, "
+              f"counterexample {proof['counterexample']}, unknown {proof['unknown']} ({proof['seconds']:.0f} s; "
+              f"assuming {'; '.join(proof['assumptions'])})")
     top = data["top"]
     print(f"shipped top: {args.output}/{top['file']} ({top['module']}, {len(top['ports'])} ports, "
           f"latency {top['latency']})")

@@ -24,6 +24,7 @@ from phongfx.sim.harness import BACKENDS
 
 from . import commands
 from . import compile as compile_command
+from . import prove as prove_command
 
 __all__ = ["DESCRIPTION", "build_parser"]
 
@@ -209,4 +210,9 @@ def build_parser():
                                        "requirement: Verilog, manifest, frames, RTL check")
     compile_command.add_arguments(p)
     p.set_defaults(run=compile_command.cmd_compile)
+
+    p = sub.add_parser("prove", help="prove a block's overflow=\"error\" claims for every input of its domain "
+                                     "(SymbiYosys, k-induction): exit 0 all proven, 1 a counterexample, 3 unknown")
+    prove_command.add_arguments(p)
+    p.set_defaults(run=prove_command.cmd_prove)
     return parser

@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from phongfx.core.registry import get_block
 from phongfx.explore.methods import METHODS
 from phongfx.explore.progress import Candidates
 from phongfx.golden.blend import blend
@@ -293,8 +294,23 @@ def check_methods(methods):
     return names
 
 
+def _proven(scene, ranked, timeout, progress):
+    """``ranked`` from the first design without a counterexample to its overflow claims
+    on: each proven in turn (``result["overflow_proof"]``) until one has none."""
+    from phongfx.sim.prove import prove
+
+    for index, result in enumerate(ranked):
+        name = result["method"]
+        block = get_block(runs.block_name(name), config=runs.build(name, result["params"], scene.analysis))
+        proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
+        result["overflow_proof"] = proof.as_dict()
+        if not proof.counts.get("counterexample"):
+            return ranked[index:]
+    return []
+
+
 def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, seed=1,
-                  progress=None, geometries=None, journal=None):
+                  progress=None, geometries=None, journal=None, prove=False, prove_timeout=600):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
     Parameters
@@ -313,6 +329,10 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     journal : path, optional
         A folder where every measured width point is kept, so that a rerun of the same
         scene (and code) skips them (:mod:`phongfx.explore.compile.journal`).
+    prove, prove_timeout : bool, float
+        Prove the chosen design's ``overflow="error"`` claims (:mod:`phongfx.sim.prove`,
+        ``prove_timeout`` seconds per claim); a design with a counterexample is not chosen
+        and the next cheapest is proven instead.
 
     Returns
     -------
@@ -344,7 +364,10 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     feasible = [r for r in out.results.values() if r["feasible"]]
     if feasible:  # an uncosted design (its synthesis failed) is chosen only if nothing else meets it
         ranked = sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
-        out.chosen = ranked[0]["method"]
-        out.tie = tie(ranked, TIE_MARGIN)
+        if prove:
+            ranked = _proven(scene, ranked, prove_timeout, progress)
+        if ranked:
+            out.chosen = ranked[0]["method"]
+            out.tie = tie(ranked, TIE_MARGIN)
     out.hint = hint(out)
     return out

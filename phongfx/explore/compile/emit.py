@@ -97,7 +97,7 @@ def _baseline(compiled, method):
 
 #: What the manifest keeps of each method's search result (an infeasible one adds its
 #: best point's reasons: :func:`phongfx.explore.compile.infeasible.summary`).
-_METHOD_KEYS = ("feasible", "params", "max", "mean", "cost", "default", "widest", "why", "k_scan")
+_METHOD_KEYS = ("feasible", "params", "max", "mean", "cost", "default", "widest", "why", "k_scan", "overflow_proof")
 
 
 def manifest(compiled, module=None, instances=None, check=None):
@@ -129,6 +129,8 @@ def manifest(compiled, module=None, instances=None, check=None):
                               "measured_at": "out_r, out_g, out_b (display levels)"},
                     "cost": best["cost"],
                     "minimality_proof": best["proof"], "default_widths": best["default"],
+                    "overflow_proof": best.get("overflow_proof") or {"status": "not run",
+                                                                     "how": "phongfx compile --prove"},
                     "rtl_check": check})
     return _clean(out)
 
