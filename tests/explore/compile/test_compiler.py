@@ -253,11 +253,13 @@ def test_unknown_method_and_missing_scene_exit_2(tmp_path, capsys):
 @pytest.mark.parametrize("name", ["lyon-balls", "torus", "local-mesh"])
 def test_example_scenes_compile_and_verify(tmp_path, name):
     out = tmp_path / name
-    assert main(["compile", os.path.join(SCENES, f"{name}.toml"), "-o", str(out), "--quiet"]) == 0
+    assert main(["compile", os.path.join(SCENES, f"{name}.toml"), "-o", str(out), "--quiet", "--prove"]) == 0
     data = json.loads((out / "manifest.json").read_text())
     assert data["error"]["max"] <= data["requirement"]["max_error_levels"]
     local = name == "local-mesh"  # a point light and a local viewer: L and V interpolated too
     assert data["rtl_check"]["mismatches"] == 0 and data["block_counts"]["lirp"] == (3 if local else 1)
+    proof = data["overflow_proof"]  # every overflow="error" claim of the shipped design, proven
+    assert proof["claims"] and proof["counterexample"] == 0 and proof["unknown"] == 0
 
 
 def _fake_synth(name, *, config=None, **options):
@@ -368,3 +370,22 @@ def test_a_point_light_beside_a_directional_one_gets_the_only_l_interpolator():
     codes_, reference, _, _ = compiled.scene.render("fig7", config, compiled.best["params"], 0)
     assert codes_.shape == (len(g), 3) and len({tuple(c) for c in codes_[:, :].T.tolist()}) == 3
     assert compiled.best["max"] <= 1.0 and np.max(np.abs(codes_ - np.floor(reference * 255 + 0.5))) <= 1
+
+
+def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
+    import phongfx.sim.prove as proofs
+    tried = []
+
+    def fake(block, **options):  # fig7's shader "has" a counterexample; the next is proven
+        method = "fig7" if block.config.unit == "fig7" else block.config.unit
+        tried.append(method)
+        bad = method == "fig7"
+        claim = proofs.Claim("Lirp", "S3.20 -> S1.10", "counterexample" if bad else "proven")
+        out = proofs.Proof(block.name, [claim], ["0 <= a <= 1"], "yices", 4)
+        out.counts = {"proven": int(not bad), "static": 0, "counterexample": int(bad), "unknown": 0}
+        return out
+    monkeypatch.setattr(proofs, "prove", fake)
+    compiled = compile_scene(_torus(), methods=["fig7", "conventional"], prove=True)
+    assert tried == ["fig7", "conventional"] and compiled.chosen == "conventional"
+    assert compiled.results["fig7"]["overflow_proof"]["counterexample"] == 1
+    assert compiled.best["overflow_proof"]["proven"] == 1
