@@ -189,6 +189,9 @@ def _sby(work, depth, skip, solver, timeout):
         return "proven", None
     if re.search(r"DONE \(FAIL", log):
         return "counterexample", None
+    if re.search(r"DONE \(UNKNOWN", log):
+        return "unknown", (f"the base case holds to depth {depth} but the induction does not close there "
+                           f"(state that outlives the pipeline, or a deeper dependence)")
     last = [line for line in log.splitlines() if line.strip()][-1:] or ["no output"]
     return "unknown", f"sby ended without a verdict: {last[0].strip()}"
 
