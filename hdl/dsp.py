@@ -28,6 +28,11 @@ The latency and the codes do not change (tests/hdl/test_dsp.py checks the mapped
 against the golden model with :data:`MODEL`, the DSP's behavioural twin).  Products of a
 constant stay ``$mul`` cells, as before.
 
+Under :func:`recording_products` every call of :func:`product` and :func:`split_product`
+is listed as :class:`ProductCall` (operand formats and registers, the call's options), so
+that :mod:`phongfx.sim.dsp_equivalence` can prove each distinct mapping a block uses equal
+to ``*``; recording changes nothing the calls build.
+
 Caveat on timing: nextpnr does not time the multiply between a DSP's own input and output
 registers (its timing data puts that path at 3.5–3.9 ns), so a design whose worst path is
 elsewhere reports that path's Fmax, and the DSP itself is bounded by
@@ -36,6 +41,9 @@ elsewhere reports that path's Fmax, and the DSP itself is bounded by
 
 import contextlib
 import contextvars
+import functools
+import inspect
+from dataclasses import dataclass
 from pathlib import Path
 
 from amaranth.hdl import Cat, ClockSignal, Const, Instance, ResetSignal, Signal
@@ -44,8 +52,8 @@ from phongfx.core.format import Format
 
 from .fixed import FixedValue, FixedVector, align, fit, stage
 
-__all__ = ["DSP_BITS", "DSP_TARGETS", "MODEL", "DSP_INTERNAL_NS", "dsp_mapping", "dsp_target", "product",
-           "registered", "split_product"]
+__all__ = ["DSP_BITS", "DSP_TARGETS", "MODEL", "DSP_INTERNAL_NS", "ProductCall", "dsp_mapping", "dsp_target",
+           "product", "recording_products", "registered", "split_product"]
 
 #: Unsigned bits of a MULT18X18D operand part (18-bit signed inputs hold 17 unsigned bits).
 DSP_BITS = 17
@@ -59,6 +67,73 @@ MODEL = Path(__file__).with_name("mult18x18d.v")
 DSP_INTERNAL_NS = 3.9
 
 _TARGET = contextvars.ContextVar("phongfx_dsp_target", default=None)
+# the list recording_products appends to; None outside it and inside a recorded call
+_RECORDING = contextvars.ContextVar("phongfx_dsp_recording", default=None)
+
+
+@dataclass(frozen=True)
+class ProductCall:
+    """One scalar product as :func:`product` or :func:`split_product` (``function``) was
+    asked for it: the operand formats; whether each operand, once aligned to the other, is
+    a register's output (``pre`` set: what a DSP input register can absorb); and the
+    call's ``output``, ``on`` and ``isolate`` (``output`` True and ``on`` False where the
+    function has no such argument).  A vector call is one record per element pair."""
+
+    function: str
+    a: Format
+    b: Format
+    a_registered: bool
+    b_registered: bool
+    output: bool
+    on: bool
+    isolate: bool
+    name: str
+
+
+@contextlib.contextmanager
+def recording_products():
+    """Inside, every outermost :func:`product` / :func:`split_product` call with two
+    variable operands (a constant one is never mapped) is appended, as
+    :class:`ProductCall`, to the list this yields; the calls they make themselves are not."""
+    calls = []
+    token = _RECORDING.set(calls)
+    try:
+        yield calls
+    finally:
+        _RECORDING.reset(token)
+
+
+def _recorded(function):
+    signature = inspect.signature(function)
+
+    @functools.wraps(function)
+    def call(*args, **kwargs):
+        calls = _RECORDING.get()
+        if calls is None:
+            return function(*args, **kwargs)
+        arguments = signature.bind(*args, **kwargs)
+        arguments.apply_defaults()
+        calls.extend(_calls(function.__name__, arguments.arguments))
+        token = _RECORDING.set(None)  # product inside split_product, vectors' elements
+        try:
+            return function(*args, **kwargs)
+        finally:
+            _RECORDING.reset(token)
+    return call
+
+
+def _calls(function, arguments):
+    a, b = arguments["a"], arguments["b"]
+    vector = isinstance(a, FixedVector) or isinstance(b, FixedVector)
+    pairs = zip(_items(a), _items(b)) if vector else [(a, b)]
+    for x, y in pairs:
+        if x.cycle is None or y.cycle is None:
+            continue
+        # align() delays the earlier operand by registers, which a DSP can absorb too
+        cycle = max(x.cycle, y.cycle)
+        yield ProductCall(function, x.fmt, y.fmt, x.pre is not None or x.cycle < cycle,
+                          y.pre is not None or y.cycle < cycle, arguments.get("output", True),
+                          arguments.get("on", False), arguments["isolate"], arguments["name"])
 
 
 @contextlib.contextmanager
@@ -80,6 +155,7 @@ def dsp_target():
     return _TARGET.get()
 
 
+@_recorded
 def product(m, a, b, output=True, name="product", isolate=False):
     """``a * b`` (:class:`FixedValue` or :class:`FixedVector`, elementwise), registered once
     if ``output``; the same codes at the same cycle whether mapped onto DSPs or not.
@@ -118,6 +194,7 @@ def registered(*values):
     return values if not cycles else [value.at(max(cycles) + 1) for value in values]
 
 
+@_recorded
 def split_product(m, a, b, on, name="product", isolate=False):
     """``a * b`` registered; if ``on``, in two clocks: the products of ``a`` with the low
     :data:`DSP_BITS` bits of the wider operand and with the rest, each registered, then

