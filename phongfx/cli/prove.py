@@ -17,7 +17,10 @@ def add_arguments(p):
     from phongfx.core.registry import block_names
     from phongfx.sim.prove import SOLVERS
 
-    p.add_argument("name", choices=block_names(), help="block name")
+    p.add_argument("name", nargs="?", choices=block_names(), help="block name")
+    p.add_argument("--dsp", action="store_true",
+                   help="instead: prove the ECP5 DSP mapping of every product the registry maps equal to the "
+                        "behavioural multiply (phongfx.sim.dsp_equivalence)")
     p.add_argument("--set", action="append", metavar="FIELD=VALUE", help="change a config field")
     p.add_argument("--json", action="store_true", help="the result as JSON on stdout")
     p.add_argument("--timeout", type=float, default=600, metavar="S",
@@ -48,10 +51,14 @@ def report(proof, out=None):
 def cmd_prove(args):
     from phongfx.sim.prove import prove
 
-    block = configured_block(args.name, args.set)
     timeout = args.timeout
     if not timeout > 0:
         raise ValueError(f"--timeout must be a positive number of seconds, not {timeout:g}")
+    if args.dsp == (args.name is not None):
+        raise ValueError("give a block NAME or --dsp, not both or neither")
+    if args.dsp:
+        return _dsp(args, timeout)
+    block = configured_block(args.name, args.set)
 
     def progress(text):
         if not args.quiet:
@@ -62,3 +69,17 @@ def cmd_prove(args):
     else:
         report(proof)
     return proof.exit_code
+
+
+def _dsp(args, timeout):
+    from phongfx.sim.dsp_equivalence import markdown, prove_dsp_mapping
+
+    proofs = prove_dsp_mapping(timeout=timeout)
+    counts = {status: sum(p.status == status for p in proofs) for status in ("proven", "counterexample", "unknown")}
+    if args.json:
+        print(json.dumps({**counts, "cases": [{"case": p.case.label, "status": p.status, "seconds": p.seconds,
+                                               "dsps": p.dsps, "operands": p.operands} for p in proofs]},
+                         indent=2))
+    else:
+        print(markdown(proofs))
+    return 1 if counts["counterexample"] else 3 if counts["unknown"] else 0

@@ -62,6 +62,7 @@ def test_cli_exit_codes_and_json(tmp_path, monkeypatch, capsys):
     assert main(["prove", "lirp", "--timeout", "0.01", "--quiet"]) == 3
     out = capsys.readouterr().out
     assert "unknown 4" in out and "time-out after 0.01 s" in out and "assuming, on every valid input: 0 <= a <= 1" in out
+    assert main(["prove"]) == 2 and "give a block NAME or --dsp" in capsys.readouterr().err
     # a narrowed config is refused before any proof: the golden model's dry run overflows
     assert main(["prove", "lirp", "--set", "out=S0.10"]) == 2
     assert "overflow format S0.10" in capsys.readouterr().err
