@@ -50,6 +50,7 @@ from amaranth.hdl import Cat, ClockSignal, Const, Instance, ResetSignal, Signal
 
 from phongfx.core.format import Format
 
+from .context import scoped
 from .fixed import FixedValue, FixedVector, align, fit, stage
 
 __all__ = ["DSP_BITS", "DSP_TARGETS", "MODEL", "DSP_INTERNAL_NS", "ProductCall", "dsp_mapping", "dsp_target",
@@ -95,12 +96,8 @@ def recording_products():
     """Inside, every outermost :func:`product` / :func:`split_product` call with two
     variable operands (a constant one is never mapped) is appended, as
     :class:`ProductCall`, to the list this yields; the calls they make themselves are not."""
-    calls = []
-    token = _RECORDING.set(calls)
-    try:
+    with scoped(_RECORDING, []) as calls:
         yield calls
-    finally:
-        _RECORDING.reset(token)
 
 
 def _recorded(function):
@@ -114,11 +111,8 @@ def _recorded(function):
         arguments = signature.bind(*args, **kwargs)
         arguments.apply_defaults()
         calls.extend(_calls(function.__name__, arguments.arguments))
-        token = _RECORDING.set(None)  # product inside split_product, vectors' elements
-        try:
+        with scoped(_RECORDING, None):  # product inside split_product, vectors' elements
             return function(*args, **kwargs)
-        finally:
-            _RECORDING.reset(token)
     return call
 
 
@@ -143,11 +137,8 @@ def dsp_mapping(target):
     if target is not None and target not in DSP_TARGETS:
         raise ValueError(f"DSP target must be one of {', '.join(map(repr, DSP_TARGETS))} or None, "
                          f"not {target!r}")
-    token = _TARGET.set(target)
-    try:
+    with scoped(_TARGET, target):
         yield
-    finally:
-        _TARGET.reset(token)
 
 
 def dsp_target():

@@ -22,6 +22,8 @@ import contextvars
 import os
 import sys
 
+from .context import scoped
+
 __all__ = ["overflow_checks", "overflow_flags", "collecting_overflow", "report_overflow", "report_static",
            "overflow_probes", "add_probe", "probing", "caller"]
 
@@ -37,11 +39,8 @@ _PROBES = contextvars.ContextVar("phongfx_overflow_probes", default=None)
 def overflow_checks(enabled):
     """Build blocks elaborated inside with (``True``, the default) or without the RTL
     overflow flags: simulation wants them, synthesis must not pay for them."""
-    token = _CHECKS.set(bool(enabled))
-    try:
+    with scoped(_CHECKS, bool(enabled)):
         yield
-    finally:
-        _CHECKS.reset(token)
 
 
 @contextlib.contextmanager
@@ -49,12 +48,8 @@ def overflow_flags():
     """Collect, while a block's datapath is built, a 1-bit
     :class:`~phongfx.hdl.fixed.FixedValue` per ``overflow="error"`` quantize that could
     overflow (and per sub-block fed): the list yielded, or None when checks are off."""
-    flags = _Flags() if _CHECKS.get() else None
-    token = _FLAGS.set(flags)
-    try:
+    with scoped(_FLAGS, _Flags() if _CHECKS.get() else None) as flags:
         yield flags
-    finally:
-        _FLAGS.reset(token)
 
 
 class _Flags(list):
@@ -94,12 +89,8 @@ def overflow_probes():
     """Collect, while blocks are elaborated inside, ``{"block", "claim", "signal"}`` per
     ``overflow="error"`` quantize of each: ``signal`` is 1 on a valid output whose value
     did not fit (:func:`add_probe`)."""
-    probes = []
-    token = _PROBES.set(probes)
-    try:
+    with scoped(_PROBES, []) as probes:
         yield probes
-    finally:
-        _PROBES.reset(token)
 
 
 def probing():
