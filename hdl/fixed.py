@@ -33,7 +33,7 @@ from amaranth.hdl import Cat, Const, Mux, Signal, Value
 
 from phongfx.core.format import Format, check_overflow, check_rounding
 
-from .overflow import caller, collecting_overflow, report_overflow, report_static
+from .overflow import caller, collecting_overflow, probing, report_overflow, report_static
 
 __all__ = ["FixedValue", "FixedVector", "fit", "quantize", "overflowed", "stage", "delay", "cut", "align",
            "quantize_cut"]
@@ -261,7 +261,8 @@ class FixedValue:
         to = Format.parse(to)
         if overflow == "error" and collecting_overflow():
             bad = overflowed(self.value, self.fmt, to, rounding)
-            claim = f"{self.fmt} -> {to} ({rounding}) at {caller(('fixed.py', 'dsp.py'))}"
+            # the claim's words and source line matter to a proof only: no frame walk otherwise
+            claim = f"{self.fmt} -> {to} ({rounding}) at {caller(('fixed.py', 'dsp.py'))}" if probing() else ""
             if bad is not None:
                 report_overflow(self.flag(bad, "overflow"), claim)
             else:

@@ -164,13 +164,9 @@ def _design(block, index, bounds):
     return rtlil.convert(m, ports=[dut.i.valid, Value.cast(dut.i.payload)], name="top")
 
 
-def _tool(name):
-    local = Path(sys.executable).parent / name
-    return str(local) if local.is_file() else shutil.which(name)
-
-
 def _sby(work, depth, skip, solver, timeout):
     """Run sby in ``work`` on ``top.il``; ("proven" | "counterexample" | "unknown", why)."""
+    from phongfx.explore.toolrun import tool as _tool
     script = (f"[options]\nmode prove\ndepth {depth}\nskip {skip}\n\n[engines]\nsmtbmc {solver}\n\n"
               "[script]\nread_rtlil top.il\nprep -top top\n\n[files]\ntop.il\n")
     Path(work, "proof.sby").write_text(script)

@@ -11,6 +11,7 @@ torn by an interrupt is ignored.
 """
 
 import dataclasses
+import functools
 import hashlib
 import json
 import os
@@ -21,9 +22,11 @@ import numpy as np
 __all__ = ["Journal", "scene_key", "source_digest"]
 
 
+@functools.cache
 def source_digest():
     """SHA-256 of every Python source of the package (``phongfx``, its ``golden``, ``hdl``
-    and ``sim`` parts): a rerun after any code change measures afresh."""
+    and ``sim`` parts): a rerun after any code change measures afresh.  Read once per
+    process (the sources of a running process do not change under it)."""
     import phongfx
     import phongfx.golden
     import phongfx.hdl
