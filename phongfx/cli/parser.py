@@ -5,12 +5,12 @@ Every list of accepted names in a help text is made from the names the code acce
 :data:`~phongfx.explore.tables.TABLES` ...), not written out, so that a name added there
 is never missing here (hand-written lists had lost five).
 
-Usage errors come out as one ``phongfx: error:`` line (after the usage), like every
-other bad input, with exit code 2.
+Usage errors come out as one ``phongfx: error:`` line, like every other bad input, with
+exit code 2; the line names the subcommand and points at its ``--help`` instead of printing
+the whole usage (which, with every block name spelt out, buried the one line that matters).
 """
 
 import argparse
-import sys
 
 from phongfx.core.registry import block_names
 from phongfx.explore.asic import LIBRARIES
@@ -36,9 +36,9 @@ class _Parser(argparse.ArgumentParser):
     """argparse, but a usage error is one ``phongfx: error:`` line like every other bad input."""
 
     def error(self, message):
-        self.print_usage(sys.stderr)
         where = self.prog.partition(" ")[2]
-        self.exit(2, f"phongfx: error: {where + ': ' if where else ''}{message}\n")
+        hint = f"{self.prog} --help"
+        self.exit(2, f"phongfx: error: {where + ': ' if where else ''}{message} (see {hint})\n")
 
 
 def _names(names):
