@@ -45,14 +45,9 @@ def check_overflow(overflow):
 class Format:
     """A fixed-point format: ``int_bits`` integer and ``frac_bits`` fraction bits.
 
-    Parameters
-    ----------
-    int_bits : int
-        Bits left of the binary point, not counting the sign bit (``n``).
-    frac_bits : int
-        Bits right of the binary point (``m``).
-    signed : bool
-        Two's complement with one extra sign bit (Lyon's ``S`` prefix).
+    :param int int_bits: bits left of the binary point, not counting the sign bit (``n``).
+    :param int frac_bits: bits right of the binary point (``m``).
+    :param bool signed: two's complement with one extra sign bit (Lyon's ``S`` prefix).
 
     A raw integer ``r`` stands for the value ``r * 2**-frac_bits``.
     """

@@ -133,15 +133,11 @@ def _per_light(materials, lights, name):
 def analyse(spec, geometries):
     """The :class:`Analysis` of ``spec`` over its frames ``geometries``.
 
-    Parameters
-    ----------
-    spec : phongfx.scene.file.SceneSpec
-    geometries : sequence of phongfx.scene.geometry.FrameGeometry
-        Every frame of the scene (``n`` per pixel at each material's lowest value).
-
-    Returns
-    -------
-    Analysis
+    :param spec: the scene, a :class:`~phongfx.scene.file.SceneSpec`.
+    :param geometries: every frame of the scene, a sequence of
+        :class:`~phongfx.scene.geometry.FrameGeometry` (``n`` per pixel at each material's
+        lowest value).
+    :returns: an :class:`Analysis`.
     """
     values = tuple(int(round(v)) for v in spec.shininess)
     if not values:

@@ -313,30 +313,21 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
                   progress=None, geometries=None, journal=None, prove=False, prove_timeout=600):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
-    Parameters
-    ----------
-    methods : sequence of str, optional
-        Keys of :data:`~phongfx.explore.methods.METHODS` to consider (default all).
-    synth : bool
-        Cost by synthesis instead of the proxy.
-    target, device, freq, seed : str, str, float, int
-        What the cost is measured on: ``"ecp5"`` (LUT-eq), ``"ice40"`` or ``"asic"``
-        (µm²; ``device`` the library, default ``osu018``), the clock given to the tools
-        and nextpnr's placement seed.
-    progress : callable, optional
-        Called with a short description of each step; each synthesis as "synthesizing
-        candidate i of N (method, widths) T s" and its flow's stages.
-    journal : path, optional
-        A folder where every measured width point is kept, so that a rerun of the same
-        scene (and code) skips them (:mod:`phongfx.explore.compile.journal`).
-    prove, prove_timeout : bool, float
-        Prove the chosen design's ``overflow="error"`` claims (:mod:`phongfx.sim.prove`,
-        ``prove_timeout`` seconds per claim); a design with a counterexample is not chosen
-        and the next cheapest is proven instead.
-
-    Returns
-    -------
-    Compiled
+    :param methods: keys of :data:`~phongfx.explore.methods.METHODS` to consider (default
+        all).
+    :param bool synth: cost by synthesis instead of the proxy.
+    :param target: what the cost is measured on: ``"ecp5"`` (LUT-eq), ``"ice40"`` or
+        ``"asic"`` (µm²); with ``device`` (the part, or the library on ``"asic"``, default
+        ``osu018``), ``freq`` (the clock given to the tools, MHz) and ``seed`` (nextpnr's
+        placement seed).
+    :param progress: called with a short description of each step; each synthesis as
+        "synthesizing candidate i of N (method, widths) T s" and its flow's stages.
+    :param journal: a folder where every measured width point is kept, so that a rerun of
+        the same scene (and code) skips them (:mod:`phongfx.explore.compile.journal`).
+    :param prove: prove the chosen design's ``overflow="error"`` claims
+        (:mod:`phongfx.sim.prove`, ``prove_timeout`` seconds per claim); a design with a
+        counterexample is not chosen and the next cheapest is proven instead.
+    :returns: a :class:`Compiled`.
     """
     names = check_methods(methods)
     if target not in COST_UNITS:

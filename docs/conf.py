@@ -1,0 +1,41 @@
+"""Sphinx configuration of the phongfx documentation (``make docs``: warnings are errors).
+
+The API pages import the package (``phongfx``, ``phongfx.core``, ``phongfx.config``,
+``phongfx.explore.compile``); importing them writes nothing.  A cross-reference that names
+nothing in the code fails the build; one that names a real object outside the API pages
+(a golden model, an HDL component) renders as code without a link (``_ext/phongfx_docs.py``).
+"""
+
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE / "_ext"))
+sys.path.insert(0, str(HERE.parent))
+
+project = "phongfx"
+author = "the phongfx authors"
+copyright = "2026, the phongfx authors"
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "phongfx_docs",
+]
+
+root_doc = "index"
+exclude_patterns = ["_build"]
+nitpicky = True
+# Names of other projects (no intersphinx: the build runs offline) and Python's own.
+nitpick_ignore_regex = [
+    (r"py:.*", r"(numpy|np|amaranth|argparse|pathlib|os|concurrent|tomllib|dataclasses)(\..*)?"),
+    (r"py:.*", r"(int|float|str|bool|dict|list|tuple|set|bytes|object|None|callable|iterable|"
+               r"Path|Fraction|Exception|ValueError|TypeError|KeyError|OSError|TextIO)"),
+]
+
+autodoc_member_order = "bysource"
+autodoc_default_options = {"members": True, "show-inheritance": False}
+autodoc_typehints = "none"
+
+html_theme = "furo"
+html_title = "phongfx"
+html_static_path = ["_static"]
