@@ -36,6 +36,21 @@ autodoc_member_order = "bysource"
 autodoc_default_options = {"members": True, "show-inheritance": False}
 autodoc_typehints = "none"
 
+# Pictures the methods page shows, drawn by phongfx at build time: (file under _generated/,
+# phongfx arguments with {out} for a temporary folder, the glob of the PNG to keep).
+phongfx_pictures = [
+    (f"{method}.png", ["render", "--out", "{out}", "mesh", "--method", method, "--size", "128",
+                       "--n", "20"], "*-f0.png")
+    for method in ("phong", "gouraud-float", "corrected-euler", "spherical", "blinn", "conventional")
+] + [
+    ("figure14.png", ["render", "--out", "{out}", "mesh", "--figure", "14"], "figure14.png"),
+    ("figure15.png", ["render", "--out", "{out}", "mesh", "--figure", "15"], "figure15.png"),
+    ("corrected-euler-error.png", ["render", "--out", "{out}", "mesh", "--method", "corrected-euler",
+                                   "--polygons", "288", "--size", "128"], "*_error.png"),
+    ("schlick-figure1.png", ["tables", "schlick", "--out", "{out}"], "figure1.png"),
+    ("lyon-span-error.png", ["tables", "lyon", "--out", "{out}"], "span_error.png"),
+]
+
 html_theme = "furo"
 html_title = "phongfx"
 html_static_path = ["_static"]
