@@ -12,12 +12,14 @@ STAMP := $(VENV)/.installed-stamp
 DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035 iverilog
 DEBIAN_STAMP := $(VENV)/.debian-stamp
 
-.PHONY: sim test test-all synth sweep sweep-asic report bench identity clean
+DOCS_OUT ?= build/docs
+
+.PHONY: sim test test-all docs synth sweep sweep-asic report bench identity clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
-	$(VENV)/bin/python -m pip install --quiet -e '.[cluster,bench]'
+	$(VENV)/bin/python -m pip install --quiet -e '.[cluster,bench,docs]'
 	touch $(STAMP)
 
 # the Makefile too: a package added to DEBIAN_PACKAGES is installed where the stamp exists
@@ -48,6 +50,11 @@ test: $(STAMP) $(DEBIAN_STAMP)
 # everything, including tests marked slow (long sweeps)
 test-all: $(STAMP) $(DEBIAN_STAMP)
 	$(VENV)/bin/python -m pytest -q -m "" --durations=10
+
+# the documentation (docs/): warnings are errors and every cross-reference must resolve
+docs: $(STAMP)
+	$(VENV)/bin/sphinx-build -W --keep-going -n -q -b html docs $(DOCS_OUT)
+	@echo "docs: $(DOCS_OUT)/index.html"
 
 # synthesis, place and route of the Figure 7 and Figure 8 datapaths (ECP5, yowasp tools)
 synth: $(STAMP)
