@@ -126,3 +126,15 @@ def test_the_page_reader_sees_the_pages_commands():
     assert matches("RTL check frame 0: 1608 pixels, ... 0 mismatches, ...",
                    "RTL check frame 0: 1608 pixels, 2457 cycles (20% stalls), 0 mismatches, 1.87 s\n")
     assert not matches("PASS 1608 vectors", "FAIL vector 3\n")
+
+
+def test_every_subcommand_has_its_page_with_its_options():
+    """``phongfx --help`` lists the subcommands; each has ``docs/commands/NAME.rst`` printing its help."""
+    parser = build_parser()
+    (subcommands,) = [a.choices for a in parser._subparsers._group_actions]
+    index = (DOCS / "commands" / "index.rst").read_text(encoding="utf-8")
+    for name in subcommands:
+        page = DOCS / "commands" / f"{name}.rst"
+        assert page.exists(), f"no page for phongfx {name}"
+        assert f".. phongfx-help:: {name}" in page.read_text(encoding="utf-8"), page
+        assert f"\n   {name}\n" in index, f"commands/index.rst does not list {name}"
