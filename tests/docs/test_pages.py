@@ -26,11 +26,15 @@ _TOOLS = {"iverilog": "iverilog", "verilator": None, "yosys": None, "sta": "sta"
 
 
 def _runnable():
+    """One test per page: its blocks depend on each other (a compile, then its testbench), so they
+    run in page order in one folder, whichever worker runs the page; the page carries every mark
+    its blocks need, so ``-m "not needs_verilator"`` leaves out a page that builds a model."""
     for page in pages():
-        for block in blocks(page):
-            if block.language == "console" and not block.long:
-                marks = [getattr(pytest.mark, f"needs_{tool}") for tool in block.needs]
-                yield pytest.param(block, id=f"{page}:{block.lineno}", marks=marks)
+        runnable = [b for b in blocks(page) if b.language == "console" and not b.long]
+        if runnable:
+            needs = sorted({tool for block in runnable for tool in block.needs})
+            marks = [getattr(pytest.mark, f"needs_{tool}") for tool in needs]
+            yield pytest.param(page, runnable, id=page, marks=marks)
 
 
 def _long():
@@ -64,21 +68,27 @@ def folders(tmp_path_factory):
     return folder
 
 
-@pytest.mark.parametrize("block", list(_runnable()))
-def test_commands_run_and_print_what_the_page_shows(block, folders, cache):
-    for tool in block.needs:
-        if _TOOLS.get(tool) and shutil.which(_TOOLS[tool]) is None:
-            pytest.skip(f"{tool} is not installed")
+@pytest.mark.parametrize(("page", "runnable"), list(_runnable()))
+def test_commands_run_and_print_what_the_page_shows(page, runnable, folders, cache):
     env = dict(os.environ, PHONGFX_CACHE=cache,
                PATH=os.pathsep.join([str(Path(sys.executable).parent), os.environ.get("PATH", "")]))
-    cwd = folders(block.page)
-    for command in block.commands():
-        run = subprocess.run(["bash", "-c", command.line], cwd=cwd, env=env, capture_output=True,
-                             text=True, timeout=600)
-        output = run.stdout + run.stderr
-        assert run.returncode == 0, f"{block.page}:{block.lineno}: {command.line}\n{output[-3000:]}"
-        missing = [line for line in command.expected if not matches(line, output)]
-        assert not missing, f"{block.page}:{block.lineno}: {command.line}\nmissing {missing}\nin\n{output[-3000:]}"
+    cwd = folders(page)
+    missing_tools = set()
+    for block in runnable:
+        absent = [tool for tool in block.needs if _TOOLS.get(tool) and shutil.which(_TOOLS[tool]) is None]
+        if absent:
+            missing_tools.update(absent)
+            continue
+        for command in block.commands():
+            run = subprocess.run(["bash", "-c", command.line], cwd=cwd, env=env, capture_output=True,
+                                 text=True, timeout=600)
+            output = run.stdout + run.stderr
+            where = f"{page}:{block.lineno}: {command.line}"
+            assert run.returncode == 0, f"{where}\n{output[-3000:]}"
+            missing = [line for line in command.expected if not matches(line, output)]
+            assert not missing, f"{where}\nmissing {missing}\nin\n{output[-3000:]}"
+    if missing_tools:
+        pytest.skip(f"blocks that need {', '.join(sorted(missing_tools))} were not run: not installed")
 
 
 def _makefile_targets():
