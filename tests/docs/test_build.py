@@ -2,6 +2,7 @@
 
 import importlib.util
 import os
+import shutil
 import subprocess
 import sys
 
@@ -31,3 +32,28 @@ def test_importing_the_documented_packages_writes_nothing(tmp_path):
                          env={**os.environ, "PHONGFX_CACHE": str(cache)})
     assert run.returncode == 0, run.stderr
     assert list(work.iterdir()) == [] and not cache.exists()
+
+
+@pytest.mark.skipif(importlib.util.find_spec("sphinx") is None, reason="Sphinx is not installed")
+def test_a_reference_to_nothing_fails_the_build_and_one_to_a_real_object_does_not(tmp_path):
+    """The build links what the API pages document, renders real objects elsewhere as code, and
+    fails on a name that exists nowhere (a renamed function the pages still cite)."""
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    # the real configuration and extension, without the pictures (slow to draw, not under test)
+    (docs / "conf.py").write_text(f"exec(open({str(DOCS / 'conf.py')!r}).read())\n"
+                                  f"sys.path.insert(0, {str(DOCS / '_ext')!r})\nphongfx_pictures = []\n"
+                                  "html_static_path = []\n", encoding="utf-8")
+    (docs / "index.rst").write_text("Index\n=====\n", encoding="utf-8")
+    page = docs / "probe.rst"
+    page.write_text(":orphan:\n\nProbe\n=====\n\n:func:`phongfx.golden.lirp.lirp` is real.\n",
+                    encoding="utf-8")
+    command = [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-n", "-q", "-b", "html",
+               str(docs), str(tmp_path / "html")]
+    run = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-3000:]
+    page.write_text(":orphan:\n\nProbe\n=====\n\n:func:`phongfx.golden.lirp.no_such_function` is not.\n",
+                    encoding="utf-8")
+    run = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert run.returncode != 0
+    assert "probe.rst" in run.stderr and "no_such_function" in run.stderr, run.stderr[-3000:]
