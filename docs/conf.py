@@ -10,8 +10,9 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+# phongfx itself comes from its install (``pip install -e '.[docs]'``, as make does): its
+# golden/, hdl/ and sim/ folders are packages of phongfx only through that install.
 sys.path.insert(0, str(HERE / "_ext"))
-sys.path.insert(0, str(HERE.parent))
 
 project = "phongfx"
 author = "the phongfx authors"
