@@ -9,8 +9,8 @@ proven, for every operand pair the registered blocks hand the mapping, on all in
 How:
 
 * :func:`dsp_cases` elaborates every pipelined block of the registry at each depth where
-  the synthesis flow maps its products (:data:`~phongfx.explore.synth.DSP_MAPPING_DEPTH`
-  and deeper, :func:`~phongfx.explore.synth.dsp_mapping_of`) under
+  the synthesis flow maps its products (:data:`~phongfx.explore.synth.fpga.DSP_MAPPING_DEPTH`
+  and deeper, :func:`~phongfx.explore.synth.fpga.dsp_mapping_of`) under
   :func:`~phongfx.hdl.dsp.recording_products`, and keeps the distinct calls: raw operand
   widths and signedness (the binary point does not change the bits), which operands are
   register outputs, and the call's options.
@@ -127,12 +127,12 @@ def _pipelined_blocks():
 
 def dsp_cases(blocks=None, depths=None):
     """The distinct :class:`DspCase` of ``blocks`` (registry names; default every block
-    with a pipeline) at ``depths`` (default :data:`~phongfx.explore.synth.DSP_MAPPING_DEPTH`
+    with a pipeline) at ``depths`` (default :data:`~phongfx.explore.synth.fpga.DSP_MAPPING_DEPTH`
     to :data:`~phongfx.config.base.MAX_PIPELINE`), each depth kept only where the ECP5
     flow maps the block's products; sorted, ``used_by`` filled in."""
     from phongfx.config.base import MAX_PIPELINE
     from phongfx.core.registry import get_block
-    from phongfx.explore.synth import DSP_MAPPING_DEPTH, dsp_mapping_of
+    from phongfx.explore.synth.fpga import DSP_MAPPING_DEPTH, dsp_mapping_of
 
     blocks = _pipelined_blocks() if blocks is None else blocks
     depths = range(DSP_MAPPING_DEPTH, MAX_PIPELINE + 1) if depths is None else depths
@@ -231,7 +231,7 @@ def prove_case(case, timeout=60, model=MODEL, work=None):
     if work is None:
         with tempfile.TemporaryDirectory(prefix="dsp-proof.") as folder:
             return prove_case(case, timeout, model, folder)
-    from phongfx.explore.toolrun import SynthError, run_yosys
+    from phongfx.explore.synth.toolrun import SynthError, run_yosys
 
     work = Path(work)
     work.mkdir(parents=True, exist_ok=True)

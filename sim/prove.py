@@ -166,7 +166,7 @@ def _design(block, index, bounds):
 
 def _sby(work, depth, skip, solver, timeout):
     """Run sby in ``work`` on ``top.il``; ("proven" | "counterexample" | "unknown", why)."""
-    from phongfx.explore.toolrun import tool as _tool
+    from phongfx.explore.synth.toolrun import tool as _tool
     script = (f"[options]\nmode prove\ndepth {depth}\nskip {skip}\n\n[engines]\nsmtbmc {solver}\n\n"
               "[script]\nread_rtlil top.il\nprep -top top\n\n[files]\ntop.il\n")
     Path(work, "proof.sby").write_text(script)

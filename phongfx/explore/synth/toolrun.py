@@ -1,6 +1,6 @@
 """Running the synthesis tools: one private folder per run, logs read back, results cached.
 
-Both flows (:mod:`.synth` for the FPGAs, :mod:`.asic` for standard cells) run external
+Both flows (:mod:`.fpga` for the FPGAs, :mod:`.asic` for standard cells) run external
 programs the same way.  The yowasp tools are WebAssembly: they see only the folder they
 start in, and map a fresh temporary folder onto the guest's ``/tmp``, so every run works
 in its own folder with ``TMPDIR`` inside it and passes paths relative to it.  ABC can die

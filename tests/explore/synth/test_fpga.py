@@ -1,4 +1,4 @@
-"""Synthesis and timing (phongfx.explore.synth): argument checks, report parsing with stand-in
+"""Synthesis and timing (phongfx.explore.synth.fpga): argument checks, report parsing with stand-in
 tools, the cache, and real Yosys + nextpnr runs (a small smoke by default; the
 datapaths of Lyon's Figures 7 and 8 are slow)."""
 
@@ -8,9 +8,9 @@ import sys
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.explore import synth as synth_module
-from phongfx.explore import toolrun
-from phongfx.explore.synth import TARGETS, SynthError, dsp_mapping_of, markdown, synth
+from phongfx.explore.synth import fpga as synth_module
+from phongfx.explore.synth import toolrun
+from phongfx.explore.synth.fpga import TARGETS, SynthError, dsp_mapping_of, markdown, synth
 from phongfx.hdl.dsp import DSP_INTERNAL_NS
 
 # ---------------------------------------------------------------- argument checks

@@ -33,8 +33,9 @@ from pathlib import Path
 
 from phongfx.hdl.dsp import DSP_INTERNAL_NS
 
-from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
-from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
+from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
+from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
+                                           run_yosys, tail, tool)
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "DSP_MAPPING_DEPTH", "dsp_mapping_of",
            "harness", "synth", "markdown", "synth_command", "run_yosys_abc9_fallback"]
@@ -310,10 +311,10 @@ def synth(name, *, config=None, target="ecp5", device=None, freq=150, seed=1,
         Instead of the block's default configuration.
     target : {"ecp5", "ice40", "asic"}
         ``"asic"`` runs the standard-cell flow of :mod:`.asic` instead (its result keys
-        are those of :func:`~phongfx.explore.asic.asic_synth`).
+        are those of :func:`~phongfx.explore.synth.asic.asic_synth`).
     device : str, optional
         A key of ``TARGETS[target].devices``; default ``TARGETS[target].default_device``.
-        For ``"asic"``, a key of :data:`~phongfx.explore.asic.LIBRARIES` (default ``osu018``).
+        For ``"asic"``, a key of :data:`~phongfx.explore.synth.asic.LIBRARIES` (default ``osu018``).
     freq : float
         Clock constraint in MHz given to nextpnr (it still reports the frequency
         achieved when that is lower).
