@@ -8,11 +8,11 @@
 * :mod:`.plot`: the Pareto plots of the report.
 """
 
-from .front import cost_key, pareto
-from .plot import pareto_plot
-from .run import load_records, run_sweep, write_csv
-from .scene import file_views, is_scene_file
-from .spec import SweepSpecError, expand, load_spec, point_id
+from phongfx.explore.sweep.front import cost_key, pareto
+from phongfx.explore.sweep.plot import pareto_plot
+from phongfx.explore.sweep.run import load_records, run_sweep, write_csv
+from phongfx.explore.sweep.scene import file_views, is_scene_file
+from phongfx.explore.sweep.spec import SweepSpecError, expand, load_spec, point_id
 
 __all__ = ["SweepSpecError", "load_spec", "expand", "point_id", "run_sweep", "load_records", "write_csv",
            "file_views", "is_scene_file", "cost_key", "pareto", "pareto_plot"]

@@ -11,10 +11,10 @@
   fitted to the standard-cell flow by ``phongfx tables proxy``).
 """
 
-from .asic import DEFAULT_LIBRARY, LIBRARIES, Library, asic_synth
-from .fpga import ALL_TARGETS, TARGETS, SynthError, Target, markdown, synth
-from .netlist import NETLIST_TARGETS, check_netlist, synth_netlist
-from .proxy import proxy_area, proxy_cost, proxy_estimate
+from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, Library, asic_synth
+from phongfx.explore.synth.fpga import ALL_TARGETS, TARGETS, SynthError, Target, markdown, synth
+from phongfx.explore.synth.netlist import NETLIST_TARGETS, check_netlist, synth_netlist
+from phongfx.explore.synth.proxy import proxy_area, proxy_cost, proxy_estimate
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "synth", "markdown",
            "Library", "LIBRARIES", "DEFAULT_LIBRARY", "asic_synth",
