@@ -57,3 +57,11 @@ def test_a_reference_to_nothing_fails_the_build_and_one_to_a_real_object_does_no
     run = subprocess.run(command, capture_output=True, text=True, timeout=600)
     assert run.returncode != 0
     assert "probe.rst" in run.stderr and "no_such_function" in run.stderr, run.stderr[-3000:]
+
+
+def test_the_api_page_documents_every_module_of_the_core():
+    """``phongfx.core`` is documented module by module: a module added there needs its line."""
+    api = (DOCS / "api.rst").read_text(encoding="utf-8")
+    core = DOCS.parent / "phongfx" / "core"
+    for module in sorted(p.stem for p in core.glob("*.py") if p.stem != "__init__"):
+        assert f".. automodule:: phongfx.core.{module}\n" in api, f"docs/api.rst lacks phongfx.core.{module}"
