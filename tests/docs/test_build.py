@@ -2,6 +2,7 @@
 
 import importlib.util
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -65,3 +66,11 @@ def test_the_api_page_documents_every_module_of_the_core():
     core = DOCS.parent / "phongfx" / "core"
     for module in sorted(p.stem for p in core.glob("*.py") if p.stem != "__init__"):
         assert f".. automodule:: phongfx.core.{module}\n" in api, f"docs/api.rst lacks phongfx.core.{module}"
+
+
+def test_the_readme_links_only_to_files_that_exist_and_keeps_the_two_commands():
+    readme = (DOCS.parent / "README.md").read_text(encoding="utf-8")
+    links = re.findall(r"\]\(([^)#:]+)\)", readme)
+    assert len(links) > 20
+    assert [link for link in links if not (DOCS.parent / link).exists()] == []
+    assert "make sim" in readme and "make test" in readme and len(readme.splitlines()) <= 300
