@@ -12,6 +12,7 @@ into formats, and sets the class's direction-vector formats from one vector widt
 from dataclasses import dataclass, fields, replace
 
 from phongfx.core.format import Format, check_rounding
+from phongfx.core.limits import MAX_VEC_FRAC
 
 __all__ = ["BlockConfig", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_format", "check_integer_format",
            "check_fraction_format", "check_step_formats"]
@@ -19,9 +20,6 @@ __all__ = ["BlockConfig", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_fo
 #: Deepest ``pipeline`` of a block (:class:`BlockConfig`).
 MAX_PIPELINE = 4
 
-#: Widest vector width ``f`` of :meth:`BlockConfig.with_vec_frac`: at 24 the halfway
-#: datapath's exact ``4n·D·D`` (``17.2f``) no longer fits the golden model's int64.
-MAX_VEC_FRAC = 23
 
 
 def check_int(name, value, lo, hi):

@@ -3,6 +3,7 @@
 from dataclasses import dataclass, replace
 
 from phongfx.core.format import Format
+from phongfx.core.methods import get_method, specular_units
 
 from .base import MAX_VEC_FRAC, BlockConfig, check_int
 from .difference import DifferenceConfig
@@ -14,8 +15,11 @@ from .reflect import ReflectConfig
 from .root import RootConfig
 from .shape import ShapeConfig
 
-__all__ = ["DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config"]
+__all__ = ["DatapathConfig", "SPECULAR_UNITS", "SpecularUnit", "FIG7", "FIG8", "HALFWAY", "fig7_config",
+           "fig8_config", "halfway_config"]
 
+#: The specular units of Lyon's paper; :func:`phongfx.core.methods.specular_units` lists
+#: every registered one (a unit added to the method registry is valid here too).
 SPECULAR_UNITS = ("fig7", "fig8", "halfway")
 
 
@@ -68,10 +72,6 @@ class DatapathConfig(BlockConfig):
 
     PIPELINED = ("lirp", "normalize", "reflect", "difference", "shape", "root", "halfway",
                  "diffuse", "direction_normalize")
-    #: The sub-configs each specular unit's hardware uses; the others are idle defaults.
-    UNITS = {"fig7": ("lirp", "normalize", "reflect", "difference", "shape", "diffuse"),
-             "fig8": ("lirp", "normalize", "reflect", "root", "diffuse"),
-             "halfway": ("lirp", "normalize", "halfway", "difference", "shape", "diffuse")}
     #: Settings that :meth:`replace` takes besides the fields: each sets several fields at
     #: once (through ``with_NAME``) and is read back as a property, never stored.
     DERIVED_SETTINGS = ("vec_frac",)
@@ -83,8 +83,9 @@ class DatapathConfig(BlockConfig):
                           ("diffuse", DiffuseConfig), ("direction_normalize", NormalizeConfig)):
             if not isinstance(getattr(self, name), cls):
                 raise TypeError(f"{name} must be a {cls.__name__}, not {getattr(self, name)!r}")
-        if self.specular not in SPECULAR_UNITS:
-            raise ValueError(f"specular must be one of {', '.join(SPECULAR_UNITS)}, not {self.specular!r}")
+        units = specular_units()
+        if self.specular not in units:
+            raise ValueError(f"specular must be one of {', '.join(units)}, not {self.specular!r}")
         check_int("lights", self.lights, 1, 8)
         if isinstance(self.local_lights, list):  # a list from a file or --set: a tuple stays hashable
             object.__setattr__(self, "local_lights", tuple(self.local_lights))
@@ -105,34 +106,25 @@ class DatapathConfig(BlockConfig):
         if self.any_local:
             links += [("lirp.out", self.lirp.out, "direction_normalize.vec", self.direction_normalize.vec),
                       (*vec, "direction_normalize.out", self.direction_normalize.out)]
-        if self.specular == "fig7":
-            links += [(*vec, "reflect.vec", self.reflect.vec),
-                      ("reflect.out", self.reflect.out, "difference.vec", self.difference.vec),
-                      (*vec, "difference.vec", self.difference.vec),
-                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
-        elif self.specular == "fig8":
-            links += [(*vec, "reflect.vec", self.reflect.vec),
-                      ("reflect.out", self.reflect.out, "root.vec", self.root.vec),
-                      (*vec, "root.vec", self.root.vec)]
-        else:
-            links += [(*vec, "halfway.vec", self.halfway.vec),
-                      ("halfway.out", self.halfway.out, "difference.vec", self.difference.vec),
-                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
-            if self.difference.fmt("n").int_bits < self.halfway_shift + 1:
-                raise ValueError(f"difference.n must have at least {self.halfway_shift + 1} integer "
-                                 f"bits to take n·2^{self.halfway_shift}, not {self.difference.n}")
-            if self.difference.n_const % (1 << self.halfway_shift):
-                raise ValueError(f"difference.n_const must be a multiple of {1 << self.halfway_shift} "
-                                 f"(it is n·2^{self.halfway_shift}), not {self.difference.n_const}")
+        unit = self.unit
+        links += unit.links(self)
+        unit.check(self)
         for a_name, a, b_name, b in links:
             if Format.parse(a) != Format.parse(b):
                 raise ValueError(f"{a_name} ({a}) must equal {b_name} ({b}): they are connected")
 
     @property
+    def unit(self):
+        """The specular unit's :class:`~phongfx.config.datapath.SpecularUnit` (its method's
+        ``unit`` face in :data:`phongfx.core.methods.METHODS`)."""
+        return get_method(self.specular).load("unit")
+
+    @property
     def used(self):
-        """Names of the sub-configs the hardware uses: those of :attr:`UNITS` for
-        ``specular``, and ``direction_normalize`` when L or V is interpolated."""
-        names = self.UNITS[self.specular]
+        """Names of the sub-configs the hardware uses: the front (``lirp``, ``normalize``),
+        the specular unit's ``parts``, ``diffuse``, and ``direction_normalize`` when L or V
+        is interpolated."""
+        names = ("lirp", "normalize", *self.unit.parts, "diffuse")
         if self.any_local:
             names += ("direction_normalize",)
         return names
@@ -189,13 +181,7 @@ class DatapathConfig(BlockConfig):
         """
         if self.shininess_const:
             return None
-        if self.specular == "fig8":
-            return "m", self.root.fmt("m"), self.root.m_max
-        n = self.difference.fmt("n")
-        if self.specular == "halfway":
-            shift = self.halfway_shift
-            return "n", Format(n.int_bits - shift, 0), self.difference.n_max >> shift
-        return "n", n, self.difference.n_max
+        return self.unit.shininess(self)
 
     @property
     def shininess_const(self):
@@ -207,9 +193,7 @@ class DatapathConfig(BlockConfig):
         ``n_const`` is that product (validated a multiple of ``2^halfway_shift``): the pixel
         sees ``n = difference.n_const >> halfway_shift``, bit for bit as if fed on the port.
         """
-        if self.specular == "fig8":
-            return self.root.m_const
-        return self.difference.n_const >> (self.halfway_shift if self.specular == "halfway" else 0)
+        return self.unit.shininess_const(self)
 
     @property
     def halfway_shift(self):
@@ -241,7 +225,7 @@ class DatapathConfig(BlockConfig):
 
     @property
     def outputs(self):
-        t = self.root.fmt("t") if self.specular == "fig8" else self.shape.fmt("t")
+        t = self.unit.spec_format(self)
         ports = {f"spec{i}": (t, 1) for i in range(self.lights)}
         ports.update({f"diff{i}": (self.diffuse.fmt("out"), 1) for i in range(self.lights)})
         return ports
@@ -261,3 +245,141 @@ def halfway_config(**changes):
     """A halfway-vector datapath (default: Lyon's row 8, ``g2proj``, ``k = 2``, ``4n``)."""
     changes.setdefault("difference", DifferenceConfig(vec="S2.10", n="15.0", n_max=32000))
     return DatapathConfig(specular="halfway", **changes)
+
+
+# --- the specular units -------------------------------------------------------------------
+#
+# The datapath is fixed up to its normalizer; what follows is one specular unit, chosen by
+# ``specular`` among the methods of phongfx.core.methods.METHODS that have a ``unit`` face:
+# a SpecularUnit, what the config knows of it.  Its golden model and hardware are the
+# method's ``golden`` and ``component`` faces (phongfx.golden.datapath, phongfx.hdl.datapath).
+
+class SpecularUnit:
+    """A specular unit's config face.  ``parts``: the :class:`~phongfx.config.DatapathConfig`
+    sub-configs its hardware uses after the normalizer (the others are idle defaults)."""
+
+    parts = ()
+
+    def links(self, config):
+        """``(name, format, name, format)`` of every pair of formats the unit connects
+        (each must be equal), the shared normalized vector format being ``normalize.out``."""
+        return []
+
+    def check(self, config):
+        """Raise ValueError for a config the unit cannot take beyond its links."""
+
+    def shininess(self, config):
+        """``(port, format, largest value)`` of the per-pixel shininess input (the config
+        asks only when :meth:`shininess_const` is 0)."""
+        return "n", config.difference.fmt("n"), config.difference.n_max
+
+    def shininess_const(self, config):
+        """The shininess fixed in the hardware in the port's terms, 0 when it is a port."""
+        return config.difference.n_const
+
+    def top_n(self, shininess):
+        """The ``n`` of a shininess of the port's terms (``m = √n`` ports square it)."""
+        return shininess
+
+    def spec_format(self, config):
+        """The format of the ``spec<i>`` outputs."""
+        return config.shape.fmt("t")
+
+    def fit(self, config, n_hi, n_const):
+        """``config`` with its shininess port narrowed to ``n`` up to ``n_hi``, or the
+        shininess fixed in the hardware at ``n_const`` (0: a port)."""
+        difference = config.difference.replace(n=f"{n_hi.bit_length()}.0", n_max=n_hi)
+        if n_const:
+            difference = difference.replace(n_const=n_const)
+        return config.replace(difference=difference)
+
+
+def _floor_sqrt(n):
+    """⌊√n⌋ of a non-negative integer, exactly."""
+    root = int(n ** 0.5)
+    while root * root > n:
+        root -= 1
+    while (root + 1) * (root + 1) <= n:
+        root += 1
+    return root
+
+
+def _vec(config):
+    return "normalize.out", config.normalize.out
+
+
+class _Figure7(SpecularUnit):
+    """Figure 7b–d: reflect → difference/x (``n``) → shape."""
+
+    parts = ("reflect", "difference", "shape")
+
+    def links(self, c):
+        return [(*_vec(c), "reflect.vec", c.reflect.vec),
+                ("reflect.out", c.reflect.out, "difference.vec", c.difference.vec),
+                (*_vec(c), "difference.vec", c.difference.vec),
+                ("difference.x2", c.difference.x2, "shape.x2", c.shape.x2)]
+
+
+class _Figure8(SpecularUnit):
+    """Figure 8: reflect → root-shininess unit (``m = √n``)."""
+
+    parts = ("reflect", "root")
+
+    def links(self, c):
+        return [(*_vec(c), "reflect.vec", c.reflect.vec),
+                ("reflect.out", c.reflect.out, "root.vec", c.root.vec),
+                (*_vec(c), "root.vec", c.root.vec)]
+
+    def shininess(self, c):
+        return "m", c.root.fmt("m"), c.root.m_max
+
+    def shininess_const(self, c):
+        return c.root.m_const
+
+    def top_n(self, shininess):
+        return shininess * shininess
+
+    def spec_format(self, c):
+        return c.root.fmt("t")
+
+    def fit(self, config, n_hi, n_const):
+        m = _floor_sqrt(n_hi - 1) + 1  # ⌈√n_hi⌉
+        root = config.root.replace(m=f"{m.bit_length()}.0", m_max=m)
+        if n_const:
+            low = _floor_sqrt(n_const)  # √n_const rounded (never a tie for an integer)
+            root = root.replace(m_const=min(max(low + (n_const - low * low > low), 1), m))
+        return config.replace(root=root)
+
+
+class _Halfway(SpecularUnit):
+    """Figure 5: halfway difference vector → difference/x with ``n·2^halfway_shift`` → shape
+    (Figure 9 rows 7–10, as the appendix code scales ``n``)."""
+
+    parts = ("halfway", "difference", "shape")
+
+    def links(self, c):
+        return [(*_vec(c), "halfway.vec", c.halfway.vec),
+                ("halfway.out", c.halfway.out, "difference.vec", c.difference.vec),
+                ("difference.x2", c.difference.x2, "shape.x2", c.shape.x2)]
+
+    def check(self, c):
+        if c.difference.fmt("n").int_bits < c.halfway_shift + 1:
+            raise ValueError(f"difference.n must have at least {c.halfway_shift + 1} integer "
+                             f"bits to take n·2^{c.halfway_shift}, not {c.difference.n}")
+        if c.difference.n_const % (1 << c.halfway_shift):
+            raise ValueError(f"difference.n_const must be a multiple of {1 << c.halfway_shift} "
+                             f"(it is n·2^{c.halfway_shift}), not {c.difference.n_const}")
+
+    def shininess(self, c):
+        n, shift = c.difference.fmt("n"), c.halfway_shift
+        return "n", Format(n.int_bits - shift, 0), c.difference.n_max >> shift
+
+    def shininess_const(self, c):
+        return c.difference.n_const >> c.halfway_shift
+
+    def fit(self, config, n_hi, n_const):
+        shift = config.halfway_shift
+        return super().fit(config, n_hi << shift, n_const << shift)
+
+
+FIG7, FIG8, HALFWAY = _Figure7(), _Figure8(), _Halfway()

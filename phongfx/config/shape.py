@@ -2,14 +2,15 @@
 
 from dataclasses import dataclass
 
+from phongfx.core.limits import K_MAX
+
 from .base import BlockConfig, check_format, check_int
 
 __all__ = ["K_MAX", "ShapeConfig"]
 
-#: Largest ``k`` of ``f_k``: ``2^k = n`` makes ``f_k(n·D²/2)`` Phong's ``(R·L)^n``, so
-#: k = 10 reaches n = 1024; each k adds one squarer to the chain (and its latency), and the
-#: default ``x2`` (13 integer bits) holds ``x/2^k`` up to k = 11.
-K_MAX = 10
+# K_MAX, the largest k of f_k (phongfx.core.limits): 2^k = n makes f_k(n·D²/2) Phong's
+# (R·L)^n, so k = 10 reaches n = 1024; each k adds one squarer to the chain (and its
+# latency), and the default x2 (13 integer bits) holds x/2^k up to k = 11.
 
 
 @dataclass(frozen=True)
