@@ -281,6 +281,11 @@ class SpecularUnit:
         """The ``n`` of a shininess of the port's terms (``m = √n`` ports square it)."""
         return shininess
 
+    def applied_n(self, config, n):
+        """The shininess the hardware applies for the scene's float ``n`` array (what its
+        float form is evaluated at)."""
+        return n
+
     def spec_format(self, config):
         """The format of the ``spec<i>`` outputs."""
         return config.shape.fmt("t")
@@ -338,6 +343,11 @@ class _Figure8(SpecularUnit):
 
     def top_n(self, shininess):
         return shininess * shininess
+
+    def applied_n(self, c, n):
+        """``m²``: the port takes ``m = √n`` rounded (or the constant ``m``)."""
+        m = c.shininess_const or (n ** 0.5).round().clip(1, c.root.m_max)
+        return (n * 0 + m * m).astype("float64")
 
     def spec_format(self, c):
         return c.root.fmt("t")

@@ -4,23 +4,29 @@ from dataclasses import dataclass
 
 from .base import BlockConfig, check_int
 from .blend import BlendConfig
-from .datapath import fig7_config
+from .datapath import DatapathConfig, fig7_config
 
-__all__ = ["ShaderConfig", "UNIT_TERMS"]
+__all__ = ["ShaderConfig", "UNIT_TERMS", "unit_terms"]
 
-#: Per shading unit (registry name): the ``(diffuse port, lane, specular port)`` of each light
-#: one copy computes, as a function of the unit's config.  A Lyon datapath holds every light
-#: (``diff<i>``, ``spec<i>``); the other units compute one light per copy.  Schlick's unit has
-#: no diffuse output (None), the spherical unit's ``diff`` is its vector's first lane.
+#: Per standalone shading unit (registry name): the ``(diffuse port, lane, specular port)``
+#: of the light one copy computes, as a function of the unit's config.  Schlick's unit has
+#: no diffuse output (None), the spherical unit's ``diff`` is its vector's first lane.  A
+#: datapath (any :class:`~phongfx.config.DatapathConfig`, whatever its specular unit) holds
+#: every light: :func:`unit_terms`.
 UNIT_TERMS = {
-    "fig7": lambda c: [(f"diff{i}", None, f"spec{i}") for i in range(c.lights)],
-    "fig8": lambda c: [(f"diff{i}", None, f"spec{i}") for i in range(c.lights)],
-    "halfway_datapath": lambda c: [(f"diff{i}", None, f"spec{i}") for i in range(c.lights)],
     "blinn": lambda c: [("diffuse", None, "specular")],
     "conventional": lambda c: [("diffuse", None, "specular")],
     "spherical": lambda c: [("diff", 0, "spec")],
     "schlick": lambda c: [(None, None, "spec")],
 }
+
+
+def unit_terms(unit, config):
+    """``(diffuse port, lane, specular port)`` of each light a copy of ``unit`` (a registry
+    block name) computes at ``config``; None for a unit that has no place in a shader."""
+    if isinstance(config, DatapathConfig):
+        return [(f"diff{i}", None, f"spec{i}") for i in range(config.lights)]
+    return UNIT_TERMS[unit](config) if unit in UNIT_TERMS else None
 
 
 @dataclass(frozen=True)
@@ -42,14 +48,15 @@ class ShaderConfig(BlockConfig):
     blend: BlendConfig = BlendConfig()
 
     def validate(self):
-        if self.unit not in UNIT_TERMS:
-            raise ValueError(f"unit must be one of {', '.join(UNIT_TERMS)}, not {self.unit!r}")
+        from phongfx.core.registry import REGISTRY
+        if self.unit not in REGISTRY or unit_terms(self.unit, REGISTRY[self.unit].default_config()) is None:
+            names = [name for name, entry in REGISTRY.items() if unit_terms(name, entry.default_config())]
+            raise ValueError(f"unit must be one of {', '.join(names)}, not {self.unit!r}")
         if isinstance(self.units, list):  # a tuple stays hashable: build caches key on configs
             object.__setattr__(self, "units", tuple(self.units))
         if not isinstance(self.units, tuple):
             raise ValueError(f"units must be a tuple of unit configs, not {self.units!r}")
         check_int("copies (len(units))", len(self.units), 1, 8)
-        from phongfx.core.registry import REGISTRY
         kind = type(REGISTRY[self.unit].default_config())
         for index, config in enumerate(self.units):
             if not isinstance(config, kind):
@@ -80,8 +87,7 @@ class ShaderConfig(BlockConfig):
     @property
     def terms(self):
         """``(copy, diffuse port, lane, specular port)`` of each light, in the blend's order."""
-        terms = UNIT_TERMS[self.unit]
-        return [(copy, *term) for copy, config in enumerate(self.units) for term in terms(config)]
+        return [(copy, *term) for copy, config in enumerate(self.units) for term in unit_terms(self.unit, config)]
 
     def prefix(self, copy):
         """The prefix of copy ``copy``'s inputs on the shader (none for a single copy)."""

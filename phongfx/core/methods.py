@@ -76,7 +76,7 @@ class Method:
         return "unit" in self.faces
 
 
-def _datapath(name, block, faces, params, ranges, shade=True):
+def _datapath(name, block, faces, params, ranges, shade=True, compile="DATAPATH"):
     """A specular unit of the datapath: ``faces`` ``(unit, golden, component)``, names in
     :mod:`phongfx.config.datapath`, :mod:`phongfx.golden.datapath` and
     :mod:`phongfx.hdl.datapath`; its builder and run in :mod:`phongfx.explore.methods`, the
@@ -84,7 +84,7 @@ def _datapath(name, block, faces, params, ranges, shade=True):
     unit, golden, component = faces
     faces = {"unit": f"phongfx.config.datapath:{unit}", "golden": f"phongfx.golden.datapath:{golden}",
              "component": f"phongfx.hdl.datapath:{component}", "build": f"phongfx.explore.methods:build_{name}",
-             "run": f"phongfx.explore.methods:run_{name}", "compile": "phongfx.explore.compile.units:DATAPATH"}
+             "run": f"phongfx.explore.methods:run_{name}", "compile": f"phongfx.explore.compile.units:{compile}"}
     if shade:
         faces["shade"] = "phongfx.render.mesh:shade_datapath"
     return Method(name, block, params, ranges, faces)
@@ -112,10 +112,10 @@ METHODS = {method.name: method for method in (
                "lights": _LIGHTS}, shade=False),
     _datapath("fig8", "fig8", ("FIG8", "fig8", "Fig8Unit"), {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
               {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": _K, "n": (1, 63 * 63),
-               "lights": _LIGHTS}, shade=False),
+               "lights": _LIGHTS}, shade=False, compile="FIG8"),
     _datapath("halfway", "halfway_datapath", ("HALFWAY", "halfway_unit", "HalfwayUnit"), _SHAPE,
               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, _K[1]), "n": _N,
-               "lights": _LIGHTS}, shade=False),
+               "lights": _LIGHTS}, shade=False, compile="HALFWAY"),
     _unit("spherical", {"addr_bits": 6, "rom_bits": 6, "theta_frac": 11, "n": 16},
           {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},
           "SPHERICAL", "shade_spherical"),

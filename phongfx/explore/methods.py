@@ -3,16 +3,20 @@
 A :class:`MethodSpec` names a method's block, its width parameters with defaults and
 ranges, how to build the block config from them, and how to run the golden model on a
 :class:`Scene` (the fixed-point result and its float references per pixel).  The
-quantities and references are described in :mod:`phongfx.explore.evaluate`.
+quantities and references are described in :mod:`phongfx.explore.evaluate`.  The methods,
+their parameters and ranges are those of the method registry
+(:data:`phongfx.core.methods.METHODS`), whose ``build`` and ``run`` faces are the
+``build_NAME`` and ``run_NAME`` below.
 """
 
 
 import functools
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from phongfx.config.shape import K_MAX
+from phongfx.core.methods import METHODS as REGISTERED
 from phongfx.core.registry import REGISTRY, get_block
 from phongfx.golden import euler_setup
 from phongfx.golden.reference import specular
@@ -22,7 +26,8 @@ from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, conventional_inputs
                                        gouraud_inputs, halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES"]
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES",
+           "build_fig7", "run_fig7", "build_fig8", "run_fig8", "build_halfway", "run_halfway", "build_spherical", "run_spherical", "build_euler", "run_euler", "build_gouraud", "run_gouraud", "build_schlick", "run_schlick", "build_blinn", "run_blinn", "build_conventional", "run_conventional"]
 
 
 def _check_int(name, value, lo, hi):
@@ -78,31 +83,31 @@ def _shape_datapath(block):
     return build
 
 
-def _build_fig8(p):
+def build_fig8(p):
     base = REGISTRY["fig8"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
     return base.replace(root=base.root.replace(frac=f"0.{p['root_frac']}", t=f"1.{p['t_frac']}",
                                                k=p["k"]))
 
 
-def _build_spherical(p):
+def build_spherical(p):
     _check_int("addr_bits", p["addr_bits"], 2, min(p["theta_frac"] + 1, 16))
     return REGISTRY["spherical"].default_config().replace(
         theta=f"S0.{p['theta_frac']}", addr_bits=p["addr_bits"], rom=f"0.{p['rom_bits']}")
 
 
-def _build_euler(p):
+def build_euler(p):
     _check_int("t_frac", p["t_frac"], 8, p["p_frac"])
     _check_int("ds_frac", p["ds_frac"], 8, p["t_frac"])
     return REGISTRY["euler"].default_config().replace(
         p=f"S1.{p['p_frac']}", t=f"S3.{p['t_frac']}", ds=f"S3.{p['ds_frac']}")
 
 
-def _build_gouraud(p):
+def build_gouraud(p):
     _check_int("dp_frac", p["dp_frac"], 8, p["p_frac"])
     return REGISTRY["gouraud"].default_config().replace(p=f"S1.{p['p_frac']}", dp=f"S3.{p['dp_frac']}")
 
 
-def _build_schlick(p):
+def build_schlick(p):
     return REGISTRY["schlick"].default_config().replace(t=f"1.{p['t_frac']}", out=f"1.{p['out_frac']}")
 
 
@@ -184,16 +189,16 @@ def _datapath(spec, config, p, scene, own, phong="phong", n_self=None):
         _terms(out, one.outputs, "diff0", "spec0")
 
 
-def _run_fig7(spec, config, p, scene):
+def run_fig7(spec, config, p, scene):
     return _datapath(spec, config, p, scene, f"lyon-k{p['k']}")
 
 
-def _run_fig8(spec, config, p, scene):
+def run_fig8(spec, config, p, scene):
     m = min(max(round(np.sqrt(p["n"])), 1), config.root.m_max)  # what encode feeds
     return _datapath(spec, config, p, scene, f"lyon-k{p['k']}", n_self=float(m * m))
 
 
-def _run_halfway(spec, config, p, scene):
+def run_halfway(spec, config, p, scene):
     return _datapath(spec, config, p, scene, f"halfway-g2proj-k{p['k']}", phong="blinn")
 
 
@@ -201,7 +206,7 @@ def _nh_phong(scene, n):
     return _power(scene.data["normal"] @ scene.data["h"], n)
 
 
-def _run_spherical(spec, config, p, scene):
+def run_spherical(spec, config, p, scene):
     d = scene.data
     out = get_block("spherical", config=config).golden(spherical_inputs(d["spans"], d["light"], p["n"], config))
     self_ = shade(d["spans"], "cos2", light=d["light"], n=p["n"])[1]
@@ -226,7 +231,7 @@ def _run_scanline(unit, feed, own):
     return run
 
 
-def _run_schlick(spec, config, p, scene):
+def run_schlick(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("schlick", config=config).golden(schlick_inputs(d["spans"], d["light"], n, config))
     t = np.clip(d["normal"] @ d["h"], 0.0, 1.0)
@@ -234,7 +239,7 @@ def _run_schlick(spec, config, p, scene):
         _terms(out, config.outputs, None, "spec")
 
 
-def _run_blinn(spec, config, p, scene):
+def run_blinn(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("blinn", config=config).golden(blinn_inputs(d["spans"], d["light"], n, config))
     phong = _nh_phong(scene, n)
@@ -242,7 +247,7 @@ def _run_blinn(spec, config, p, scene):
         _terms(out, config.outputs, "diffuse", "specular")
 
 
-def _run_conventional(spec, config, p, scene):
+def run_conventional(spec, config, p, scene):
     """Phong's own ``(R·V)^n`` on the interpolated ``N``; its float form is Phong with the
     backside test (0 where ``N̂·L <= 0``), which on these frames is Phong (lights in front of
     the viewer: ``R·V < 0`` wherever ``N̂·L < 0`` and ``N̂·V >= 0``)."""
@@ -255,33 +260,30 @@ def _run_conventional(spec, config, p, scene):
         _terms(out, config.outputs, "diffuse", "specular")
 
 
-_VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)
-METHODS = {spec.name: spec for spec in (
-    MethodSpec("fig7", "fig7", {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (0, K_MAX), "n": _N,
-                "lights": _LIGHTS}, _shape_datapath("fig7"), _run_fig7),
-    MethodSpec("fig8", "fig8", {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": (0, K_MAX), "n": (1, 63 * 63),
-                "lights": _LIGHTS}, _build_fig8, _run_fig8),
-    MethodSpec("halfway", "halfway_datapath",
-               {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, K_MAX), "n": _N,
-                "lights": _LIGHTS}, _shape_datapath("halfway_datapath"), _run_halfway),
-    MethodSpec("spherical", "spherical", {"addr_bits": 6, "rom_bits": 6, "theta_frac": 11, "n": 16},
-               {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},
-               _build_spherical, _run_spherical),
-    MethodSpec("euler", "euler", {"p_frac": 30, "t_frac": 30, "ds_frac": 30, "n": 16},
-               {"p_frac": (8, 40), "t_frac": (8, 40), "ds_frac": (8, 40), "n": _N},
-               _build_euler, _run_scanline("euler", euler_inputs, "corrected")),
-    MethodSpec("gouraud", "gouraud", {"p_frac": 30, "dp_frac": 30, "n": 16},
-               {"p_frac": (8, 40), "dp_frac": (8, 40), "n": _N},
-               _build_gouraud, _run_scanline("gouraud", gouraud_inputs, "gouraud")),
-    MethodSpec("schlick", "schlick", {"t_frac": 15, "out_frac": 15, "n": 16},
-               {"t_frac": (2, 30), "out_frac": (2, 30), "n": _N}, _build_schlick, _run_schlick),
-    MethodSpec("blinn", "blinn", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
-               {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
-               _tables("blinn"), _run_blinn),
-    MethodSpec("conventional", "conventional", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
-               {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
-               _tables("conventional"), _run_conventional),
-)}
+build_fig7, build_halfway = _shape_datapath("fig7"), _shape_datapath("halfway_datapath")
+build_blinn, build_conventional = _tables("blinn"), _tables("conventional")
+run_euler = _run_scanline("euler", euler_inputs, "corrected")
+run_gouraud = _run_scanline("gouraud", gouraud_inputs, "gouraud")
+
+
+class _Catalog(Mapping):
+    """The methods of :data:`phongfx.core.methods.METHODS` as :class:`MethodSpec`, read from the
+    registry on every access, so a method registered at run time is sweepable at once."""
+
+    def __getitem__(self, name):
+        method = REGISTERED[name]
+        return MethodSpec(method.name, method.block, method.params, method.ranges,
+                          method.load("build"), method.load("run"))
+
+    def __iter__(self):
+        return iter(REGISTERED)
+
+    def __len__(self):
+        return len(REGISTERED)
+
+    def __repr__(self):
+        return f"METHODS({', '.join(REGISTERED)})"
+
+
+#: name -> :class:`MethodSpec` of every registered method (:mod:`phongfx.core.methods`).
+METHODS = _Catalog()
