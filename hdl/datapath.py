@@ -14,7 +14,7 @@ from .reflect import Reflect
 from .root import Root
 from .shape import Shape
 
-__all__ = ["Datapath", "SpecularUnit", "Fig7Unit", "Fig8Unit", "HalfwayUnit"]
+__all__ = ["Datapath", "SpecularUnit", "ReflectedUnit", "Fig7Unit", "Fig8Unit", "HalfwayUnit"]
 
 
 class Datapath(PipelinedBlock):
@@ -147,7 +147,7 @@ class SpecularUnit:
         return self.lanes[0][-1].o.valid
 
 
-class _Reflected(SpecularUnit):
+class ReflectedUnit(SpecularUnit):
     """Figures 7 and 8: R = reflect(N, V) shared by every light's lane, which takes R and L."""
 
     def feed_shared(self, m, valid, normal, view):
@@ -160,7 +160,7 @@ class _Reflected(SpecularUnit):
         return r_valid, {"r": r, "l": delay(m, light, self.shared_latency), **side}
 
 
-class Fig7Unit(_Reflected):
+class Fig7Unit(ReflectedUnit):
     """Figure 7b–d: reflect → difference/x → shape."""
 
     def __init__(self, c):
@@ -168,7 +168,7 @@ class Fig7Unit(_Reflected):
                          [[Difference(c.difference), Shape(c.shape)] for _ in range(c.lights)])
 
 
-class Fig8Unit(_Reflected):
+class Fig8Unit(ReflectedUnit):
     """Figure 8: reflect → root-shininess unit."""
 
     def __init__(self, c):

@@ -172,7 +172,7 @@ def _power(c, n):
     return np.where(c > 0, np.maximum(c, 0.0) ** n, 0.0)
 
 
-def _datapath(spec, config, p, scene, own, phong="phong", n_self=None):
+def run_datapath(spec, config, p, scene, own, phong="phong", n_self=None):
     """Figure 7 / 8 / halfway datapath on one light; floats by Lyon's ``specfuns.m`` rows."""
     d = scene.data
     spans, n = d["spans"], float(p["n"])
@@ -190,16 +190,16 @@ def _datapath(spec, config, p, scene, own, phong="phong", n_self=None):
 
 
 def run_fig7(spec, config, p, scene):
-    return _datapath(spec, config, p, scene, f"lyon-k{p['k']}")
+    return run_datapath(spec, config, p, scene, f"lyon-k{p['k']}")
 
 
 def run_fig8(spec, config, p, scene):
     m = min(max(round(np.sqrt(p["n"])), 1), config.root.m_max)  # what encode feeds
-    return _datapath(spec, config, p, scene, f"lyon-k{p['k']}", n_self=float(m * m))
+    return run_datapath(spec, config, p, scene, f"lyon-k{p['k']}", n_self=float(m * m))
 
 
 def run_halfway(spec, config, p, scene):
-    return _datapath(spec, config, p, scene, f"halfway-g2proj-k{p['k']}", phong="blinn")
+    return run_datapath(spec, config, p, scene, f"halfway-g2proj-k{p['k']}", phong="blinn")
 
 
 def _nh_phong(scene, n):

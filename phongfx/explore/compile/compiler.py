@@ -92,7 +92,7 @@ def width_params(method, against="phong"):
     spec = METHODS[method]
     out = {k: (v, spec.ranges[k]) for k, v in spec.params.items() if k not in _FIXED}
     out.update(runs.extra(method))
-    if against == "phong" and runs.is_datapath(method):
+    if against == "phong" and runs.is_datapath(method) and "k" in spec.params:
         out["k"] = (spec.params["k"], spec.ranges["k"])
     return out
 
