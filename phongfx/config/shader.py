@@ -50,7 +50,8 @@ class ShaderConfig(BlockConfig):
     def validate(self):
         from phongfx.core.registry import REGISTRY
         if self.unit not in REGISTRY or unit_terms(self.unit, REGISTRY[self.unit].default_config()) is None:
-            names = [name for name, entry in REGISTRY.items() if unit_terms(name, entry.default_config())]
+            names = [name for name, entry in REGISTRY.items()
+                     if isinstance(entry.default_config(), DatapathConfig)] + list(UNIT_TERMS)
             raise ValueError(f"unit must be one of {', '.join(names)}, not {self.unit!r}")
         if isinstance(self.units, list):  # a tuple stays hashable: build caches key on configs
             object.__setattr__(self, "units", tuple(self.units))
