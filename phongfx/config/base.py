@@ -133,6 +133,16 @@ class BlockConfig:
     def replace(self, **changes):
         return replace(self, **changes)
 
+    def frac_changes(self, **fracs):
+        """The field changes that put the format fields ``fracs`` (name -> fraction bits) at
+        those fraction bits, their integer bits and sign kept: a width in the config's own
+        terms (``shape.frac_changes(t=12)`` is ``{"t": "1.12"}`` from ``t = "1.15"``)."""
+        changes = {}
+        for name, frac in fracs.items():
+            fmt = self.fmt(name)
+            changes[name] = str(Format(fmt.int_bits, frac, fmt.signed))
+        return changes
+
     def as_dict(self):
         return {f.name: getattr(self, f.name) for f in fields(self)}
 

@@ -79,12 +79,13 @@ class Method:
 def _datapath(name, block, faces, params, ranges, shade=True, compile="DATAPATH"):
     """A specular unit of the datapath: ``faces`` ``(unit, golden, component)``, names in
     :mod:`phongfx.config.datapath`, :mod:`phongfx.golden.datapath` and
-    :mod:`phongfx.hdl.datapath`; its builder and run in :mod:`phongfx.explore.methods`, the
-    compiler hooks of every datapath."""
+    :mod:`phongfx.hdl.datapath`; its builder in :mod:`phongfx.explore.methods`, the sweep run
+    of every datapath and its compiler hooks (a :class:`~phongfx.explore.compile.units.Datapath`,
+    which declares its float form)."""
     unit, golden, component = faces
     faces = {"unit": f"phongfx.config.datapath:{unit}", "golden": f"phongfx.golden.datapath:{golden}",
              "component": f"phongfx.hdl.datapath:{component}", "build": f"phongfx.explore.methods:build_{name}",
-             "run": f"phongfx.explore.methods:run_{name}", "compile": f"phongfx.explore.compile.units:{compile}"}
+             "run": "phongfx.explore.methods:run_datapath", "compile": f"phongfx.explore.compile.units:{compile}"}
     if shade:
         faces["shade"] = "phongfx.render.mesh:shade_datapath"
     return Method(name, block, params, ranges, faces)

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from phongfx.core.methods import METHODS as REGISTERED
+from phongfx.core.methods import get_method
 from phongfx.core.registry import REGISTRY, get_block
 from phongfx.golden import euler_setup
 from phongfx.golden.reference import specular
@@ -26,8 +27,10 @@ from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, conventional_inputs
                                        gouraud_inputs, halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES",
-           "build_fig7", "run_fig7", "build_fig8", "run_fig8", "build_halfway", "run_halfway", "build_spherical", "run_spherical", "build_euler", "run_euler", "build_gouraud", "run_gouraud", "build_schlick", "run_schlick", "build_blinn", "run_blinn", "build_conventional", "run_conventional"]
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "run_datapath",
+           "build_fig7", "build_fig8", "build_halfway",
+           "build_spherical", "run_spherical", "build_euler", "run_euler", "build_gouraud", "run_gouraud",
+           "build_schlick", "run_schlick", "build_blinn", "run_blinn", "build_conventional", "run_conventional"]
 
 
 def _check_int(name, value, lo, hi):
@@ -71,44 +74,49 @@ class MethodSpec:
 # --- configs -----------------------------------------------------------------------------
 
 # The three Lyon datapaths take every direction-vector format from ``vec_frac`` through
-# DatapathConfig's derived setting, so a sweep point and ``--set vec_frac=F`` agree.
+# DatapathConfig's derived setting, so a sweep point and ``--set vec_frac=F`` agree.  Every
+# other width is a field's fraction bits (``x2_frac``: ``x2``'s), its integer bits and sign
+# those of the field's default (BlockConfig.frac_changes), never written here a second time.
 
 def _shape_datapath(block):
     """Builder of a datapath ending in ``difference`` → ``shape`` (Figure 7, halfway)."""
     def build(p):
-        x2 = f"13.{p['x2_frac']}"
         base = REGISTRY[block].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-        return base.replace(difference=base.difference.replace(x2=x2),
-                            shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
+        difference, shape = base.difference, base.shape
+        return base.replace(difference=difference.replace(**difference.frac_changes(x2=p["x2_frac"])),
+                            shape=shape.replace(**shape.frac_changes(x2=p["x2_frac"], t=p["shape_t_frac"]),
+                                                k=p["k"]))
     return build
 
 
 def build_fig8(p):
     base = REGISTRY["fig8"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-    return base.replace(root=base.root.replace(frac=f"0.{p['root_frac']}", t=f"1.{p['t_frac']}",
-                                               k=p["k"]))
+    root = base.root
+    return base.replace(root=root.replace(**root.frac_changes(frac=p["root_frac"], t=p["t_frac"]), k=p["k"]))
 
 
 def build_spherical(p):
     _check_int("addr_bits", p["addr_bits"], 2, min(p["theta_frac"] + 1, 16))
-    return REGISTRY["spherical"].default_config().replace(
-        theta=f"S0.{p['theta_frac']}", addr_bits=p["addr_bits"], rom=f"0.{p['rom_bits']}")
+    base = REGISTRY["spherical"].default_config()
+    return base.replace(**base.frac_changes(theta=p["theta_frac"], rom=p["rom_bits"]), addr_bits=p["addr_bits"])
 
 
 def build_euler(p):
     _check_int("t_frac", p["t_frac"], 8, p["p_frac"])
     _check_int("ds_frac", p["ds_frac"], 8, p["t_frac"])
-    return REGISTRY["euler"].default_config().replace(
-        p=f"S1.{p['p_frac']}", t=f"S3.{p['t_frac']}", ds=f"S3.{p['ds_frac']}")
+    base = REGISTRY["euler"].default_config()
+    return base.replace(**base.frac_changes(p=p["p_frac"], t=p["t_frac"], ds=p["ds_frac"]))
 
 
 def build_gouraud(p):
     _check_int("dp_frac", p["dp_frac"], 8, p["p_frac"])
-    return REGISTRY["gouraud"].default_config().replace(p=f"S1.{p['p_frac']}", dp=f"S3.{p['dp_frac']}")
+    base = REGISTRY["gouraud"].default_config()
+    return base.replace(**base.frac_changes(p=p["p_frac"], dp=p["dp_frac"]))
 
 
 def build_schlick(p):
-    return REGISTRY["schlick"].default_config().replace(t=f"1.{p['t_frac']}", out=f"1.{p['out_frac']}")
+    base = REGISTRY["schlick"].default_config()
+    return base.replace(**base.frac_changes(t=p["t_frac"], out=p["out_frac"]))
 
 
 def _tables(block):
@@ -116,9 +124,9 @@ def _tables(block):
     ``conventional``): ``vec`` at ``vec_frac`` fraction bits, the seed ROM's and the log and
     exp ROMs' address bits."""
     def build(p):
-        return REGISTRY[block].default_config().replace(
-            vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"], log_addr=p["table_addr"],
-            exp_addr=p["table_addr"])
+        base = REGISTRY[block].default_config()
+        return base.replace(**base.frac_changes(vec=p["vec_frac"]), rsqrt_addr=p["rsqrt_addr"],
+                            log_addr=p["table_addr"], exp_addr=p["table_addr"])
     return build
 
 
@@ -172,9 +180,13 @@ def _power(c, n):
     return np.where(c > 0, np.maximum(c, 0.0) ** n, 0.0)
 
 
-def run_datapath(spec, config, p, scene, own, phong="phong", n_self=None):
-    """Figure 7 / 8 / halfway datapath on one light; floats by Lyon's ``specfuns.m`` rows."""
+def run_datapath(spec, config, p, scene):
+    """A specular unit of the datapath on one light (the ``run`` face of every datapath
+    method): its float forms are those its compile face declares (``float_form`` at the
+    parameter ``k``, e.g. Lyon's ``specfuns.m`` rows; ``phong_form``), the ``self`` one at
+    the shininess the hardware applies (Figure 8: ``m²``)."""
     d = scene.data
+    hooks = get_method(spec.name).load("compile")
     spans, n = d["spans"], float(p["n"])
     span = spans.pixel_span()
     one = config.replace(lights=1)
@@ -184,22 +196,10 @@ def run_datapath(spec, config, p, scene, own, phong="phong", n_self=None):
     out = get_block(spec.block, config=one).golden(raw)
     fixed = out["spec0"] * one.outputs["spec0"][0].lsb
     args = (d["normal"], d["light"], VIEWER)
-    return fixed, {"phong": specular(phong, *args, n),
-                   "self": specular(own, *args, n if n_self is None else n_self)}, \
+    n_self = float(one.unit.applied_n(one, np.float64(n)))
+    return fixed, {"phong": specular(hooks.phong_form, *args, n),
+                   "self": specular(hooks.float_form.format(k=p.get("k")), *args, n_self)}, \
         _terms(out, one.outputs, "diff0", "spec0")
-
-
-def run_fig7(spec, config, p, scene):
-    return run_datapath(spec, config, p, scene, f"lyon-k{p['k']}")
-
-
-def run_fig8(spec, config, p, scene):
-    m = min(max(round(np.sqrt(p["n"])), 1), config.root.m_max)  # what encode feeds
-    return run_datapath(spec, config, p, scene, f"lyon-k{p['k']}", n_self=float(m * m))
-
-
-def run_halfway(spec, config, p, scene):
-    return run_datapath(spec, config, p, scene, f"halfway-g2proj-k{p['k']}", phong="blinn")
 
 
 def _nh_phong(scene, n):

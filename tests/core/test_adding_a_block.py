@@ -176,13 +176,9 @@ UNIT_SOURCES = {
     "toyspec_explore": '''
         from phongfx.core.registry import REGISTRY
         from phongfx.explore.compile.units import Datapath
-        from phongfx.explore.methods import run_datapath
 
         def build(p):
             return REGISTRY["toy_datapath"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-
-        def run(spec, config, p, scene):
-            return run_datapath(spec, config, p, scene, "phong", n_self=1.0)
 
         HOOKS = Datapath(float_form="phong")
         ''',
@@ -204,7 +200,7 @@ def toy_unit(monkeypatch):
         "toy", "toy_datapath", {"vec_frac": 10, "n": 16, "lights": 2},
         {"vec_frac": (4, 16), "n": (1, 8000), "lights": (1, 8)},
         {"unit": "toyspec_config:UNIT", "golden": "toyspec_golden:toy", "component": "toyspec_hdl:ToyUnit",
-         "build": "toyspec_explore:build", "run": "toyspec_explore:run", "compile": "toyspec_explore:HOOKS",
+         "build": "toyspec_explore:build", "run": "phongfx.explore.methods:run_datapath", "compile": "toyspec_explore:HOOKS",
          "shade": "phongfx.render.mesh:shade_datapath"}))
     return get_block("toy_datapath")
 

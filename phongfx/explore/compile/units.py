@@ -61,13 +61,15 @@ class Hooks:
 class Datapath(Hooks):
     """A specular unit of Lyon's datapath: span ends of N, of L and V when local
     (:func:`~phongfx.sim.stimulus.datapath.encode`), any number of lights, ``n`` per pixel
-    or fixed in the hardware; its float form is ``float_form`` at the parameter ``k``."""
+    or fixed in the hardware.  Its float form (:func:`phongfx.golden.reference.specular`) is
+    ``float_form`` at the parameter ``k``; the sweeps measure it against ``phong_form`` too
+    (the halfway unit against Blinn's ``(N·H)^n``).  ``n_cap``: why the ``n`` range ends."""
 
     datapath = True
     extra = {"order": (2, (1, 2))}
 
-    def __init__(self, float_form="lyon-k{k}", n_cap=None):
-        self.float_form, self.n_cap = float_form, n_cap
+    def __init__(self, float_form="lyon-k{k}", n_cap=None, phong_form="phong"):
+        self.float_form, self.n_cap, self.phong_form = float_form, n_cap, phong_form
 
     def rejection(self, method, spec, analysis, geometries, kd, ks):
         """Too many lights; with ``n_cap`` (why the unit's ``n`` range ends), a larger ``n``."""
@@ -192,7 +194,7 @@ def _lirp(geometry, start, end):
     return (1 - a) * start + a * end
 
 
-DATAPATH, HALFWAY = Datapath(), Datapath("halfway-g2proj-k{k}")
+DATAPATH, HALFWAY = Datapath(), Datapath("halfway-g2proj-k{k}", phong_form="blinn")
 FIG8 = Datapath(n_cap="Figure 8's m = √n takes at most 63")
 SPHERICAL, DIFFUSE_ONLY, SCHLICK = _Spherical(), _DiffuseOnly(), _Schlick()
 BLINN, CONVENTIONAL = _Blinn(), _Conventional()
