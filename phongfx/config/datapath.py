@@ -15,8 +15,7 @@ from .reflect import ReflectConfig
 from .root import RootConfig
 from .shape import ShapeConfig
 
-__all__ = ["DatapathConfig", "SPECULAR_UNITS", "SpecularUnit", "FIG7", "FIG8", "HALFWAY", "fig7_config",
-           "fig8_config", "halfway_config"]
+__all__ = ["DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config"]
 
 #: The specular units of Lyon's paper; :func:`phongfx.core.methods.specular_units` lists
 #: every registered one (a unit added to the method registry is valid here too).
@@ -28,7 +27,8 @@ class DatapathConfig(BlockConfig):
     """A whole shading datapath (Lyon 1993, Figures 6–8 and 5): interpolated, approximately
     normalized N, then one specular unit and the diffuse term, for ``lights`` lights.
 
-    ``specular`` picks the unit after the normalizer:
+    ``specular`` picks the unit after the normalizer, a method of
+    :data:`phongfx.core.methods.METHODS` with a ``unit`` face (:attr:`unit`); Lyon's are
 
     * ``"fig7"``: reflect → difference/x (``n``) → shape (Figure 7b–d);
     * ``"fig8"``: reflect → root-shininess unit (``m = √n``, Figure 8);
@@ -115,7 +115,7 @@ class DatapathConfig(BlockConfig):
 
     @property
     def unit(self):
-        """The specular unit's :class:`~phongfx.config.datapath.SpecularUnit` (its method's
+        """The specular unit's :class:`~phongfx.config.base.SpecularUnit` (its method's
         ``unit`` face in :data:`phongfx.core.methods.METHODS`)."""
         return get_method(self.specular).load("unit")
 
@@ -245,151 +245,3 @@ def halfway_config(**changes):
     """A halfway-vector datapath (default: Lyon's row 8, ``g2proj``, ``k = 2``, ``4n``)."""
     changes.setdefault("difference", DifferenceConfig(vec="S2.10", n="15.0", n_max=32000))
     return DatapathConfig(specular="halfway", **changes)
-
-
-# --- the specular units -------------------------------------------------------------------
-#
-# The datapath is fixed up to its normalizer; what follows is one specular unit, chosen by
-# ``specular`` among the methods of phongfx.core.methods.METHODS that have a ``unit`` face:
-# a SpecularUnit, what the config knows of it.  Its golden model and hardware are the
-# method's ``golden`` and ``component`` faces (phongfx.golden.datapath, phongfx.hdl.datapath).
-
-class SpecularUnit:
-    """A specular unit's config face.  ``parts``: the :class:`~phongfx.config.DatapathConfig`
-    sub-configs its hardware uses after the normalizer (the others are idle defaults)."""
-
-    parts = ()
-
-    def links(self, config):
-        """``(name, format, name, format)`` of every pair of formats the unit connects
-        (each must be equal), the shared normalized vector format being ``normalize.out``."""
-        return []
-
-    def check(self, config):
-        """Raise ValueError for a config the unit cannot take beyond its links."""
-
-    def shininess(self, config):
-        """``(port, format, largest value)`` of the per-pixel shininess input (the config
-        asks only when :meth:`shininess_const` is 0)."""
-        return "n", config.difference.fmt("n"), config.difference.n_max
-
-    def shininess_const(self, config):
-        """The shininess fixed in the hardware in the port's terms, 0 when it is a port."""
-        return config.difference.n_const
-
-    def top_n(self, shininess):
-        """The ``n`` of a shininess of the port's terms (``m = √n`` ports square it)."""
-        return shininess
-
-    def applied_n(self, config, n):
-        """The shininess the hardware applies for the scene's float ``n`` array (what its
-        float form is evaluated at)."""
-        return n
-
-    def spec_format(self, config):
-        """The format of the ``spec<i>`` outputs."""
-        return config.shape.fmt("t")
-
-    def fit(self, config, n_hi, n_const):
-        """``config`` with its shininess port narrowed to ``n`` up to ``n_hi``, or the
-        shininess fixed in the hardware at ``n_const`` (0: a port)."""
-        difference = config.difference.replace(n=f"{n_hi.bit_length()}.0", n_max=n_hi)
-        if n_const:
-            difference = difference.replace(n_const=n_const)
-        return config.replace(difference=difference)
-
-
-def _floor_sqrt(n):
-    """⌊√n⌋ of a non-negative integer, exactly."""
-    root = int(n ** 0.5)
-    while root * root > n:
-        root -= 1
-    while (root + 1) * (root + 1) <= n:
-        root += 1
-    return root
-
-
-def _vec(config):
-    return "normalize.out", config.normalize.out
-
-
-class _Figure7(SpecularUnit):
-    """Figure 7b–d: reflect → difference/x (``n``) → shape."""
-
-    parts = ("reflect", "difference", "shape")
-
-    def links(self, c):
-        return [(*_vec(c), "reflect.vec", c.reflect.vec),
-                ("reflect.out", c.reflect.out, "difference.vec", c.difference.vec),
-                (*_vec(c), "difference.vec", c.difference.vec),
-                ("difference.x2", c.difference.x2, "shape.x2", c.shape.x2)]
-
-
-class _Figure8(SpecularUnit):
-    """Figure 8: reflect → root-shininess unit (``m = √n``)."""
-
-    parts = ("reflect", "root")
-
-    def links(self, c):
-        return [(*_vec(c), "reflect.vec", c.reflect.vec),
-                ("reflect.out", c.reflect.out, "root.vec", c.root.vec),
-                (*_vec(c), "root.vec", c.root.vec)]
-
-    def shininess(self, c):
-        return "m", c.root.fmt("m"), c.root.m_max
-
-    def shininess_const(self, c):
-        return c.root.m_const
-
-    def top_n(self, shininess):
-        return shininess * shininess
-
-    def applied_n(self, c, n):
-        """``m²``: the port takes ``m = √n`` rounded (or the constant ``m``)."""
-        m = c.shininess_const or (n ** 0.5).round().clip(1, c.root.m_max)
-        return (n * 0 + m * m).astype("float64")
-
-    def spec_format(self, c):
-        return c.root.fmt("t")
-
-    def fit(self, config, n_hi, n_const):
-        m = _floor_sqrt(n_hi - 1) + 1  # ⌈√n_hi⌉
-        root = config.root.replace(m=f"{m.bit_length()}.0", m_max=m)
-        if n_const:
-            low = _floor_sqrt(n_const)  # √n_const rounded (never a tie for an integer)
-            root = root.replace(m_const=min(max(low + (n_const - low * low > low), 1), m))
-        return config.replace(root=root)
-
-
-class _Halfway(SpecularUnit):
-    """Figure 5: halfway difference vector → difference/x with ``n·2^halfway_shift`` → shape
-    (Figure 9 rows 7–10, as the appendix code scales ``n``)."""
-
-    parts = ("halfway", "difference", "shape")
-
-    def links(self, c):
-        return [(*_vec(c), "halfway.vec", c.halfway.vec),
-                ("halfway.out", c.halfway.out, "difference.vec", c.difference.vec),
-                ("difference.x2", c.difference.x2, "shape.x2", c.shape.x2)]
-
-    def check(self, c):
-        if c.difference.fmt("n").int_bits < c.halfway_shift + 1:
-            raise ValueError(f"difference.n must have at least {c.halfway_shift + 1} integer "
-                             f"bits to take n·2^{c.halfway_shift}, not {c.difference.n}")
-        if c.difference.n_const % (1 << c.halfway_shift):
-            raise ValueError(f"difference.n_const must be a multiple of {1 << c.halfway_shift} "
-                             f"(it is n·2^{c.halfway_shift}), not {c.difference.n_const}")
-
-    def shininess(self, c):
-        n, shift = c.difference.fmt("n"), c.halfway_shift
-        return "n", Format(n.int_bits - shift, 0), c.difference.n_max >> shift
-
-    def shininess_const(self, c):
-        return c.difference.n_const >> c.halfway_shift
-
-    def fit(self, config, n_hi, n_const):
-        shift = config.halfway_shift
-        return super().fit(config, n_hi << shift, n_const << shift)
-
-
-FIG7, FIG8, HALFWAY = _Figure7(), _Figure8(), _Halfway()

@@ -42,13 +42,19 @@ FACES = ("unit", "golden", "component", "build", "run", "compile", "shade")
 class Method:
     """One shading method: its ``block``, its search ``params`` (name -> default) and
     ``ranges`` (name -> inclusive ``(lo, hi)``), and its ``faces`` (:data:`FACES` ->
-    ``"module:name"``).  The defaults build the block registry's default config exactly."""
+    ``"module:name"``).  The defaults build the block registry's default config exactly.
+
+    ``float_form``: a datapath unit's float form, the reference it is measured against
+    (``against = "self"``): a method of :func:`phongfx.golden.reference.specular`, ``{k}``
+    standing for the parameter ``k``.  A datapath method without a ``build`` face is built
+    by its unit's :meth:`~phongfx.config.base.SpecularUnit.sweep`."""
 
     name: str
     block: str
     params: dict = field(compare=False)
     ranges: dict = field(compare=False)
     faces: dict = field(compare=False)
+    float_form: str = ""
 
     def __post_init__(self):
         unknown = sorted(set(self.faces) - set(FACES))
@@ -76,19 +82,18 @@ class Method:
         return "unit" in self.faces
 
 
-def _datapath(name, block, faces, params, ranges, shade=True, compile="DATAPATH"):
-    """A specular unit of the datapath: ``faces`` ``(unit, golden, component)``, names in
-    :mod:`phongfx.config.datapath`, :mod:`phongfx.golden.datapath` and
-    :mod:`phongfx.hdl.datapath`; its builder in :mod:`phongfx.explore.methods`, the sweep run
-    of every datapath and its compiler hooks (a :class:`~phongfx.explore.compile.units.Datapath`,
-    which declares its float form)."""
+def _datapath(name, block, faces, params, ranges, float_form, shade=True, compile="DATAPATH"):
+    """A specular unit of the datapath: ``faces`` ``(unit, golden, component)``, the first in
+    ``phongfx.config`` (the config module of its block), the others in
+    :mod:`phongfx.golden.datapath` and :mod:`phongfx.hdl.datapath`; the sweep run of every
+    datapath and the compiler hooks of :mod:`phongfx.explore.compile.units`."""
     unit, golden, component = faces
-    faces = {"unit": f"phongfx.config.datapath:{unit}", "golden": f"phongfx.golden.datapath:{golden}",
-             "component": f"phongfx.hdl.datapath:{component}", "build": f"phongfx.explore.methods:build_{name}",
+    faces = {"unit": f"phongfx.config.{unit}", "golden": f"phongfx.golden.datapath:{golden}",
+             "component": f"phongfx.hdl.datapath:{component}",
              "run": "phongfx.explore.methods:run_datapath", "compile": f"phongfx.explore.compile.units:{compile}"}
     if shade:
         faces["shade"] = "phongfx.render.mesh:shade_datapath"
-    return Method(name, block, params, ranges, faces)
+    return Method(name, block, params, ranges, faces, float_form)
 
 
 def _unit(name, params, ranges, compile, shade):
@@ -108,15 +113,15 @@ _TABLE_RANGES = {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 1
 
 #: name -> :class:`Method`; the order is that of ``phongfx compile --methods`` and the sweeps.
 METHODS = {method.name: method for method in (
-    _datapath("fig7", "fig7", ("FIG7", "fig7", "Fig7Unit"), _SHAPE,
+    _datapath("fig7", "fig7", ("shape:FIG7", "fig7", "Fig7Unit"), _SHAPE,
               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": _K, "n": _N,
-               "lights": _LIGHTS}, shade=False),
-    _datapath("fig8", "fig8", ("FIG8", "fig8", "Fig8Unit"), {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
+               "lights": _LIGHTS}, "lyon-k{k}", shade=False),
+    _datapath("fig8", "fig8", ("root:FIG8", "fig8", "Fig8Unit"), {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
               {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": _K, "n": (1, 63 * 63),
-               "lights": _LIGHTS}, shade=False, compile="FIG8"),
-    _datapath("halfway", "halfway_datapath", ("HALFWAY", "halfway_unit", "HalfwayUnit"), _SHAPE,
+               "lights": _LIGHTS}, "lyon-k{k}", shade=False, compile="FIG8"),
+    _datapath("halfway", "halfway_datapath", ("halfway:HALFWAY", "halfway_unit", "HalfwayUnit"), _SHAPE,
               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, _K[1]), "n": _N,
-               "lights": _LIGHTS}, shade=False, compile="HALFWAY"),
+               "lights": _LIGHTS}, "halfway-g2proj-k{k}", shade=False, compile="HALFWAY"),
     _unit("spherical", {"addr_bits": 6, "rom_bits": 6, "theta_frac": 11, "n": 16},
           {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},
           "SPHERICAL", "shade_spherical"),

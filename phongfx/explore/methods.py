@@ -27,8 +27,7 @@ from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, conventional_inputs
                                        gouraud_inputs, halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "run_datapath",
-           "build_fig7", "build_fig8", "build_halfway",
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "build_datapath", "run_datapath",
            "build_spherical", "run_spherical", "build_euler", "run_euler", "build_gouraud", "run_gouraud",
            "build_schlick", "run_schlick", "build_blinn", "run_blinn", "build_conventional", "run_conventional"]
 
@@ -78,21 +77,12 @@ class MethodSpec:
 # other width is a field's fraction bits (``x2_frac``: ``x2``'s), its integer bits and sign
 # those of the field's default (BlockConfig.frac_changes), never written here a second time.
 
-def _shape_datapath(block):
-    """Builder of a datapath ending in ``difference`` → ``shape`` (Figure 7, halfway)."""
-    def build(p):
-        base = REGISTRY[block].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-        difference, shape = base.difference, base.shape
-        return base.replace(difference=difference.replace(**difference.frac_changes(x2=p["x2_frac"])),
-                            shape=shape.replace(**shape.frac_changes(x2=p["x2_frac"], t=p["shape_t_frac"]),
-                                                k=p["k"]))
-    return build
-
-
-def build_fig8(p):
-    base = REGISTRY["fig8"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-    root = base.root
-    return base.replace(root=root.replace(**root.frac_changes(frac=p["root_frac"], t=p["t_frac"]), k=p["k"]))
+def build_datapath(block, p):
+    """The config of a datapath method (``block``) at a sweep point: every direction-vector
+    format from ``vec_frac``, ``lights``, then its unit's own parameters
+    (:meth:`~phongfx.config.base.SpecularUnit.sweep`)."""
+    base = REGISTRY[block].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
+    return base.unit.sweep(base, p)
 
 
 def build_spherical(p):
@@ -182,9 +172,9 @@ def _power(c, n):
 
 def run_datapath(spec, config, p, scene):
     """A specular unit of the datapath on one light (the ``run`` face of every datapath
-    method): its float forms are those its compile face declares (``float_form`` at the
-    parameter ``k``, e.g. Lyon's ``specfuns.m`` rows; ``phong_form``), the ``self`` one at
-    the shininess the hardware applies (Figure 8: ``m²``)."""
+    method), against its float form (its registry entry's, e.g. Lyon's ``specfuns.m`` rows,
+    at the shininess the hardware applies: Figure 8's ``m²``) and its compile face's
+    ``phong_form``."""
     d = scene.data
     hooks = get_method(spec.name).load("compile")
     spans, n = d["spans"], float(p["n"])
@@ -198,7 +188,7 @@ def run_datapath(spec, config, p, scene):
     args = (d["normal"], d["light"], VIEWER)
     n_self = float(one.unit.applied_n(one, np.float64(n)))
     return fixed, {"phong": specular(hooks.phong_form, *args, n),
-                   "self": specular(hooks.float_form.format(k=p.get("k")), *args, n_self)}, \
+                   "self": specular(hooks.float_form(spec.name, p), *args, n_self)}, \
         _terms(out, one.outputs, "diff0", "spec0")
 
 
@@ -260,7 +250,6 @@ def run_conventional(spec, config, p, scene):
         _terms(out, config.outputs, "diffuse", "specular")
 
 
-build_fig7, build_halfway = _shape_datapath("fig7"), _shape_datapath("halfway_datapath")
 build_blinn, build_conventional = _tables("blinn"), _tables("conventional")
 run_euler = _run_scanline("euler", euler_inputs, "corrected")
 run_gouraud = _run_scanline("gouraud", gouraud_inputs, "gouraud")
@@ -272,8 +261,9 @@ class _Catalog(Mapping):
 
     def __getitem__(self, name):
         method = REGISTERED[name]
-        return MethodSpec(method.name, method.block, method.params, method.ranges,
-                          method.load("build"), method.load("run"))
+        build = (method.load("build") if method.has("build")
+                 else functools.partial(build_datapath, method.block))
+        return MethodSpec(method.name, method.block, method.params, method.ranges, build, method.load("run"))
 
     def __iter__(self):
         return iter(REGISTERED)

@@ -113,15 +113,18 @@ def test_a_new_block_is_a_block_like_any_other(toy, capsys, tmp_path):
 #
 # A specular unit of Lyon's datapath is one entry of the method registry
 # (phongfx.core.methods.METHODS) and one of the block registry, naming its faces: what the
-# config knows of it (a SpecularUnit), its golden model and its hardware inside the
-# datapath, its sweep builder and run, its compiler hooks and, optionally, its mesh shading.
-# The toy unit below is Phong with n = 1 (max(R·L, 0)): the reflected R of Figure 7 and
-# Lambert's block on (R, L), with no shininess port.  A real new unit writes these objects
-# in its own files; here each layer's are made from source text, like the toy block's.
+# config knows of it (a SpecularUnit: links, shininess port, sweep parameters), its golden
+# model and its hardware inside the datapath; the sweep run, the compiler hooks and the mesh
+# shading of every datapath serve it as they are, and its float form is one string.  The toy
+# unit below is Phong with n = 1 (max(R·L, 0)): the reflected R of Figure 7 and Lambert's
+# block on (R, L), with no shininess port.  A real new unit writes its three faces in the
+# files of its own block (config/NAME.py, golden/NAME.py, hdl/NAME.py); here they are made
+# from source text, like the toy block's.
 
 UNIT_SOURCES = {
     "toyspec_config": '''
-        from phongfx.config.datapath import DatapathConfig, SpecularUnit
+        from phongfx.config.base import SpecularUnit
+        from phongfx.config.datapath import DatapathConfig
 
         class ReflectedLambert(SpecularUnit):
             parts = ("reflect",)  # and diffuse, which every datapath has
@@ -173,15 +176,6 @@ UNIT_SOURCES = {
                 lane[0].feed(m, *self.first(m, shared, valid, normal, view, light, side))
                 return lane[0].results()["diff"]
         ''',
-    "toyspec_explore": '''
-        from phongfx.core.registry import REGISTRY
-        from phongfx.explore.compile.units import Datapath
-
-        def build(p):
-            return REGISTRY["toy_datapath"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-
-        HOOKS = Datapath(float_form="phong")
-        ''',
 }
 
 
@@ -196,12 +190,12 @@ def toy_unit(monkeypatch):
     monkeypatch.setitem(REGISTRY, "toy_datapath", Entry(  # the block: the datapath with the toy unit
         "toy_datapath", "toyspec_config:toy_datapath_config", "phongfx.golden.datapath:datapath",
         "phongfx.hdl.datapath:Datapath", f"{datapath}:stimulus", f"{datapath}:extremes"))
-    monkeypatch.setitem(METHODS, "toy", Method(  # the method: its search space and its faces
+    monkeypatch.setitem(METHODS, "toy", Method(  # the method: its search space, faces and float form
         "toy", "toy_datapath", {"vec_frac": 10, "n": 16, "lights": 2},
         {"vec_frac": (4, 16), "n": (1, 8000), "lights": (1, 8)},
         {"unit": "toyspec_config:UNIT", "golden": "toyspec_golden:toy", "component": "toyspec_hdl:ToyUnit",
-         "build": "toyspec_explore:build", "run": "phongfx.explore.methods:run_datapath", "compile": "toyspec_explore:HOOKS",
-         "shade": "phongfx.render.mesh:shade_datapath"}))
+         "run": "phongfx.explore.methods:run_datapath", "compile": "phongfx.explore.compile.units:DATAPATH",
+         "shade": "phongfx.render.mesh:shade_datapath"}, float_form="phong"))
     return get_block("toy_datapath")
 
 

@@ -61,15 +61,21 @@ class Hooks:
 class Datapath(Hooks):
     """A specular unit of Lyon's datapath: span ends of N, of L and V when local
     (:func:`~phongfx.sim.stimulus.datapath.encode`), any number of lights, ``n`` per pixel
-    or fixed in the hardware.  Its float form (:func:`phongfx.golden.reference.specular`) is
-    ``float_form`` at the parameter ``k``; the sweeps measure it against ``phong_form`` too
-    (the halfway unit against Blinn's ``(N·H)^n``).  ``n_cap``: why the ``n`` range ends."""
+    or fixed in the hardware.  Its float form is its registry entry's; the sweeps measure it
+    against ``phong_form`` too (the halfway unit against Blinn's ``(N·H)^n``).  ``n_cap``:
+    why the ``n`` range ends, when it is the hardware's limit."""
 
     datapath = True
     extra = {"order": (2, (1, 2))}
 
-    def __init__(self, float_form="lyon-k{k}", n_cap=None, phong_form="phong"):
-        self.float_form, self.n_cap, self.phong_form = float_form, n_cap, phong_form
+    def __init__(self, n_cap=None, phong_form="phong"):
+        self.n_cap, self.phong_form = n_cap, phong_form
+
+    def float_form(self, method, params):
+        """The method's float form (its registry entry's ``float_form``) at ``params``' ``k``
+        (its default when ``params`` has none)."""
+        method = get_method(method)
+        return method.float_form.format(k=params.get("k", method.params.get("k")))
 
     def rejection(self, method, spec, analysis, geometries, kd, ks):
         """Too many lights; with ``n_cap`` (why the unit's ``n`` range ends), a larger ``n``."""
@@ -93,7 +99,7 @@ class Datapath(Hooks):
                        list(geometry.l0), list(geometry.l1))]
 
     def own_specular(self, method, config, params, geometry, n):
-        form = self.float_form.format(k=params.get("k", get_method(method).params.get("k")))
+        form = self.float_form(method, params)
         n = config.units[0].unit.applied_n(config.units[0], n)
         return np.stack([specular(form, geometry.normal, light, geometry.viewer, n) for light in geometry.light])
 
@@ -194,7 +200,7 @@ def _lirp(geometry, start, end):
     return (1 - a) * start + a * end
 
 
-DATAPATH, HALFWAY = Datapath(), Datapath("halfway-g2proj-k{k}", phong_form="blinn")
+DATAPATH, HALFWAY = Datapath(), Datapath(phong_form="blinn")
 FIG8 = Datapath(n_cap="Figure 8's m = √n takes at most 63")
 SPHERICAL, DIFFUSE_ONLY, SCHLICK = _Spherical(), _DiffuseOnly(), _Schlick()
 BLINN, CONVENTIONAL = _Blinn(), _Conventional()
