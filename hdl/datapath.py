@@ -108,7 +108,10 @@ class SpecularUnit:
     """A specular unit's hardware inside :class:`Datapath` (its method's ``component`` face):
     ``shared`` blocks computed once for every light (the reflected R), then per light the
     blocks of ``lanes[index]``, the first fed by :meth:`feed_light`, each next one by the one
-    before.  Latency: the shared blocks' and one lane's."""
+    before, the last one's ``spec_port`` the light's ``spec``.  Latency: the shared blocks'
+    and one lane's."""
+
+    spec_port = "spec"
 
     def __init__(self, config, shared, lanes):
         self.config, self.shared, self.lanes = config, shared, lanes
@@ -136,7 +139,7 @@ class SpecularUnit:
         lane[0].feed(m, *self.first(m, shared, valid, normal, view, light, side))
         for before, block in zip(lane, lane[1:]):
             block.feed(m, before.o.valid, before.results())
-        return lane[-1].results()["spec"]
+        return lane[-1].results()[self.spec_port]
 
     def first(self, m, shared, valid, normal, view, light, side):
         """``(valid, inputs)`` of a lane's first block."""

@@ -17,9 +17,10 @@ from .shape import ShapeConfig
 
 __all__ = ["DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config"]
 
-#: The specular units of Lyon's paper; :func:`phongfx.core.methods.specular_units` lists
-#: every registered one (a unit added to the method registry is valid here too).
-SPECULAR_UNITS = ("fig7", "fig8", "halfway")
+#: The specular units registered when this module was imported (Lyon's three);
+#: :func:`phongfx.core.methods.specular_units` lists every registered one, a unit added
+#: to the method registry later included, and is what ``specular`` is checked against.
+SPECULAR_UNITS = specular_units()
 
 
 @dataclass(frozen=True)

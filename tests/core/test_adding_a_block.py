@@ -164,17 +164,14 @@ UNIT_SOURCES = {
         from phongfx.hdl.reflect import Reflect
 
         class ToyUnit(ReflectedUnit):
+            spec_port = "diff"
+
             def __init__(self, c):
                 super().__init__(c, [Reflect(c.reflect)], [[Diffuse(c.diffuse)] for _ in range(c.lights)])
 
             def first(self, m, shared, valid, normal, view, light, side):
                 r_valid, inputs = super().first(m, shared, valid, normal, view, light, side)
-                return r_valid, {"n": inputs["r"], "l": inputs["l"]}
-
-            def feed_light(self, m, index, shared, valid, normal, view, light, side):
-                lane = self.lanes[index]
-                lane[0].feed(m, *self.first(m, shared, valid, normal, view, light, side))
-                return lane[0].results()["diff"]
+                return r_valid, {"n": inputs["r"], "l": inputs["l"]}  # Lambert's block on (R, L)
         ''',
 }
 
