@@ -126,13 +126,13 @@ METHODS = {method.name: method for method in (
           {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},
           "SPHERICAL", "shade_spherical"),
     _unit("euler", {"p_frac": 30, "t_frac": 30, "ds_frac": 30, "n": 16},
-          {"p_frac": (8, 40), "t_frac": (8, 40), "ds_frac": (8, 40), "n": _N}, "DIFFUSE_ONLY", "shade_scanline"),
+          {"p_frac": (8, 40), "t_frac": (8, 40), "ds_frac": (8, 40), "n": _N}, "DIFFUSE_ONLY", "shade_euler"),
     _unit("gouraud", {"p_frac": 30, "dp_frac": 30, "n": 16},
-          {"p_frac": (8, 40), "dp_frac": (8, 40), "n": _N}, "DIFFUSE_ONLY", "shade_scanline"),
+          {"p_frac": (8, 40), "dp_frac": (8, 40), "n": _N}, "DIFFUSE_ONLY", "shade_gouraud"),
     _unit("schlick", {"t_frac": 15, "out_frac": 15, "n": 16},
           {"t_frac": (2, 30), "out_frac": (2, 30), "n": _N}, "SCHLICK", None),
-    _unit("blinn", _TABLES, _TABLE_RANGES, "BLINN", "shade_tables"),
-    _unit("conventional", _TABLES, _TABLE_RANGES, "CONVENTIONAL", "shade_tables"),
+    _unit("blinn", _TABLES, _TABLE_RANGES, "BLINN", "shade_blinn"),
+    _unit("conventional", _TABLES, _TABLE_RANGES, "CONVENTIONAL", "shade_conventional"),
 )}
 
 

@@ -64,7 +64,8 @@ from phongfx.sim.stimulus.datapath import encode
 from .figure import error_figure, frame_figure
 
 __all__ = ["FLOAT_METHODS", "UNIT_METHODS", "METHODS", "RENAMED", "method_name", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
-           "shade", "shade_scanline", "shade_tables", "shade_spherical", "shade_datapath", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
+           "shade", "shade_euler", "shade_gouraud", "shade_blinn", "shade_conventional", "shade_spherical",
+           "shade_datapath", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
 FLOAT_METHODS = ("phong", "gouraud-float", "euler-float", "corrected-euler", "cosn", "cos2")
 
@@ -182,24 +183,29 @@ def shade(spans, method, *, light=LIGHT, n=20, addr_bits=6, rom_bits=6):
                                              rom_bits=rom_bits)
 
 
-def shade_scanline(spans, method, *, light, h, n, **options):
-    """``N·L`` and ``N·H`` each through the Euler or Gouraud unit, then clamped and raised
-    (the ``shade`` face of ``euler`` and ``gouraud``)."""
-    block = get_block(method)
-    feed = euler_inputs if method == "euler" else gouraud_inputs
-    curve = [decode(method, block.golden(feed(spans, v, block.config)), block.config)
-             for v in (light, h)]
-    return curve[0], _power(curve[1], n)
+def _scanline(feed):
+    """The ``shade`` face of a unit interpolating a dot product along the span (Euler,
+    Gouraud; ``feed`` its span inputs): ``N·L`` and ``N·H`` each through it, then clamped and
+    raised like the float methods."""
+    def shade_unit(spans, method, *, light, h, n, **options):
+        block = get_block(method)
+        curve = [decode(method, block.golden(feed(spans, v, block.config)), block.config) for v in (light, h)]
+        return curve[0], _power(curve[1], n)
+    return shade_unit
 
 
-def shade_tables(spans, method, *, light, h, n, **options):
-    """The unit's own diffuse and specular outputs (the ``shade`` face of ``blinn`` and
-    ``conventional``, which differ in their inputs only)."""
-    block = get_block(method)
-    feed = blinn_inputs if method == "blinn" else conventional_inputs
-    out = block.golden(feed(spans, light, n, block.config))
-    return (decode(method, out, block.config, "diff"),
-            decode(method, out, block.config, "spec"))
+def _tables(feed):
+    """The ``shade`` face of a unit on the tables of :mod:`phongfx.golden.blinn` (Blinn,
+    conventional Phong; ``feed`` its span inputs): its own diffuse and specular outputs."""
+    def shade_unit(spans, method, *, light, h, n, **options):
+        block = get_block(method)
+        out = block.golden(feed(spans, light, n, block.config))
+        return decode(method, out, block.config, "diff"), decode(method, out, block.config, "spec")
+    return shade_unit
+
+
+shade_euler, shade_gouraud = _scanline(euler_inputs), _scanline(gouraud_inputs)
+shade_blinn, shade_conventional = _tables(blinn_inputs), _tables(conventional_inputs)
 
 
 def shade_spherical(spans, method, *, light, h, n, addr_bits=6, rom_bits=6):
