@@ -6,32 +6,25 @@ from .base import BlockConfig, check_int
 from .blend import BlendConfig
 from .datapath import DatapathConfig, fig7_config
 
-__all__ = ["ShaderConfig", "UNIT_TERMS", "unit_terms"]
-
-#: Per standalone shading unit (registry name): the ``(diffuse port, lane, specular port)``
-#: of the light one copy computes, as a function of the unit's config.  Schlick's unit has
-#: no diffuse output (None), the spherical unit's ``diff`` is its vector's first lane.  A
-#: datapath (any :class:`~phongfx.config.DatapathConfig`, whatever its specular unit) holds
-#: every light: :func:`unit_terms`.
-UNIT_TERMS = {
-    "blinn": lambda c: [("diffuse", None, "specular")],
-    "conventional": lambda c: [("diffuse", None, "specular")],
-    "spherical": lambda c: [("diff", 0, "spec")],
-    "schlick": lambda c: [(None, None, "spec")],
-}
-
+__all__ = ["ShaderConfig", "unit_terms"]
 
 def unit_terms(unit, config):
     """``(diffuse port, lane, specular port)`` of each light a copy of ``unit`` (a registry
-    block name) computes at ``config``; None for a unit that has no place in a shader."""
+    block name) computes at ``config``; None for a unit that has no place in a shader.
+
+    A datapath (any :class:`~phongfx.config.DatapathConfig`, whatever its specular unit)
+    holds every light (``diff<i>``, ``spec<i>``); a unit computing one light per copy says
+    which of its outputs are its terms in its config class's ``TERMS`` (Schlick's unit has no
+    diffuse output, None; the spherical unit's ``diff`` is its vector's first lane)."""
     if isinstance(config, DatapathConfig):
         return [(f"diff{i}", None, f"spec{i}") for i in range(config.lights)]
-    return UNIT_TERMS[unit](config) if unit in UNIT_TERMS else None
+    terms = getattr(config, "TERMS", None)
+    return None if terms is None else [terms]
 
 
 @dataclass(frozen=True)
 class ShaderConfig(BlockConfig):
-    """A shading unit (``unit``, a registry name of :data:`UNIT_TERMS`), one copy per entry
+    """A shading unit (``unit``, a registry block that :func:`unit_terms` knows), one copy per entry
     of ``units`` (their configs), and the blend (:class:`BlendConfig`) of every light's
     diffuse and specular terms to the pixel's ``r``, ``g``, ``b`` codes.
 
@@ -50,8 +43,9 @@ class ShaderConfig(BlockConfig):
     def validate(self):
         from phongfx.core.registry import REGISTRY
         if self.unit not in REGISTRY or unit_terms(self.unit, REGISTRY[self.unit].default_config()) is None:
-            names = [name for name, entry in REGISTRY.items()
-                     if isinstance(entry.default_config(), DatapathConfig)] + list(UNIT_TERMS)
+            configs = {name: entry.default_config() for name, entry in REGISTRY.items()}
+            names = sorted((name for name, config in configs.items() if unit_terms(name, config)),
+                           key=lambda name: not isinstance(configs[name], DatapathConfig))
             raise ValueError(f"unit must be one of {', '.join(names)}, not {self.unit!r}")
         if isinstance(self.units, list):  # a tuple stays hashable: build caches key on configs
             object.__setattr__(self, "units", tuple(self.units))
