@@ -24,7 +24,14 @@ none imports a layer above it:
   (``phongfx render mesh``), absent for a method that the renderer does not show.
 
 Adding a method is its entry in :data:`METHODS` (and its block's in the block registry)
-plus the objects its faces name.
+plus the objects its faces name.  A new specular unit ``NAME`` of the datapath writes its
+block's four files as any block does (``phongfx/config/NAME.py`` with its
+:class:`~phongfx.config.base.SpecularUnit` beside the block config, ``golden/NAME.py`` with
+its golden face, ``hdl/NAME.py`` with its :class:`~phongfx.hdl.datapath.SpecularUnit`,
+``sim/stimulus/NAME.py``), gives :class:`~phongfx.config.DatapathConfig` a field for its
+sub-config, and names its float form (a row of :mod:`phongfx.golden.reference`, a sixth file
+if it is new); the datapath, the sweeps, the compiler (``--methods``) and ``render mesh``
+then take it, ``tests/core/test_adding_a_block.py`` shows how.
 """
 
 from dataclasses import dataclass, field
