@@ -7,28 +7,8 @@ The compiler (:mod:`phongfx.explore.compile.compiler`) asks, per method: can it 
 check drives), and which pixels its ``r``, ``g``, ``b`` codes are (:func:`frame_codes`).
 :func:`own_specular` is the method's float form (the ``against = "self"`` reference).
 
-* Lyon's datapaths (``fig7``, ``fig8``, ``halfway``) take everything a scene has: span
-  ends of N, of L and V when local (:func:`phongfx.sim.stimulus.datapath.encode`), any
-  number of lights, ``n`` per pixel or fixed in the hardware (``n_const``/``m_const``).
-* ``blinn`` and ``spherical`` compute Blinn's ``(N·H)^n'`` and take one copy of
-  the unit per light, side by side in the shader (:func:`copies`).
-  ``blinn`` is fed per pixel the interpolated ``N`` and the exact unit ``L`` and
-  ``H = (L+V)/|L+V|`` of that pixel, so it takes point lights and a local viewer too (the
-  hardware that would compute those per-pixel vectors is not in its cost);
-  ``spherical`` needs directional lights and the camera at infinity along +z.  They are
-  fed ``n' = 4n`` (Lyon's appendix: ``(N·H)^(4n)`` stands for ``(R·L)^n``), so their
-  ``"phong"`` error includes that approximation and ``"self"`` is float ``(N̂·H)^(4n)``
-  (spherical: Szirmay-Kalos's ``A^n'·cos²``).  ``spherical`` also needs mesh spans and
-  one ``n`` (its per-span setup holds it).
-* ``conventional`` computes Phong's own ``(R·V)^n`` with ``n`` itself (no ``4n``), one copy
-  per light, fed per pixel the interpolated ``N`` and ``L``, ``V``: the exact unit vectors
-  of the pixel, or, for point lights (``local_light``) and a local viewer
-  (``local_viewer``), the un-normalized ``(1-a)·X0 + a·X1`` of the span ends' unit vectors
-  toward the light or viewer (what a Phong shader interpolates, Lyon 1993 Figure 1, and
-  what the datapaths' L and V LIRPs are fed), which the unit normalizes itself.  Its
-  ``"self"`` is float Phong with its backside test (0 where ``N̂·L <= 0``).
-* ``schlick`` has no diffuse path and ``euler``/``gouraud`` no specular one (they
-  interpolate ``N·L``, Hast et al.): rejected for scenes that need the missing term.
+What differs between methods is their ``compile`` face in the method registry
+(:mod:`phongfx.explore.compile.units`), which says how each kind of unit is fed and fitted.
 """
 
 import numpy as np
