@@ -2,7 +2,8 @@
 
 from dataclasses import dataclass
 
-from .base import BlockConfig, SpecularUnit, check_format, check_fraction_format, check_int, check_integer_format, floor_sqrt
+from .base import (BlockConfig, SpecularUnit, check_format, check_fraction_format, check_int, check_integer_format,
+                   floor_sqrt)
 from .shape import K_MAX, ShapeConfig
 
 __all__ = ["RootConfig", "Figure8Unit", "FIG8"]

@@ -41,7 +41,8 @@ from phongfx.scene.mesh import unit
 from phongfx.scene.span_inputs import VIEWER, blinn_codes, conventional_codes, spherical_inputs
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["Hooks", "Datapath", "DATAPATH", "FIG8", "HALFWAY", "SPHERICAL", "DIFFUSE_ONLY", "SCHLICK", "BLINN", "CONVENTIONAL"]
+__all__ = ["Hooks", "Datapath", "DATAPATH", "FIG8", "HALFWAY", "SPHERICAL", "DIFFUSE_ONLY", "SCHLICK", "BLINN",
+           "CONVENTIONAL"]
 
 
 class Hooks:
