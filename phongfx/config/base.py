@@ -15,8 +15,7 @@ from phongfx.core.format import Format, check_rounding
 from phongfx.core.limits import MAX_VEC_FRAC
 
 __all__ = ["BlockConfig", "SpecularUnit", "floor_sqrt", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_format",
-           "check_integer_format",
-           "check_fraction_format", "check_step_formats"]
+           "check_integer_format", "check_fraction_format", "check_step_formats"]
 
 #: Deepest ``pipeline`` of a block (:class:`BlockConfig`).
 MAX_PIPELINE = 4
