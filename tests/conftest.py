@@ -21,7 +21,7 @@ def asic_tools():
     import shutil
     from pathlib import Path
 
-    from phongfx.explore.asic import LIBRARIES
+    from phongfx.explore.synth.asic import LIBRARIES
 
     missing = [name for name, lib in LIBRARIES.items() if not Path(lib.path).is_file()]
     missing += [] if shutil.which("sta") else ["opensta"]

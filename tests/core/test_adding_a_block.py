@@ -19,7 +19,7 @@ import pytest
 
 from phongfx.cli import main
 from phongfx.core.registry import REGISTRY, Entry, get_block
-from phongfx.explore.extremes import run_block
+from phongfx.explore.tables.extremes import run_block
 from phongfx.sim.harness import check
 
 ROOT = Path(__file__).resolve().parents[2]

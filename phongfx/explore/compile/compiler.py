@@ -35,9 +35,9 @@ all renders, and ``max_unrounded`` against the reference before its rounding
 
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
-(:func:`phongfx.explore.synth.synth`, cached) with ``synth=True``, else the tool-free
-proxies :func:`phongfx.explore.cost_proxy.proxy_cost` (LUT-eq) and
-:func:`phongfx.explore.cost_proxy.proxy_area` (µm², fitted to the standard-cell flow).
+(:func:`phongfx.explore.synth.fpga.synth`, cached) with ``synth=True``, else the tool-free
+proxies :func:`phongfx.explore.synth.proxy.proxy_cost` (LUT-eq) and
+:func:`phongfx.explore.synth.proxy.proxy_area` (µm², fitted to the standard-cell flow).
 """
 
 from dataclasses import dataclass, field

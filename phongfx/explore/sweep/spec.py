@@ -6,7 +6,7 @@ cost proxy prices the points that are not synthesized (``proxy``), and ``[[grid]
 over the methods of :mod:`phongfx.explore.evaluate`.  Everything is checked when the spec is
 read, each point against its method's ranges, so a bad spec fails before anything
 runs, with one line naming the field, the bad value and the allowed range
-(:class:`SweepSpecError`).  :mod:`phongfx.explore.sweep` runs the points.
+(:class:`SweepSpecError`).  :mod:`phongfx.explore.sweep.run` runs the points.
 """
 
 import hashlib
@@ -27,7 +27,7 @@ class SweepSpecError(ValueError):
 
 def _catalog():
     """(methods, scene names) of :mod:`phongfx.explore.evaluate`, imported when first needed."""
-    from .evaluate import METHODS, SCENES
+    from phongfx.explore.evaluate import METHODS, SCENES
     return METHODS, tuple(SCENES)
 
 
@@ -38,8 +38,8 @@ def is_int(value):
 def _check_scenes(value, where, known, base_dir="."):
     """``(labels, files)``: the metric names of the scenes (a built-in name, or a scene file's
     stem) and ``{label: absolute path}`` of the files among them, resolved from ``base_dir``
-    (the sweep file's folder) and checked (:func:`~phongfx.explore.sweep_scene.check_scene_file`)."""
-    from .sweep_scene import check_scene_file, is_scene_file, scene_label
+    (the sweep file's folder) and checked (:func:`~phongfx.explore.sweep.scene.check_scene_file`)."""
+    from phongfx.explore.sweep.scene import check_scene_file, is_scene_file, scene_label
     allowed = f"scenes: {', '.join(known)}, or a scene file (.toml) relative to the sweep file"
     if not isinstance(value, list) or not value or not all(isinstance(s, str) for s in value):
         raise SweepSpecError(f"{where} must be a non-empty list of scene names, not {value!r}; {allowed}")
@@ -67,8 +67,8 @@ def _check_scenes(value, where, known, base_dir="."):
 
 
 def _check_synth(value, where):
-    from .asic import LIBRARIES
-    from .synth import ALL_TARGETS, TARGETS
+    from phongfx.explore.synth.asic import LIBRARIES
+    from phongfx.explore.synth.fpga import ALL_TARGETS, TARGETS
     if not isinstance(value, dict):
         raise SweepSpecError(f"{where} must be a table with keys {', '.join(_SYNTH_KEYS)}, "
                              f"not {value!r}")
@@ -163,7 +163,7 @@ def point_id(method, params, scenes, synth, files=None):
     """A point's identity: sha256 of method, sorted params, scenes and synth options, 16 hex
     digits; with scene ``files`` (``{label: path}``) their contents too, so an edited scene
     file runs again (without, the hash is what it always was: old sweeps resume)."""
-    from .sweep_scene import file_digest
+    from phongfx.explore.sweep.scene import file_digest
     fields = {"method": method, "params": params, "scenes": list(scenes), "synth": synth}
     if files:
         fields["scene_files"] = {label: file_digest(path) for label, path in files.items()}
@@ -184,7 +184,7 @@ def _point(method, params, scenes, synth, proxy=None):
 def _check_proxy(value, where, synth):
     """The target whose tool-free proxy costs the points that are not synthesized: ``value``
     (a target, or false for none), by default the ``[synth]`` target, else ``ecp5``."""
-    from .synth import ALL_TARGETS
+    from phongfx.explore.synth.fpga import ALL_TARGETS
     if value is None:
         return (synth or {}).get("target", "ecp5")
     if value is False:

@@ -1,7 +1,7 @@
-"""The sweep's Pareto plots (phongfx.explore.sweep_plot): labelled fronts, and an error-only
+"""The sweep's Pareto plots (phongfx.explore.sweep.plot): labelled fronts, and an error-only
 sweep drawn against the tool-free cost proxy instead of an empty picture."""
 
-from phongfx.explore.sweep_plot import pareto_plot, short_params, swept
+from phongfx.explore.sweep.plot import pareto_plot, short_params, swept
 
 KEY = "torus.phong.max"
 PNG = b"\x89PNG\r\n\x1a\n"

@@ -22,7 +22,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 
 from phongfx.core.files import atomic_write
 
-from .sweep_spec import SweepSpecError, expand, is_int, load_spec, point_id
+from phongfx.explore.sweep.spec import SweepSpecError, expand, is_int, load_spec, point_id
 
 __all__ = ["SweepSpecError", "load_spec", "expand", "point_id", "load_records", "write_csv",
            "run_sweep"]
@@ -286,7 +286,7 @@ def run_sweep(spec, *, out="build/sweep", workers=None, scheduler=None, progress
     if workers is not None and (not is_int(workers) or workers < 1):
         raise ValueError(f"workers must be a positive integer, not {workers!r}")
     if evaluate is None:
-        from .evaluate import evaluate
+        from phongfx.explore.evaluate import evaluate
     points = load_spec(spec)["points"]
     jsonl, csv_path = os.path.join(out, "points.jsonl"), os.path.join(out, "points.csv")
     os.makedirs(out, exist_ok=True)

@@ -1,6 +1,6 @@
 """Gate-level check: a block's synthesized FPGA netlist simulated against its golden model.
 
-:func:`synth_netlist` synthesizes a block as :mod:`.synth` does (Yosys ``synth_ecp5`` or
+:func:`synth_netlist` synthesizes a block as :mod:`.fpga` does (Yosys ``synth_ecp5`` or
 ``synth_ice40``; on ECP5 the products of a pipelined block mapped onto MULT18X18D by
 :mod:`phongfx.hdl.dsp`; the simulation-only overflow flags left out) and writes the mapped
 netlist: LUT4s, carry cells, flip-flops, DSPs and RAMs as instances.  :func:`check_netlist` simulates that
@@ -18,8 +18,8 @@ Netlists are cached in ``<workdir>/<key>`` like synthesis results (:func:`.toolr
 import re
 from pathlib import Path
 
-from .synth import TARGETS, dsp_mapping_of, run_yosys_abc9_fallback, synth_command
-from .toolrun import SynthError, cached_run, design_rtlil, read_json
+from phongfx.explore.synth.fpga import TARGETS, dsp_mapping_of, run_yosys_abc9_fallback, synth_command
+from phongfx.explore.synth.toolrun import SynthError, cached_run, design_rtlil, read_json
 
 __all__ = ["NETLIST_TARGETS", "synth_netlist", "cell_models", "check_netlist"]
 

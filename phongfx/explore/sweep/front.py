@@ -2,7 +2,7 @@
 against cost.
 
 The report (:mod:`phongfx.explore.report`) and the sweep's plots
-(:mod:`phongfx.explore.sweep_plot`) both rank records this way, so it lives apart from
+(:mod:`phongfx.explore.sweep.plot`) both rank records this way, so it lives apart from
 either.  Cost is counted in **LUT-equivalents**: ``lut4 + W·dsp`` with ``W`` =
 :data:`DSP_LUT_WEIGHT`, the LUT4 count of an 18×18 signed multiplier (the size of one
 ECP5 ``MULT18X18D``) built from logic, measured with Yosys 0.70 ``synth_ecp5 -nodsp``

@@ -10,8 +10,8 @@ import pytest
 
 from phongfx.cli import main
 from phongfx.core.registry import block_names, get_block
-from phongfx.explore import extremes
-from phongfx.explore.extremes import all_rows, rows_for, run_block
+from phongfx.explore.tables import extremes
+from phongfx.explore.tables.extremes import all_rows, rows_for, run_block
 
 #: Every row of the table, in order.
 EXTREMES = all_rows()

@@ -4,7 +4,7 @@ Lyon (Apple TR #43, 1993, "Hardware Rearrangements for Bit Reductions") says of 
 root-shininess unit (``m = √n``) of Figure 8: "the six 7×11 and 9×9 multipliers are likely
 to be smaller and faster than the three 12×12 and one 14×22 required for similar accuracy
 in the arrangement of Figure 7".  This table synthesizes, places and routes
-(:func:`phongfx.explore.synth.synth`, ECP5, 150 MHz constraint) the parts and the wholes:
+(:func:`phongfx.explore.synth.fpga.synth`, ECP5, 150 MHz constraint) the parts and the wholes:
 
 * ``difference`` — Figure 7c (``D = R - L``, ``D·D``, ``2x = n·D·D``), the part the claim is about;
 * ``shape`` — Figure 7d (``f_k``, ``k = 2``), which Figure 7 needs after 7c;
@@ -23,9 +23,9 @@ import sys
 
 from phongfx.config import DifferenceConfig, RootConfig
 
-from .progress import Candidates
-from .report import DSP_LUT_WEIGHT, lut_equivalent
-from .synth import SynthError, synth
+from phongfx.explore.progress import Candidates
+from phongfx.explore.report import DSP_LUT_WEIGHT, lut_equivalent
+from phongfx.explore.synth.fpga import SynthError, synth
 
 __all__ = ["TABLES", "BLOCKS", "CLAIM", "N", "WHAT", "multipliers", "cost_of", "cost_table", "run_table", "markdown",
            "to_json"]
@@ -99,7 +99,7 @@ def _combined(a, b, name, what):
 
 def _accuracy(methods, n):
     try:
-        from .evaluate import evaluate
+        from phongfx.explore.evaluate import evaluate
     except ImportError:
         return None
     result = {}

@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.explore.netlist import NETLIST_TARGETS, cell_models, check_netlist, synth_netlist
+from phongfx.explore.synth.netlist import NETLIST_TARGETS, cell_models, check_netlist, synth_netlist
 from phongfx.sim import fast_backend
 
 pytestmark = pytest.mark.verilator

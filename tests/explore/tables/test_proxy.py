@@ -1,12 +1,12 @@
-"""The area proxy's calibration (phongfx.explore.proxy_table): the fit, the table's rows and
+"""The area proxy's calibration (phongfx.explore.tables.proxy): the fit, the table's rows and
 verdicts on stand-in synthesis, and the stored coefficients against the real flow."""
 
 import numpy as np
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.explore import proxy_table
-from phongfx.explore.cost_proxy import AREA_COEFFICIENTS, FEATURES, proxy_area, rtlil_features, rtlil_of
+from phongfx.explore.tables import proxy as proxy_table
+from phongfx.explore.synth.proxy import AREA_COEFFICIENTS, FEATURES, proxy_area, rtlil_features, rtlil_of
 
 
 def test_fit_recovers_known_coefficients():

@@ -1,4 +1,4 @@
-"""``phongfx.explore.pipeline_table``: Fmax, size and latency against pipeline depth."""
+"""``phongfx.explore.tables.pipeline``: Fmax, size and latency against pipeline depth."""
 
 import json
 import re
@@ -6,12 +6,13 @@ import re
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.explore import pipeline_table, synth
-from phongfx.explore.pipeline_table import DEPTHS, NAMES, SEEDS, markdown, pipeline_rows, run_table, to_json
+from phongfx.explore.tables import pipeline as pipeline_table
+from phongfx.explore.synth import fpga as synth
+from phongfx.explore.tables.pipeline import DEPTHS, NAMES, SEEDS, markdown, pipeline_rows, run_table, to_json
 
 
 def _fake_synth(calls):
-    """A stand-in for :func:`phongfx.explore.synth.synth`: 35 MHz more per depth, normalize 40 MHz
+    """A stand-in for :func:`phongfx.explore.synth.fpga.synth`: 35 MHz more per depth, normalize 40 MHz
     higher, seed 1 MHz below and seed 3 5 MHz above seed 2, latency from the config as the
     real one reports it, the DSPs' internal multiply untimed from depth 1."""
 

@@ -31,10 +31,11 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from phongfx.hdl.dsp import DSP_INTERNAL_NS
+from phongfx.hdl.dsp import DSP_INTERNAL_NS, DSP_MAPPING, DSP_MAPPING_DEPTH, dsp_mapping_of
 
-from .asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
-from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
+from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
+from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
+                                           run_yosys, tail, tool)
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "DSP_MAPPING_DEPTH", "dsp_mapping_of",
            "harness", "synth", "markdown", "synth_command", "run_yosys_abc9_fallback"]
@@ -82,30 +83,6 @@ TARGETS = {
 }
 
 ALL_TARGETS = (*TARGETS, "asic")
-
-#: Targets whose products are mapped onto DSP instances by :mod:`phongfx.hdl.dsp` (with
-#: the pipeline's registers inside them) rather than left to Yosys: ECP5, where no Yosys
-#: pass packs registers into MULT18X18D.  (Yosys' ``ice40_dsp`` packs SB_MAC16 registers
-#: itself, but only reset-less ones.)
-DSP_MAPPING = {"ecp5": "ecp5"}
-
-
-#: The shallowest pipeline depth synthesized with its products mapped by :mod:`phongfx.hdl.dsp`.
-#: Measured on LFE5U-45F (median of 3 seeds): at depth 2 the mapping costs fig7 85.1 →
-#: 52.7 MHz, because the register it moves into the DSP was fed by a rounding and a clamp,
-#: which then share a clock with the 7–14 ns route into the DSP; at depth 3 it gains
-#: (102.6 → 107.7), at depth 4 every DSP meets registers only (189.5 MHz).  Shallower
-#: depths keep Yosys' own mapping, so their figures stand.
-DSP_MAPPING_DEPTH = 3
-
-
-def dsp_mapping_of(block, target):
-    """The :func:`~phongfx.hdl.dsp.dsp_mapping` target under which ``block`` is synthesized
-    for ``target``: the DSP target where there is one and the block is pipelined to
-    :data:`DSP_MAPPING_DEPTH` or deeper, else None."""
-    deep = getattr(block.config, "pipeline", 0) >= DSP_MAPPING_DEPTH
-    return DSP_MAPPING.get(target) if deep else None
-
 
 def _tool_versions(target):
     from importlib.metadata import version
@@ -310,10 +287,10 @@ def synth(name, *, config=None, target="ecp5", device=None, freq=150, seed=1,
         Instead of the block's default configuration.
     target : {"ecp5", "ice40", "asic"}
         ``"asic"`` runs the standard-cell flow of :mod:`.asic` instead (its result keys
-        are those of :func:`~phongfx.explore.asic.asic_synth`).
+        are those of :func:`~phongfx.explore.synth.asic.asic_synth`).
     device : str, optional
         A key of ``TARGETS[target].devices``; default ``TARGETS[target].default_device``.
-        For ``"asic"``, a key of :data:`~phongfx.explore.asic.LIBRARIES` (default ``osu018``).
+        For ``"asic"``, a key of :data:`~phongfx.explore.synth.asic.LIBRARIES` (default ``osu018``).
     freq : float
         Clock constraint in MHz given to nextpnr (it still reports the frequency
         achieved when that is lower).

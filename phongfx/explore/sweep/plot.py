@@ -3,14 +3,15 @@
 A plot has to explain itself to someone who has not read the spec: the points on the
 front carry their parameters ("vec=10 t=8": the widths that were swept, not the ones held
 fixed), and a sweep run without synthesis (error only) is still drawn against a cost:
-the tool-free proxy (:func:`phongfx.explore.cost_proxy.proxy_estimate`) of each point's
+the tool-free proxy (:func:`phongfx.explore.synth.proxy.proxy_estimate`) of each point's
 design, which the axis label names, instead of an empty picture.  How records are
-costed and ranked is :mod:`phongfx.explore.sweep_front`.
+costed and ranked is :mod:`phongfx.explore.sweep.front`.
 """
 
 import functools
 
-from .sweep_front import DSP_LUT_WEIGHT, INVISIBLE, MAXIMIZE, cost_key, is_proxy, pareto, target_label, usable, value
+from phongfx.explore.sweep.front import (DSP_LUT_WEIGHT, INVISIBLE, MAXIMIZE, cost_key, is_proxy, pareto,
+                                         target_label, usable, value)
 
 __all__ = ["COST_LABEL", "pareto_plot", "swept", "short_params", "with_proxy_cost"]
 
@@ -56,8 +57,8 @@ def short_params(record, names, method=False):
 def _proxy(method, params, target):
     from phongfx.core.registry import get_block
 
-    from .cost_proxy import proxy_estimate
-    from .methods import METHODS
+    from phongfx.explore.synth.proxy import proxy_estimate
+    from phongfx.explore.methods import METHODS
 
     spec = METHODS[method]
     estimate = proxy_estimate(get_block(spec.block, spec.config(dict(params))), target)
@@ -111,7 +112,7 @@ def _draw_front(ax, front, key, ys, labels, dsp_weight):
 
 def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LUT_WEIGHT):
     """Write a two-panel PNG: ``error_key`` against cost (LUT-equivalents on an FPGA, µm² on
-    standard cells: :func:`~phongfx.explore.sweep_front.cost_key`) and against Mpixel/s.
+    standard cells: :func:`~phongfx.explore.sweep.front.cost_key`) and against Mpixel/s.
 
     Every method in one picture (one colour and marker each), the Pareto front over all
     of them drawn as a staircase with its points ringed and labelled by their swept
@@ -126,7 +127,7 @@ def pareto_plot(records, path, error_key="torus.phong.max", *, dsp_weight=DSP_LU
     dict
         ``{<cost key>: front, "mpixels_per_s": front, "plotted": int, "skipped": int,
         "labels": {key: [text per front record]}, "xlabel": {key: text}}``: each front as
-        :func:`~phongfx.explore.sweep_front.pareto` gives it; ``plotted`` counts the ``ok``
+        :func:`~phongfx.explore.sweep.front.pareto` gives it; ``plotted`` counts the ``ok``
         records drawn against cost, ``skipped`` those without cost (failed records are
         never plotted).
     """

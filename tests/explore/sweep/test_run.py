@@ -1,4 +1,4 @@
-"""Sweeps (phongfx.explore.sweep): spec checks, the local pool and Dask, resume after a kill,
+"""Sweeps (phongfx.explore.sweep.run): spec checks, the local pool and Dask, resume after a kill,
 failed points.  Most tests run a stand-in catalog and ``evaluate`` (fast and
 countable); two run the real :func:`phongfx.explore.evaluate.evaluate` on a tiny grid."""
 
@@ -10,8 +10,8 @@ from dataclasses import dataclass
 
 import pytest
 
-from phongfx.explore import sweep_spec
-from phongfx.explore.sweep import SweepSpecError, load_records, load_spec, run_sweep
+from phongfx.explore.sweep import spec as sweep_spec
+from phongfx.explore.sweep.run import SweepSpecError, load_records, load_spec, run_sweep
 
 
 @dataclass(frozen=True)

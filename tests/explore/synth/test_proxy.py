@@ -1,7 +1,7 @@
-"""The tool-free cost proxy read from RTLIL (phongfx.explore.cost_proxy)."""
+"""The tool-free cost proxy read from RTLIL (phongfx.explore.synth.proxy)."""
 
 from phongfx.core.registry import get_block
-from phongfx.explore.cost_proxy import DSP_LUT_EQ, proxy_cost, rtlil_cost
+from phongfx.explore.synth.proxy import DSP_LUT_EQ, proxy_cost, rtlil_cost
 
 
 def _mul(name, a, b, a_width, b_width):

@@ -1,11 +1,11 @@
 """``phongfx tables proxy``: the tool-free area proxy against standard-cell synthesis.
 
-:func:`phongfx.explore.cost_proxy.proxy_area` prices the bits of a block's RTLIL
-(:func:`~phongfx.explore.cost_proxy.rtlil_features`: a multiplier by the product of its
+:func:`phongfx.explore.synth.proxy.proxy_area` prices the bits of a block's RTLIL
+(:func:`~phongfx.explore.synth.proxy.rtlil_features`: a multiplier by the product of its
 operand widths, adders, comparators, multiplexers, logic and registers by their width,
 ROMs by words × bits) with one coefficient per kind, in µm².  The coefficients
-(:data:`~phongfx.explore.cost_proxy.AREA_COEFFICIENTS`) were fitted by :func:`fit` to
-the real flow (:mod:`phongfx.explore.asic`) on :data:`POINTS`: every registry block at
+(:data:`~phongfx.explore.synth.proxy.AREA_COEFFICIENTS`) were fitted by :func:`fit` to
+the real flow (:mod:`phongfx.explore.synth.asic`) on :data:`POINTS`: every registry block at
 its defaults and the datapaths at narrower widths too.  This table reruns that
 comparison: per point, the synthesized area, the proxy's, the error, and whether the
 proxy ranks the points as synthesis does; with ``refit`` it also fits afresh, so the
@@ -19,8 +19,8 @@ import numpy as np
 
 from phongfx.core.registry import block_names, get_block
 
-from .cost_proxy import AREA_COEFFICIENTS, FEATURES, price, rtlil_features, rtlil_of
-from .synth import synth
+from phongfx.explore.synth.proxy import AREA_COEFFICIENTS, FEATURES, price, rtlil_features, rtlil_of
+from phongfx.explore.synth.fpga import synth
 
 __all__ = ["TABLES", "POINTS", "DATAPATHS", "fit", "calibration_rows", "proxy_table", "run_table", "markdown",
            "to_json"]
@@ -43,7 +43,7 @@ POINTS = tuple((name, name, None) for name in block_names()) + tuple(
 
 
 def fit(features, areas):
-    """Non-negative coefficients, one per :data:`~phongfx.explore.cost_proxy.FEATURES`,
+    """Non-negative coefficients, one per :data:`~phongfx.explore.synth.proxy.FEATURES`,
     minimizing the squared *relative* error of ``features @ c`` against ``areas`` (so that
     a small block counts as much as a large one); Lawson–Hanson active set."""
     a = np.asarray(features, dtype=float) / np.asarray(areas, dtype=float)[:, None]

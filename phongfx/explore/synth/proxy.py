@@ -4,7 +4,7 @@ flow, and µm² of standard cells for the ASIC flow (:func:`proxy_area`).
 When synthesis is not asked for (``phongfx compile`` without ``--synth``) the compiler
 still has to rank designs.  :func:`proxy_cost` elaborates the block's Amaranth
 component to RTLIL (no external tool) and prices each cell the way Yosys' ECP5 flow
-maps it, in the unit of :mod:`phongfx.explore.cost_table` (LUT-eq = LUT4 + 958·DSP):
+maps it, in the unit of :mod:`phongfx.explore.tables.cost` (LUT-eq = LUT4 + 958·DSP):
 
 * ``$mul`` with two variable operands: one MULT18 tile (958) per pair of 18-bit operand
   slices, a slice narrower than 2 bits left to logic as Yosys' ``mul2dsp`` does;
@@ -44,7 +44,7 @@ DSP_LUT_EQ = 958
 #: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
 FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
 #: µm² per bit of each feature on each library, fitted by
-#: :func:`phongfx.explore.proxy_table.fit` to the standard-cell flow (``phongfx tables proxy``).
+#: :func:`phongfx.explore.tables.proxy.fit` to the standard-cell flow (``phongfx tables proxy``).
 #: The fit puts the area on multipliers and registers: adders, comparators and
 #: multiplexers as the RTL writes them predict little, since Yosys trims the unused bits
 #: of wide intermediate results (the root unit's 2,916 adder bits synthesize smaller
@@ -190,7 +190,7 @@ def price(features, library="osu018"):
 def proxy_area(block, library="osu018"):
     """Estimated standard-cell area (µm²) of ``block`` on ``library``: the
     :func:`rtlil_features` priced by :data:`AREA_COEFFICIENTS`, fitted to the real flow
-    (:mod:`phongfx.explore.asic`) over the registry's blocks."""
+    (:mod:`phongfx.explore.synth.asic`) over the registry's blocks."""
     _coefficients(library)  # a bad library is refused before the elaboration
     return price(rtlil_features(rtlil_of(block)), library)
 
