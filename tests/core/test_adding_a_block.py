@@ -204,7 +204,7 @@ def test_a_new_specular_unit_is_selectable_everywhere(toy_unit, tmp_path):
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.evaluate import SCENES
     from phongfx.explore.methods import METHODS
-    from phongfx.explore.sweep_spec import load_spec
+    from phongfx.explore.sweep.spec import load_spec
     from phongfx.render import mesh
     from phongfx.scene.file import load_scene
 
