@@ -91,8 +91,8 @@ def width_params(method, against="phong"):
     defines the reference)."""
     spec = METHODS[method]
     out = {k: (v, spec.ranges[k]) for k, v in spec.params.items() if k not in _FIXED}
-    out.update(runs.EXTRA.get(method, {}))
-    if against == "phong" and method in runs.DATAPATHS:
+    out.update(runs.extra(method))
+    if against == "phong" and runs.is_datapath(method) and "k" in spec.params:
         out["k"] = (spec.params["k"], spec.ranges["k"])
     return out
 
