@@ -24,9 +24,10 @@ def unit_terms(unit, config):
 
 @dataclass(frozen=True)
 class ShaderConfig(BlockConfig):
-    """A shading unit (``unit``, a registry block that :func:`unit_terms` knows), one copy per entry
-    of ``units`` (their configs), and the blend (:class:`BlendConfig`) of every light's
-    diffuse and specular terms to the pixel's ``r``, ``g``, ``b`` codes.
+    """A shading unit (``unit``, a registry block that
+    :func:`~phongfx.config.shader.unit_terms` knows), one copy per entry of ``units`` (their
+    configs), and the blend (:class:`BlendConfig`) of every light's diffuse and specular terms
+    to the pixel's ``r``, ``g``, ``b`` codes.
 
     Lyon's datapaths hold every light in one copy; a unit that computes one light takes
     one copy per light, each with its own config (a point light's copy interpolates its

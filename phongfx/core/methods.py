@@ -12,7 +12,7 @@ none imports a layer above it:
 
 * ``unit`` (config), ``golden`` (golden), ``component`` (hdl): a specular unit's place
   in the datapath: its sub-configs, links and shininess port
-  (:class:`phongfx.config.datapath.SpecularUnit`), its golden model per light and its
+  (:class:`phongfx.config.base.SpecularUnit`), its golden model per light and its
   wiring inside :class:`phongfx.hdl.datapath.Datapath`.  Only the datapath methods have them.
 * ``build`` and ``run`` (explore): the block config of a parameter point and the golden
   run on a reference scene with the float forms it is measured against
