@@ -1,5 +1,5 @@
 # phongfx: `make sim` shades Lyon's scene through the Figure 7 datapath (golden + RTL),
-# `make test` runs the test suite.  Both create .venv and install everything from PyPI.
+# `make test` runs the test suite (`make check`: its in-process tier).  Both create .venv and install everything from PyPI.
 
 PYTHON ?= python3
 VENV ?= .venv
@@ -12,7 +12,7 @@ STAMP := $(VENV)/.installed-stamp
 DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035 iverilog
 DEBIAN_STAMP := $(VENV)/.debian-stamp
 
-.PHONY: sim test test-all synth sweep sweep-asic report bench identity clean
+.PHONY: sim check test test-all synth sweep sweep-asic report bench identity clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -42,12 +42,26 @@ sim: $(STAMP)
 	    tail -n 1 build/sim/lyon-balls/testbench/make.log; exit $$status; \
 	else echo "note: iverilog missing; the exported testbench is in build/sim/lyon-balls/testbench"; fi
 
+# Test tiers (marks set at collection by tests/conftest.py): `make check` runs in-process
+# (golden models, configs, scenes, Amaranth simulation of every block, import rules) in a
+# couple of minutes; `make test` adds every external tool (Verilator, Yosys, nextpnr,
+# OpenSTA, SymbiYosys, Icarus); `make test-all` adds the long runs marked slow.  Tool
+# results are cached per user (`phongfx cache --info`), so a second run is warm.
+# JOBS: pytest-xdist workers (tests of one file share a worker: --dist loadfile).
+JOBS ?= auto
+PYTEST := $(VENV)/bin/python -m pytest -q -n $(JOBS) --dist loadfile --durations=10
+TOOLS_FREE := not slow and not needs_verilator and not needs_yosys and not needs_sta and not needs_sby \
+	and not needs_iverilog
+
+check: $(STAMP)
+	$(PYTEST) -m "$(TOOLS_FREE)"
+
 test: $(STAMP) $(DEBIAN_STAMP)
-	$(VENV)/bin/python -m pytest -q --durations=10
+	$(PYTEST)
 
 # everything, including tests marked slow (long sweeps)
 test-all: $(STAMP) $(DEBIAN_STAMP)
-	$(VENV)/bin/python -m pytest -q -m "" --durations=10
+	$(PYTEST) -m ""
 
 # synthesis, place and route of the Figure 7 and Figure 8 datapaths (ECP5, yowasp tools)
 synth: $(STAMP)

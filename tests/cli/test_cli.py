@@ -30,7 +30,7 @@ def test_sim_passes_and_reports(capsys):
     assert "0 mismatching cycle(s)" in capsys.readouterr().out
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_sim_of_the_ecp5_netlist_and_of_the_dsp_mapped_rtl(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)  # build/synth and build/verilator under the test's folder
     assert main(["sim", "lirp", "--set", "pipeline=3", "--netlist", "ecp5", "--vectors", "50"]) == 0
@@ -207,7 +207,7 @@ def test_render_mesh_former_unit_name_works_with_a_note(tmp_path, capsys):
     assert json.loads(captured.out)["method"] == "gouraud"
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_render_frames_checks_the_rtl(tmp_path, capsys):
     assert main(["render", "frames", "--units", "gouraud", "--size", "32", "--quiet",
                  "--out", str(tmp_path)]) == 0

@@ -53,7 +53,7 @@ def test_passes_under_icarus(tmp_path, name):
     check_pass(bench, *tb.run_icarus(bench.directory, name))
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name", ["lirp", "spherical",
                                   pytest.param("diffuse", marks=pytest.mark.slow),
                                   pytest.param("shape", marks=pytest.mark.slow),
