@@ -47,9 +47,10 @@ sim: $(STAMP)
 # couple of minutes; `make test` adds every external tool (Verilator, Yosys, nextpnr,
 # OpenSTA, SymbiYosys, Icarus); `make test-all` adds the long runs marked slow.  Tool
 # results are cached per user (`phongfx cache --info`), so a second run is warm.
-# JOBS: pytest-xdist workers (tests of one file share a worker: --dist loadfile).
+# JOBS: pytest-xdist workers; worksteal hands each a contiguous run of tests (those of a file
+# mostly share a worker, and its builds) and lets an idle one take over the rest of a long file.
 JOBS ?= auto
-PYTEST := $(VENV)/bin/python -m pytest -q -n $(JOBS) --dist loadfile --durations=10
+PYTEST := $(VENV)/bin/python -m pytest -q -n $(JOBS) --dist worksteal --durations=10
 TOOLS_FREE := not slow and not needs_verilator and not needs_yosys and not needs_sta and not needs_sby \
 	and not needs_iverilog
 

@@ -110,6 +110,8 @@ def capture(out, ref=None, synth_tables=False, parts=PARTS, synth_cache=None):
         env["PYTHONPATH"] = site
     work = os.path.join(out, "work")  # the commands' cwd: no source folder shadows the install
     os.makedirs(work, exist_ok=True)
+    # the per-user cache in work/build: where revisions before it kept their caches (build/synth ...)
+    env["PHONGFX_CACHE"] = os.path.join(work, "build")
     log = os.path.join(out, "commands.log")
     if synth_cache is not None:
         shutil.copytree(os.path.join(synth_cache, "work", "build", "synth"),

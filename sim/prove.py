@@ -33,7 +33,8 @@ shipped hardware.  This module proves the claims for every input instead.
 * **The cache**: each claim's run is an entry of the per-user cache's ``prove/`` folder
   (:func:`phongfx.core.cache.make_entry`), keyed by the RTLIL of its design (block,
   assumptions and assertion), the depth, the solver, the time-out and the tool versions;
-  a rerun reads the verdict and the trace back and replays the trace again.
+  a rerun reads the verdict and the trace back and replays the trace again.  A time-out
+  is not kept: a rerun may have the time the first did not.
 """
 
 import functools
@@ -294,7 +295,8 @@ def _verdict(work, design, depth, skip, solver, timeout):
     began = time.perf_counter()
     status, why = _sby(work, depth, skip, solver, timeout)
     verdict = {"status": status, "why": why, "seconds": round(time.perf_counter() - began, 2)}
-    (work / VERDICT).write_text(json.dumps(verdict) + "\n")
+    if not (why or "").startswith("time-out"):  # a time-out is not kept: a rerun may have the time
+        (work / VERDICT).write_text(json.dumps(verdict) + "\n")
     return verdict
 
 
@@ -325,11 +327,11 @@ def prove(block, *, solver="yices", timeout=600, workdir=None, progress=None):
         design = _design(block, index, bounds)
         key = digest(["prove", _PROOF_VERSION, design, str(depth), str(block.latency), solver,
                       repr(float(timeout)), *_tool_versions()])
-        entry, ran = make_entry(root, key, VERDICT,
-                                lambda work: _verdict(work, design, depth, block.latency, solver, timeout))
-        verdict = json.loads((entry / VERDICT).read_text())
+        entry, verdict = make_entry(root, key, VERDICT,
+                                    lambda work: _verdict(work, design, depth, block.latency, solver, timeout))
+        claim.cached = True if verdict is None else None
+        verdict = verdict or json.loads((entry / VERDICT).read_text())
         claim.status, claim.why, claim.seconds = verdict["status"], verdict["why"], verdict["seconds"]
-        claim.cached = True if ran is None else None
         if claim.status == "counterexample":
             claim.inputs, claim.confirmed, claim.why = replay(block, entry)
         index += 1

@@ -5,8 +5,8 @@
   ``"verilator-fast"``, or the mark set in the test file);
 * ``needs_yosys`` (Yosys and nextpnr from PyPI: synthesis), ``needs_sta`` (OpenSTA and the
   OSU cells, through the :func:`asic_tools` fixture), ``needs_sby`` (SymbiYosys proofs),
-  ``needs_iverilog`` (Icarus Verilog): set in the test files, ``needs_yosys`` and
-  ``needs_sta`` also by the :func:`asic_tools` fixture;
+  ``needs_iverilog`` (Icarus Verilog): set in the test files, or by a fixture that stands
+  for the tool (:data:`FIXTURE_NEEDS`: :func:`asic_tools`, ``verilator_exe``);
 * the cocotb back end (``backend="verilator"``) checks the same Verilog as
   ``verilator-fast`` at about twice the cost, so it runs by default only in
   :data:`COCOTB_TESTS`, the proof that back end works; elsewhere a cocotb run whose
@@ -36,6 +36,8 @@ NEEDS = ("needs_verilator", "needs_yosys", "needs_sta", "needs_sby", "needs_iver
 COCOTB_TESTS = ("tests/sim/test_harness.py::", "tests/hdl/test_lirp.py::",
                 "tests/hdl/test_datapath.py::test_harness[verilator-fig7]")
 VERILATOR_BACKENDS = ("verilator", "verilator-fast")
+#: Fixtures that stand for a tool: a test that asks for one needs it.
+FIXTURE_NEEDS = {"asic_tools": ("needs_yosys", "needs_sta"), "verilator_exe": ("needs_verilator",)}
 BACKEND_PARAMETERS = ("backend", "stream_backend")
 
 
@@ -61,9 +63,10 @@ def pytest_collection_modifyitems(config, items):
         if (backend == "verilator" and not item.nodeid.startswith(COCOTB_TESTS)
                 and _twin_key(item, parameter, "verilator-fast") in fast):
             item.add_marker(pytest.mark.slow)
-        if "asic_tools" in item.fixturenames:
-            item.add_marker(pytest.mark.needs_yosys)
-            item.add_marker(pytest.mark.needs_sta)
+        for fixture, marks in FIXTURE_NEEDS.items():
+            if fixture in item.fixturenames:
+                for mark in marks:
+                    item.add_marker(getattr(pytest.mark, mark))
 
 
 @pytest.fixture(params=BACKENDS)

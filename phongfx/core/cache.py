@@ -63,15 +63,17 @@ def make_entry(directory, key, complete, make):
     key : str
         The entry's name: a hash of everything its content depends on.
     complete : str
-        The file whose presence marks a complete entry; ``make`` writes it last.
+        The file whose presence marks a complete entry; ``make`` writes it last.  A result
+        not worth keeping (a time-out, which a rerun may well beat) is one ``make``
+        returns without writing it: its folder is removed.
     make : callable
         ``make(work)`` fills the private folder ``work`` and returns a value.
 
     Returns
     -------
-    (pathlib.Path, object)
-        The entry and ``make``'s value, or None for the value when the entry was
-        already complete (nothing was run).
+    (pathlib.Path or None, object)
+        The entry and ``make``'s value; None for the value when the entry was already
+        complete (nothing was run), None for the entry when the result was not kept.
     """
     directory = Path(directory).resolve()
     final = directory / key
@@ -82,8 +84,6 @@ def make_entry(directory, key, complete, make):
     os.chmod(work, 0o755)  # mkdtemp makes it private; the entries are for reading
     try:
         value = make(work)
-        if not (work / complete).is_file():
-            raise RuntimeError(f"{work} was left without {complete}")
     except KeyboardInterrupt:  # half a run is no entry
         shutil.rmtree(work, ignore_errors=True)
         raise
@@ -97,6 +97,9 @@ def make_entry(directory, key, complete, make):
             shutil.rmtree(work, ignore_errors=True)
             raise
         raise _retarget(error, work, failed)
+    if not (work / complete).is_file():  # not worth keeping
+        shutil.rmtree(work, ignore_errors=True)
+        return None, value
     try:
         work.rename(final)
     except OSError:  # another process finished the same entry first, or a stale folder

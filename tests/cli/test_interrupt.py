@@ -33,7 +33,8 @@ def _hidden(root):
     """Work folders under ``root``: hidden ones (an output being staged) and cache entries being made."""
     if not Path(root).is_dir():
         return []
-    return sorted(str(p) for p in Path(root).rglob("*") if p.is_dir() and (p.name.startswith(".") or ".part-" in p.name))
+    return sorted(str(p) for p in Path(root).rglob("*")
+                  if p.is_dir() and (p.name.startswith(".") or ".part-" in p.name))
 
 
 def test_version():
