@@ -69,6 +69,13 @@ def pytest_collection_modifyitems(config, items):
                     item.add_marker(getattr(pytest.mark, mark))
 
 
+def pytest_runtest_setup(item):
+    """A test that needs Icarus Verilog is skipped where it is missing (``make`` installs it
+    where apt-get works)."""
+    if item.get_closest_marker("needs_iverilog") and not (shutil.which("iverilog") and shutil.which("vvp")):
+        pytest.skip("Icarus Verilog (iverilog, vvp) is not installed; apt-get install iverilog")
+
+
 @pytest.fixture(params=BACKENDS)
 def backend(request):
     """Every harness test runs on each back end (the Verilator ones marked at collection)."""

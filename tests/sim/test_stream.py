@@ -325,6 +325,7 @@ def test_fast_vcd_is_written(tmp_path):
 
 # ---------------------------------------------------------------- the command line
 
+@pytest.mark.needs_verilator
 def test_cli_sim_takes_stalls_and_a_reset(capsys, tmp_path):
     from phongfx.cli import main
 
