@@ -3,8 +3,8 @@
 One module per block, named like its config, golden and stimulus modules: a
 :class:`~phongfx.hdl.block.PipelinedBlock` whose ports come from the block's
 configuration (:mod:`.block`), built from the fixed-point values of :mod:`.fixed` (the
-same formats and rounding as :mod:`phongfx.golden.fixed`, with pipeline registers placed
-by cycle tags) and carrying the simulation-only overflow assertions of :mod:`.overflow`; every variable
+same formats and rounding as :mod:`phongfx.golden.fixed`, narrowed by :mod:`.quantize`,
+with pipeline registers placed by cycle tags) and carrying the simulation-only overflow assertions of :mod:`.overflow`; every variable
 product goes through :mod:`.dsp`, which maps it onto an ECP5 MULT18X18D with the pipeline's
 registers inside when synthesis asks (``mult18x18d.v`` is that primitive's behavioural
 model).  :mod:`.emit` writes a component as Verilog.

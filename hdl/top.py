@@ -63,7 +63,7 @@ def port_map(config, *, overflow=False):
     ``lane`` (the config port and lane, ``lane`` None for a scalar; both None for the
     control ports), ``width`` (bits), ``format`` (Lyon's ``Sn.m`` / ``n.m``, None for control
     ports), ``signed`` and ``offset``: the field's first bit in the inner block's packed
-    ``i.payload`` / ``o.payload`` (:func:`phongfx.sim.harness.payload_fields` order; None for
+    ``i.payload`` / ``o.payload`` (:func:`phongfx.sim.vectors.payload_fields` order; None for
     control ports).  ``overflow=True`` adds the 1-bit ``out_overflow``.
     """
     ports = [{"name": name, "direction": direction, "field": None, "lane": None, "width": 1,

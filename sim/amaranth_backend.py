@@ -44,7 +44,7 @@ def _simulate(design, testbench, vcd):
 
 def run_stream(component, checker, *, vcd=None):
     """Run a :class:`~phongfx.hdl.handshake.Handshake` ``component`` under ``checker``, a
-    :class:`~phongfx.sim.harness.StreamChecker`, until it says the run is over.
+    :class:`~phongfx.sim.stream.StreamChecker`, until it says the run is over.
 
     The driver must see each cycle's ``i.ready`` before the edge (whether its vector is
     taken decides the next cycle's input), so inputs and outputs cannot be fixed lists as

@@ -9,8 +9,8 @@ proven, for every operand pair the registered blocks hand the mapping, on all in
 How:
 
 * :func:`dsp_cases` elaborates every pipelined block of the registry at each depth where
-  the synthesis flow maps its products (:data:`~phongfx.explore.synth.DSP_MAPPING_DEPTH`
-  and deeper, :func:`~phongfx.explore.synth.dsp_mapping_of`) under
+  the synthesis flow maps its products (:data:`~phongfx.hdl.dsp.DSP_MAPPING_DEPTH`
+  and deeper, :func:`~phongfx.hdl.dsp.dsp_mapping_of`) under
   :func:`~phongfx.hdl.dsp.recording_products`, and keeps the distinct calls: raw operand
   widths and signedness (the binary point does not change the bits), which operands are
   register outputs, and the call's options.
@@ -56,10 +56,12 @@ from amaranth.lib.wiring import In, Out
 
 from phongfx.core.cache import folder, make_entry
 from phongfx.core.format import Format
-from phongfx.hdl.dsp import MODEL, dsp_mapping, product, recording_products, split_product
+from phongfx.hdl.dsp import (DSP_MAPPING_DEPTH, MODEL, dsp_mapping, dsp_mapping_of, product, recording_products,
+                             split_product)
 from phongfx.hdl.fixed import FixedValue, stage
 
 from .build_cache import digest
+from .tools import SynthError, run_yosys
 
 __all__ = ["DspCase", "DspProof", "dsp_cases", "prove_case", "prove_dsp_mapping", "markdown"]
 
@@ -133,12 +135,11 @@ def _pipelined_blocks():
 
 def dsp_cases(blocks=None, depths=None):
     """The distinct :class:`DspCase` of ``blocks`` (registry names; default every block
-    with a pipeline) at ``depths`` (default :data:`~phongfx.explore.synth.DSP_MAPPING_DEPTH`
+    with a pipeline) at ``depths`` (default :data:`~phongfx.hdl.dsp.DSP_MAPPING_DEPTH`
     to :data:`~phongfx.config.base.MAX_PIPELINE`), each depth kept only where the ECP5
     flow maps the block's products; sorted, ``used_by`` filled in."""
     from phongfx.config.base import MAX_PIPELINE
     from phongfx.core.registry import get_block
-    from phongfx.explore.synth import DSP_MAPPING_DEPTH, dsp_mapping_of
 
     blocks = _pipelined_blocks() if blocks is None else blocks
     depths = range(DSP_MAPPING_DEPTH, MAX_PIPELINE + 1) if depths is None else depths
@@ -232,8 +233,6 @@ def _counterexample(text, case):
 
 def _prove_in(work, case, timeout, model_text, designs):
     """The proof of ``case`` run in folder ``work``, its two designs' RTLIL given."""
-    from phongfx.explore.toolrun import SynthError, run_yosys
-
     start = time.monotonic()
     (gold_latency, gold), (gate_latency, gate) = designs
     for text, name in ((gold, "gold"), (gate, "gate")):

@@ -17,10 +17,10 @@ and ``{o.payload, o.valid}`` to at least three words, which makes both ports
 Back-pressure and reset (``stalls``, ``reset_at``: the stream mode of
 :mod:`phongfx.sim.harness`) cannot be a precomputed per-cycle stream, since when a vector
 is taken depends on the design's ``i.ready``.  The checker then runs the harness's
-:class:`~phongfx.sim.harness.StreamChecker` in C++ (mode 2 of ``fast_main.cpp``): Python
+:class:`~phongfx.sim.stream.StreamChecker` in C++ (mode 2 of ``fast_main.cpp``): Python
 passes the vectors, the expected outputs in order, where to resume after a reset, and one
 control byte per cycle (the ``o.ready``, idle and reset decisions of a
-:class:`~phongfx.sim.harness.StreamPlan`, drawn with numpy), so the C++ only follows them.  The simulated top is then
+:class:`~phongfx.sim.stream.StreamPlan`, drawn with numpy), so the C++ only follows them.  The simulated top is then
 :class:`~phongfx.hdl.handshake.Handshake` around the block, with ``rst`` and ``o.ready``
 on a ``ctl`` port; without stalls the top and the loop are the fast path's as before.
 
@@ -43,9 +43,9 @@ from phongfx.hdl.block import checked_outputs
 from phongfx.hdl.emit import payload_widths
 
 from .build_cache import BUILD_ARGS, cache_root, cached_build, keep_runtime, seed_runtime
-from .harness import (Mismatch, Result, checked_expected, columns, handshake_component, payload_fields,
-                      payload_mismatch, plan_stream, restart_points, row_of, schedule, stream_mismatch,
-                      stream_mode)
+from .result import Mismatch, Result, checked_expected, payload_mismatch
+from .stream import handshake_component, plan_stream, restart_points, stream_mismatch, stream_mode
+from .vectors import columns, payload_fields, row_of, schedule
 from .verilator_backend import tool_environment
 
 __all__ = ["MAIN", "words_of", "pack_words", "wrapper", "is_stream", "build", "stream", "check",
@@ -83,7 +83,7 @@ def pack_words(ports, raw, valid=True):
     -------
     numpy.ndarray
         ``(count, words_of(width + 1))`` uint32, bit ``k`` of the payload at bit
-        ``k + 1``, as :func:`phongfx.sim.harness.pack` shifted left by one.
+        ``k + 1``, as :func:`phongfx.sim.vectors.pack` shifted left by one.
     """
     _, width = payload_fields(ports)
     out = None

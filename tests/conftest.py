@@ -23,7 +23,7 @@ from pathlib import Path
 
 import pytest
 
-from phongfx.explore.asic import LIBRARIES
+from phongfx.explore.synth.asic import LIBRARIES
 from phongfx.sim.harness import BACKENDS
 
 #: Marks by what a test needs (registered in ``pyproject.toml``).

@@ -1,6 +1,6 @@
 """Honest imports: no module-level import cycle, no private name used outside its module,
-no relative import in ``golden/``, ``hdl/``, ``sim/`` that leaves its folder, no
-module-level import of a higher layer.
+no relative import in ``golden/``, ``hdl/``, ``sim/`` that leaves its folder, no import of
+a higher layer (not even inside a function).
 
 The checks read the source with :mod:`ast` (nothing is imported), module names taken from
 ``pyproject.toml``'s package list and ``package-dir`` mapping, so ``sim/harness.py`` is
@@ -18,9 +18,10 @@ The checks read the source with :mod:`ast` (nothing is imported), module names t
   mapping, so ``from ..config import X`` there works only because of it and points, on
   disk, at a file that does not exist; they use ``from phongfx.config import X``.
 
-* The layers of :data:`LAYERS` (``phongfx/__init__.py`` lists them) import, at module
-  level, only themselves and the layers before them.  The registry in ``phongfx.core``
-  loads the faces of a block by name when a block is asked for, not at import.
+* The layers of :data:`LAYERS` (``phongfx/__init__.py`` lists them) import only themselves
+  and the layers before them, inside functions too: an import deferred into a function
+  is still a dependency on the layer above, only hidden from the reader.  The registry in
+  ``phongfx.core`` loads the faces of a block by name when a block is asked for.
 
 Each check is also run on a tiny fake tree that breaks it, to show it can fail.
 """
@@ -105,6 +106,11 @@ def module_level_imports(tree):
     return found
 
 
+def every_import(tree):
+    """Every ``Import`` / ``ImportFrom`` node of ``tree``, those inside functions included."""
+    return [node for node in ast.walk(tree) if isinstance(node, (ast.Import, ast.ImportFrom))]
+
+
 def imported(name, is_package, node, known):
     """Dotted names of the modules an import node loads (as far as ``known`` holds them)."""
     if isinstance(node, ast.Import):
@@ -121,12 +127,14 @@ def _shown(path):
 
 # ---------------------------------------------------------------- cycles
 
-def import_graph(modules):
-    """``{module: {imported module: line}}`` of the module-level imports among ``modules``."""
+def import_graph(modules, inside_functions=False):
+    """``{module: {imported module: line}}`` of the module-level imports among ``modules``
+    (and of those inside functions too with ``inside_functions``)."""
+    found = every_import if inside_functions else module_level_imports
     graph = {}
     for name, (path, is_package) in modules.items():
         edges = graph.setdefault(name, {})
-        for node in module_level_imports(ast.parse(path.read_text(), str(path))):
+        for node in found(ast.parse(path.read_text(), str(path))):
             for target in imported(name, is_package, node, modules):
                 parts = target.split(".")
                 for depth in range(1, len(parts) + 1):
@@ -277,9 +285,9 @@ def layer_of(module, layers):
 
 
 def assert_layered(modules, layers=LAYERS):
-    """Fail naming every module-level import of a later layer than the importer's."""
+    """Fail naming every import of a later layer than the importer's, inside functions too."""
     found = []
-    for name, edges in sorted(import_graph(modules).items()):
+    for name, edges in sorted(import_graph(modules, inside_functions=True).items()):
         low = layer_of(name, layers)
         for target, line in sorted(edges.items()):
             high = layer_of(target, layers)
@@ -287,7 +295,7 @@ def assert_layered(modules, layers=LAYERS):
                 found.append(f"{_shown(modules[name][0])}:{line}: {name} ({layers[low]}) imports "
                              f"{target} ({layers[high]})")
     if found:
-        pytest.fail("module-level imports of a higher layer:\n" + "\n".join(found))
+        pytest.fail("imports of a higher layer:\n" + "\n".join(found))
 
 
 # ---------------------------------------------------------------- the real tree
@@ -414,4 +422,14 @@ def test_an_import_of_a_higher_layer_fails(tmp_path):
     modules = package_modules(tmp_path, *layout(tmp_path))
     assert_layered(modules, ("fake.top", "fake.low"))  # top is the lower layer here: allowed
     with pytest.raises(pytest.fail.Exception, match=r"fake\.low\.base \(fake\.low\) imports fake\.top "):
+        assert_layered(modules, ("fake.low", "fake.top"))
+
+
+def test_an_import_of_a_higher_layer_inside_a_function_fails(tmp_path):
+    _tree(tmp_path, {"fake/__init__.py": "", "low/__init__.py": "",
+                     "low/base.py": "def f():\n    if True:\n        from fake.top import X\n    return X\n",
+                     "fake/top.py": "X = 1\n"})
+    modules = package_modules(tmp_path, *layout(tmp_path))
+    assert_no_cycles(modules)  # a deferred import closes no cycle, but it is still upward
+    with pytest.raises(pytest.fail.Exception, match=r"low/base\.py:3: fake\.low\.base \(fake\.low\) imports fake\.top "):
         assert_layered(modules, ("fake.low", "fake.top"))

@@ -17,7 +17,7 @@ turns every kind of bad input into one line and an exit code.
 import os
 import sys
 
-from phongfx.explore.synth import SynthError
+from phongfx.explore.synth.fpga import SynthError
 
 from .commands import MAX_SIZE
 from .parser import build_parser

@@ -127,7 +127,7 @@ def cmd_sim(args):
     if args.dsp and args.backend == "amaranth":
         raise ValueError("--dsp instantiates DSP primitives, which only the Verilator back ends simulate")
     if args.netlist:
-        from phongfx.explore.netlist import check_netlist
+        from phongfx.explore.synth.netlist import check_netlist
 
         print(f"synthesizing {args.name} for {args.netlist} ...", file=sys.stderr, flush=True)
         result = check_netlist(block, args.netlist, args.device, count=args.vectors, seed=args.seed,
@@ -265,7 +265,7 @@ def target_device(target, device, library):
 def cmd_synth(args):
     from tqdm import tqdm
 
-    from phongfx.explore.synth import markdown, synth
+    from phongfx.explore.synth.fpga import markdown, synth
     block = configured_block(args.name, args.set)
     device = target_device(args.target, args.device, args.library)
     with tqdm(total=3, desc=f"synth {args.name}", disable=args.quiet or args.json,
@@ -282,7 +282,7 @@ def cmd_synth(args):
 def cmd_sweep(args):
     from phongfx.core.files import atomic_write
     from phongfx.explore.report import pareto_plot, summary_markdown
-    from phongfx.explore.sweep import load_records, run_sweep
+    from phongfx.explore.sweep.run import load_records, run_sweep
     try:
         summary = run_sweep(args.spec, out=args.out, workers=args.workers, scheduler=args.scheduler,
                             progress=not args.quiet)

@@ -13,9 +13,9 @@ import argparse
 import sys
 
 from phongfx.core.registry import block_names
-from phongfx.explore.asic import LIBRARIES
-from phongfx.explore.netlist import NETLIST_TARGETS
-from phongfx.explore.synth import ALL_TARGETS
+from phongfx.explore.synth.asic import LIBRARIES
+from phongfx.explore.synth.netlist import NETLIST_TARGETS
+from phongfx.explore.synth.fpga import ALL_TARGETS
 from phongfx.explore.tables import TABLES
 from phongfx.hdl.dsp import DSP_TARGETS
 from phongfx.render.mesh import FLOAT_METHODS, RENAMED, UNIT_METHODS

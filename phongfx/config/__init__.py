@@ -39,7 +39,7 @@ from .normalize import NormalizeConfig
 from .reflect import ReflectConfig
 from .root import RootConfig
 from .schlick import SchlickConfig
-from .shader import UNIT_TERMS, ShaderConfig
+from .shader import ShaderConfig
 from .shape import ShapeConfig
 from .spherical import SphericalConfig
 
@@ -48,5 +48,5 @@ __all__ = [
     "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig", "HalfwayConfig", "HALFWAY_VARIANTS",
     "EulerConfig", "GouraudConfig", "BlinnConfig", "ConventionalConfig", "BlendConfig",
     "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
-    "ShaderConfig", "UNIT_TERMS", "MAX_PIPELINE",
+    "ShaderConfig", "MAX_PIPELINE",
 ]

@@ -12,16 +12,14 @@ into formats, and sets the class's direction-vector formats from one vector widt
 from dataclasses import dataclass, fields, replace
 
 from phongfx.core.format import Format, check_rounding
+from phongfx.core.limits import MAX_VEC_FRAC
 
-__all__ = ["BlockConfig", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_format", "check_integer_format",
-           "check_fraction_format", "check_step_formats"]
+__all__ = ["BlockConfig", "SpecularUnit", "floor_sqrt", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_format",
+           "check_integer_format", "check_fraction_format", "check_step_formats"]
 
 #: Deepest ``pipeline`` of a block (:class:`BlockConfig`).
 MAX_PIPELINE = 4
 
-#: Widest vector width ``f`` of :meth:`BlockConfig.with_vec_frac`: at 24 the halfway
-#: datapath's exact ``4n·D·D`` (``17.2f``) no longer fits the golden model's int64.
-MAX_VEC_FRAC = 23
 
 
 def check_int(name, value, lo, hi):
@@ -135,6 +133,16 @@ class BlockConfig:
     def replace(self, **changes):
         return replace(self, **changes)
 
+    def frac_changes(self, **fracs):
+        """The field changes that put the format fields ``fracs`` (name -> fraction bits) at
+        those fraction bits, their integer bits and sign kept: a width in the config's own
+        terms (``shape.frac_changes(t=12)`` is ``{"t": "1.12"}`` from ``t = "1.15"``)."""
+        changes = {}
+        for name, frac in fracs.items():
+            fmt = self.fmt(name)
+            changes[name] = str(Format(fmt.int_bits, frac, fmt.signed))
+        return changes
+
     def as_dict(self):
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
@@ -170,3 +178,71 @@ class BlockConfig:
         guard bits the defaults have (Lyon's Figure 7 at 10 bits)."""
         changes = self.vec_frac_changes(frac)
         return replace(self, **changes) if changes else self
+
+
+def floor_sqrt(n):
+    """⌊√n⌋ of a non-negative integer, exactly."""
+    root = int(n ** 0.5)
+    while root * root > n:
+        root -= 1
+    while (root + 1) * (root + 1) <= n:
+        root += 1
+    return root
+
+
+class SpecularUnit:
+    """What a :class:`~phongfx.config.DatapathConfig` knows of the specular unit after its
+    normalizer: the ``unit`` face of the unit's method (:data:`phongfx.core.methods.METHODS`),
+    found in the config module of the unit's own block (``FIG7`` in :mod:`.shape`, ``FIG8`` in
+    :mod:`.root`, ``HALFWAY`` in :mod:`.halfway`).  ``parts``: the datapath sub-configs its
+    hardware uses after the normalizer (the others are idle defaults).  The defaults below
+    are those of a unit ending in difference → shape (Figures 7 and 5)."""
+
+    parts = ()
+
+    def links(self, config):
+        """``(name, format, name, format)`` of every pair of formats the unit connects
+        (each must be equal), the shared normalized vector format being ``normalize.out``."""
+        return []
+
+    def vec(self, config):
+        """The shared normalized direction-vector format the unit takes, named."""
+        return "normalize.out", config.normalize.out
+
+    def check(self, config):
+        """Raise ValueError for a config the unit cannot take beyond its links."""
+
+    def shininess(self, config):
+        """``(port, format, largest value)`` of the per-pixel shininess input (the config
+        asks only when :meth:`shininess_const` is 0)."""
+        return "n", config.difference.fmt("n"), config.difference.n_max
+
+    def shininess_const(self, config):
+        """The shininess fixed in the hardware in the port's terms, 0 when it is a port."""
+        return config.difference.n_const
+
+    def top_n(self, shininess):
+        """The ``n`` of a shininess of the port's terms (``m = √n`` ports square it)."""
+        return shininess
+
+    def applied_n(self, config, n):
+        """The shininess the hardware applies for the scene's float ``n`` array (what its
+        float form is evaluated at)."""
+        return n
+
+    def spec_format(self, config):
+        """The format of the ``spec<i>`` outputs."""
+        return config.shape.fmt("t")
+
+    def fit(self, config, n_hi, n_const):
+        """``config`` with its shininess port narrowed to ``n`` up to ``n_hi``, or the
+        shininess fixed in the hardware at ``n_const`` (0: a port)."""
+        difference = config.difference.replace(n=f"{n_hi.bit_length()}.0", n_max=n_hi)
+        if n_const:
+            difference = difference.replace(n_const=n_const)
+        return config.replace(difference=difference)
+
+    def sweep(self, config, params):
+        """``config`` at a sweep point's unit parameters (``params``: the method's, resolved;
+        the datapath's ``vec_frac`` and ``lights`` are already applied)."""
+        return config

@@ -41,6 +41,9 @@ class ConventionalConfig(BlinnConfig):
 
     INPUTS = {"normal": ("vec", 3), "light": ("vec", 3), "view": ("vec", 3), "n": ("n", 1)}
     OUTPUTS = {"diffuse": ("out", 1), "specular": ("out", 1)}
+    #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
+    #: takes it (:func:`phongfx.config.shader.unit_terms`)
+    TERMS = ("diffuse", None, "specular")
 
     def validate(self):
         super().validate()

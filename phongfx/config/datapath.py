@@ -3,6 +3,7 @@
 from dataclasses import dataclass, replace
 
 from phongfx.core.format import Format
+from phongfx.core.methods import get_method, specular_units
 
 from .base import MAX_VEC_FRAC, BlockConfig, check_int
 from .difference import DifferenceConfig
@@ -16,7 +17,10 @@ from .shape import ShapeConfig
 
 __all__ = ["DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config"]
 
-SPECULAR_UNITS = ("fig7", "fig8", "halfway")
+#: The specular units registered when this module was imported (Lyon's three);
+#: :func:`phongfx.core.methods.specular_units` lists every registered one, a unit added
+#: to the method registry later included, and is what ``specular`` is checked against.
+SPECULAR_UNITS = specular_units()
 
 
 @dataclass(frozen=True)
@@ -24,7 +28,8 @@ class DatapathConfig(BlockConfig):
     """A whole shading datapath (Lyon 1993, Figures 6–8 and 5): interpolated, approximately
     normalized N, then one specular unit and the diffuse term, for ``lights`` lights.
 
-    ``specular`` picks the unit after the normalizer:
+    ``specular`` picks the unit after the normalizer, a method of
+    :data:`phongfx.core.methods.METHODS` with a ``unit`` face (:attr:`unit`); Lyon's are
 
     * ``"fig7"``: reflect → difference/x (``n``) → shape (Figure 7b–d);
     * ``"fig8"``: reflect → root-shininess unit (``m = √n``, Figure 8);
@@ -68,10 +73,6 @@ class DatapathConfig(BlockConfig):
 
     PIPELINED = ("lirp", "normalize", "reflect", "difference", "shape", "root", "halfway",
                  "diffuse", "direction_normalize")
-    #: The sub-configs each specular unit's hardware uses; the others are idle defaults.
-    UNITS = {"fig7": ("lirp", "normalize", "reflect", "difference", "shape", "diffuse"),
-             "fig8": ("lirp", "normalize", "reflect", "root", "diffuse"),
-             "halfway": ("lirp", "normalize", "halfway", "difference", "shape", "diffuse")}
     #: Settings that :meth:`replace` takes besides the fields: each sets several fields at
     #: once (through ``with_NAME``) and is read back as a property, never stored.
     DERIVED_SETTINGS = ("vec_frac",)
@@ -83,8 +84,9 @@ class DatapathConfig(BlockConfig):
                           ("diffuse", DiffuseConfig), ("direction_normalize", NormalizeConfig)):
             if not isinstance(getattr(self, name), cls):
                 raise TypeError(f"{name} must be a {cls.__name__}, not {getattr(self, name)!r}")
-        if self.specular not in SPECULAR_UNITS:
-            raise ValueError(f"specular must be one of {', '.join(SPECULAR_UNITS)}, not {self.specular!r}")
+        units = specular_units()
+        if self.specular not in units:
+            raise ValueError(f"specular must be one of {', '.join(units)}, not {self.specular!r}")
         check_int("lights", self.lights, 1, 8)
         if isinstance(self.local_lights, list):  # a list from a file or --set: a tuple stays hashable
             object.__setattr__(self, "local_lights", tuple(self.local_lights))
@@ -105,34 +107,25 @@ class DatapathConfig(BlockConfig):
         if self.any_local:
             links += [("lirp.out", self.lirp.out, "direction_normalize.vec", self.direction_normalize.vec),
                       (*vec, "direction_normalize.out", self.direction_normalize.out)]
-        if self.specular == "fig7":
-            links += [(*vec, "reflect.vec", self.reflect.vec),
-                      ("reflect.out", self.reflect.out, "difference.vec", self.difference.vec),
-                      (*vec, "difference.vec", self.difference.vec),
-                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
-        elif self.specular == "fig8":
-            links += [(*vec, "reflect.vec", self.reflect.vec),
-                      ("reflect.out", self.reflect.out, "root.vec", self.root.vec),
-                      (*vec, "root.vec", self.root.vec)]
-        else:
-            links += [(*vec, "halfway.vec", self.halfway.vec),
-                      ("halfway.out", self.halfway.out, "difference.vec", self.difference.vec),
-                      ("difference.x2", self.difference.x2, "shape.x2", self.shape.x2)]
-            if self.difference.fmt("n").int_bits < self.halfway_shift + 1:
-                raise ValueError(f"difference.n must have at least {self.halfway_shift + 1} integer "
-                                 f"bits to take n·2^{self.halfway_shift}, not {self.difference.n}")
-            if self.difference.n_const % (1 << self.halfway_shift):
-                raise ValueError(f"difference.n_const must be a multiple of {1 << self.halfway_shift} "
-                                 f"(it is n·2^{self.halfway_shift}), not {self.difference.n_const}")
+        unit = self.unit
+        links += unit.links(self)
+        unit.check(self)
         for a_name, a, b_name, b in links:
             if Format.parse(a) != Format.parse(b):
                 raise ValueError(f"{a_name} ({a}) must equal {b_name} ({b}): they are connected")
 
     @property
+    def unit(self):
+        """The specular unit's :class:`~phongfx.config.base.SpecularUnit` (its method's
+        ``unit`` face in :data:`phongfx.core.methods.METHODS`)."""
+        return get_method(self.specular).load("unit")
+
+    @property
     def used(self):
-        """Names of the sub-configs the hardware uses: those of :attr:`UNITS` for
-        ``specular``, and ``direction_normalize`` when L or V is interpolated."""
-        names = self.UNITS[self.specular]
+        """Names of the sub-configs the hardware uses: the front (``lirp``, ``normalize``),
+        the specular unit's ``parts``, ``diffuse``, and ``direction_normalize`` when L or V
+        is interpolated."""
+        names = ("lirp", "normalize", *self.unit.parts, "diffuse")
         if self.any_local:
             names += ("direction_normalize",)
         return names
@@ -189,13 +182,7 @@ class DatapathConfig(BlockConfig):
         """
         if self.shininess_const:
             return None
-        if self.specular == "fig8":
-            return "m", self.root.fmt("m"), self.root.m_max
-        n = self.difference.fmt("n")
-        if self.specular == "halfway":
-            shift = self.halfway_shift
-            return "n", Format(n.int_bits - shift, 0), self.difference.n_max >> shift
-        return "n", n, self.difference.n_max
+        return self.unit.shininess(self)
 
     @property
     def shininess_const(self):
@@ -207,9 +194,7 @@ class DatapathConfig(BlockConfig):
         ``n_const`` is that product (validated a multiple of ``2^halfway_shift``): the pixel
         sees ``n = difference.n_const >> halfway_shift``, bit for bit as if fed on the port.
         """
-        if self.specular == "fig8":
-            return self.root.m_const
-        return self.difference.n_const >> (self.halfway_shift if self.specular == "halfway" else 0)
+        return self.unit.shininess_const(self)
 
     @property
     def halfway_shift(self):
@@ -241,7 +226,7 @@ class DatapathConfig(BlockConfig):
 
     @property
     def outputs(self):
-        t = self.root.fmt("t") if self.specular == "fig8" else self.shape.fmt("t")
+        t = self.unit.spec_format(self)
         ports = {f"spec{i}": (t, 1) for i in range(self.lights)}
         ports.update({f"diff{i}": (self.diffuse.fmt("out"), 1) for i in range(self.lights)})
         return ports

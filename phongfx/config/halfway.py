@@ -2,10 +2,13 @@
 
 from dataclasses import dataclass
 
-from .base import BlockConfig, check_format
-from .normalize import NormalizeConfig
+from phongfx.core.format import Format
 
-__all__ = ["HalfwayConfig", "HALFWAY_VARIANTS"]
+from .base import BlockConfig, SpecularUnit, check_format
+from .normalize import NormalizeConfig
+from .shape import Figure7Unit
+
+__all__ = ["HalfwayConfig", "HALFWAY_VARIANTS", "HalfwayUnit", "HALFWAY"]
 
 #: The difference vectors of Lyon's Figure 9 rows 7–10 (:class:`HalfwayConfig`).
 HALFWAY_VARIANTS = ("d1", "d2", "d3", "g2proj", "g2")
@@ -70,3 +73,40 @@ class HalfwayConfig(BlockConfig):
         changes["normalize"] = self.normalize.replace(
             **{**self.normalize.vec_frac_changes(frac), "vec": hvec, "out": hvec})
         return changes
+
+
+class HalfwayUnit(SpecularUnit):
+    """Figure 5: halfway difference vector → difference/x with ``n·2^halfway_shift`` → shape
+    (Figure 9 rows 7–10, as the appendix code scales ``n``)."""
+
+    parts = ("halfway", "difference", "shape")
+
+    def links(self, c):
+        return [(*self.vec(c), "halfway.vec", c.halfway.vec),
+                ("halfway.out", c.halfway.out, "difference.vec", c.difference.vec),
+                ("difference.x2", c.difference.x2, "shape.x2", c.shape.x2)]
+
+    def check(self, c):
+        if c.difference.fmt("n").int_bits < c.halfway_shift + 1:
+            raise ValueError(f"difference.n must have at least {c.halfway_shift + 1} integer "
+                             f"bits to take n·2^{c.halfway_shift}, not {c.difference.n}")
+        if c.difference.n_const % (1 << c.halfway_shift):
+            raise ValueError(f"difference.n_const must be a multiple of {1 << c.halfway_shift} "
+                             f"(it is n·2^{c.halfway_shift}), not {c.difference.n_const}")
+
+    def shininess(self, c):
+        n, shift = c.difference.fmt("n"), c.halfway_shift
+        return "n", Format(n.int_bits - shift, 0), c.difference.n_max >> shift
+
+    def shininess_const(self, c):
+        return c.difference.n_const >> c.halfway_shift
+
+    def fit(self, config, n_hi, n_const):
+        shift = config.halfway_shift
+        return super().fit(config, n_hi << shift, n_const << shift)
+
+    sweep = Figure7Unit.sweep  # the same difference → shape widths
+
+
+#: The ``unit`` face of the ``halfway`` method.
+HALFWAY = HalfwayUnit()

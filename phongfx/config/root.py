@@ -2,10 +2,11 @@
 
 from dataclasses import dataclass
 
-from .base import BlockConfig, check_format, check_fraction_format, check_int, check_integer_format
+from .base import (BlockConfig, SpecularUnit, check_format, check_fraction_format, check_int, check_integer_format,
+                   floor_sqrt)
 from .shape import K_MAX, ShapeConfig
 
-__all__ = ["RootConfig"]
+__all__ = ["RootConfig", "Figure8Unit", "FIG8"]
 
 
 @dataclass(frozen=True)
@@ -71,3 +72,48 @@ class RootConfig(BlockConfig):
         if self.m_const:
             del ports["m"]  # the constant is wired into the three multipliers
         return ports
+
+
+class Figure8Unit(SpecularUnit):
+    """Figure 8: reflect → root-shininess unit (``m = √n``)."""
+
+    parts = ("reflect", "root")
+
+    def links(self, c):
+        return [(*self.vec(c), "reflect.vec", c.reflect.vec),
+                ("reflect.out", c.reflect.out, "root.vec", c.root.vec),
+                (*self.vec(c), "root.vec", c.root.vec)]
+
+    def shininess(self, c):
+        return "m", c.root.fmt("m"), c.root.m_max
+
+    def shininess_const(self, c):
+        return c.root.m_const
+
+    def top_n(self, shininess):
+        return shininess * shininess
+
+    def applied_n(self, c, n):
+        """``m²``: the port takes ``m = √n`` rounded (or the constant ``m``)."""
+        m = c.shininess_const or (n ** 0.5).round().clip(1, c.root.m_max)
+        return (n * 0 + m * m).astype("float64")
+
+    def spec_format(self, c):
+        return c.root.fmt("t")
+
+    def fit(self, config, n_hi, n_const):
+        m = floor_sqrt(n_hi - 1) + 1  # ⌈√n_hi⌉
+        root = config.root.replace(m=f"{m.bit_length()}.0", m_max=m)
+        if n_const:
+            low = floor_sqrt(n_const)  # √n_const rounded (never a tie for an integer)
+            root = root.replace(m_const=min(max(low + (n_const - low * low > low), 1), m))
+        return config.replace(root=root)
+
+    def sweep(self, c, p):
+        """``root_frac``, ``t_frac``: the fraction bits of ``root.frac`` and ``root.t``; ``k``."""
+        root = c.root
+        return c.replace(root=root.replace(**root.frac_changes(frac=p["root_frac"], t=p["t_frac"]), k=p["k"]))
+
+
+#: The ``unit`` face of the ``fig8`` method.
+FIG8 = Figure8Unit()

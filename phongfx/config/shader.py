@@ -4,28 +4,27 @@ from dataclasses import dataclass
 
 from .base import BlockConfig, check_int
 from .blend import BlendConfig
-from .datapath import fig7_config
+from .datapath import DatapathConfig, fig7_config
 
-__all__ = ["ShaderConfig", "UNIT_TERMS"]
+__all__ = ["ShaderConfig", "unit_terms"]
 
-#: Per shading unit (registry name): the ``(diffuse port, lane, specular port)`` of each light
-#: one copy computes, as a function of the unit's config.  A Lyon datapath holds every light
-#: (``diff<i>``, ``spec<i>``); the other units compute one light per copy.  Schlick's unit has
-#: no diffuse output (None), the spherical unit's ``diff`` is its vector's first lane.
-UNIT_TERMS = {
-    "fig7": lambda c: [(f"diff{i}", None, f"spec{i}") for i in range(c.lights)],
-    "fig8": lambda c: [(f"diff{i}", None, f"spec{i}") for i in range(c.lights)],
-    "halfway_datapath": lambda c: [(f"diff{i}", None, f"spec{i}") for i in range(c.lights)],
-    "blinn": lambda c: [("diffuse", None, "specular")],
-    "conventional": lambda c: [("diffuse", None, "specular")],
-    "spherical": lambda c: [("diff", 0, "spec")],
-    "schlick": lambda c: [(None, None, "spec")],
-}
+def unit_terms(unit, config):
+    """``(diffuse port, lane, specular port)`` of each light a copy of ``unit`` (a registry
+    block name) computes at ``config``; None for a unit that has no place in a shader.
+
+    A datapath (any :class:`~phongfx.config.DatapathConfig`, whatever its specular unit)
+    holds every light (``diff<i>``, ``spec<i>``); a unit computing one light per copy says
+    which of its outputs are its terms in its config class's ``TERMS`` (Schlick's unit has no
+    diffuse output, None; the spherical unit's ``diff`` is its vector's first lane)."""
+    if isinstance(config, DatapathConfig):
+        return [(f"diff{i}", None, f"spec{i}") for i in range(config.lights)]
+    terms = getattr(config, "TERMS", None)
+    return None if terms is None else [terms]
 
 
 @dataclass(frozen=True)
 class ShaderConfig(BlockConfig):
-    """A shading unit (``unit``, a registry name of :data:`UNIT_TERMS`), one copy per entry
+    """A shading unit (``unit``, a registry block that :func:`unit_terms` knows), one copy per entry
     of ``units`` (their configs), and the blend (:class:`BlendConfig`) of every light's
     diffuse and specular terms to the pixel's ``r``, ``g``, ``b`` codes.
 
@@ -42,14 +41,17 @@ class ShaderConfig(BlockConfig):
     blend: BlendConfig = BlendConfig()
 
     def validate(self):
-        if self.unit not in UNIT_TERMS:
-            raise ValueError(f"unit must be one of {', '.join(UNIT_TERMS)}, not {self.unit!r}")
+        from phongfx.core.registry import REGISTRY
+        if self.unit not in REGISTRY or unit_terms(self.unit, REGISTRY[self.unit].default_config()) is None:
+            configs = {name: entry.default_config() for name, entry in REGISTRY.items()}
+            names = sorted((name for name, config in configs.items() if unit_terms(name, config)),
+                           key=lambda name: not isinstance(configs[name], DatapathConfig))
+            raise ValueError(f"unit must be one of {', '.join(names)}, not {self.unit!r}")
         if isinstance(self.units, list):  # a tuple stays hashable: build caches key on configs
             object.__setattr__(self, "units", tuple(self.units))
         if not isinstance(self.units, tuple):
             raise ValueError(f"units must be a tuple of unit configs, not {self.units!r}")
         check_int("copies (len(units))", len(self.units), 1, 8)
-        from phongfx.core.registry import REGISTRY
         kind = type(REGISTRY[self.unit].default_config())
         for index, config in enumerate(self.units):
             if not isinstance(config, kind):
@@ -80,8 +82,7 @@ class ShaderConfig(BlockConfig):
     @property
     def terms(self):
         """``(copy, diffuse port, lane, specular port)`` of each light, in the blend's order."""
-        terms = UNIT_TERMS[self.unit]
-        return [(copy, *term) for copy, config in enumerate(self.units) for term in terms(config)]
+        return [(copy, *term) for copy, config in enumerate(self.units) for term in unit_terms(self.unit, config)]
 
     def prefix(self, copy):
         """The prefix of copy ``copy``'s inputs on the shader (none for a single copy)."""

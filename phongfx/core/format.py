@@ -13,6 +13,7 @@ than 63 bits (unsigned) or 64 bits (signed) is refused.
 
 import re
 from dataclasses import dataclass
+from functools import lru_cache
 
 __all__ = ["Format", "ROUNDINGS", "OVERFLOWS", "check_rounding", "check_overflow"]
 
@@ -84,11 +85,9 @@ class Format:
             return text
         if not isinstance(text, str):
             raise TypeError(f"format must be a string like 'S1.10' or a Format, not {text!r}")
-        match = _PATTERN.match(text.strip())
-        if match is None:
-            raise ValueError(
-                f"format must look like 'n.m' (unsigned) or 'Sn.m' (signed), not {text!r}")
-        return cls(int(match.group(2)), int(match.group(3)), bool(match.group(1)))
+        if cls is not Format:
+            return cls(*_fields(text))
+        return _parsed(text)
 
     def __str__(self):
         return f"{'S' if self.signed else ''}{self.int_bits}.{self.frac_bits}"
@@ -190,3 +189,19 @@ class Format:
         """How far raw codes move left when shifting by ``amount`` (0 unless the
         fraction part is used up by a left shift)."""
         return max(amount - self.frac_bits, 0) if amount >= 0 else 0
+
+
+def _fields(text):
+    """``(int_bits, frac_bits, signed)`` of a format string (:meth:`Format.parse`)."""
+    match = _PATTERN.match(text.strip())
+    if match is None:
+        raise ValueError(f"format must look like 'n.m' (unsigned) or 'Sn.m' (signed), not {text!r}")
+    return int(match.group(2)), int(match.group(3)), bool(match.group(1))
+
+
+# A Format is frozen, so one instance per distinct string serves every caller: the configs
+# keep their formats as strings and an emission asks for the same few hundred times over.
+@lru_cache(maxsize=4096)
+def _parsed(text):
+    return Format(*_fields(text))
+

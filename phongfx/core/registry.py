@@ -4,9 +4,10 @@ A block exists in four places, one file each, all named after it:
 ``phongfx/config/NAME.py`` (its formats), ``golden/NAME.py`` (what the numbers must be),
 ``hdl/NAME.py`` (the Amaranth component) and ``sim/stimulus/NAME.py`` (its test input
 codes and its extreme-input rows).  An entry names the objects in those files; they are
-imported on first use, so this module imports nothing of phongfx at load time and every
-layer may use it.  ``get_block("shape", k=1)`` gives a :class:`Block`: the block with
-those config fields changed.  The CLI (``phongfx verilog``, ``phongfx sim``), the tables
+imported on first use (as is what a :class:`Block` needs of the golden and hdl layers), so
+this module imports nothing of phongfx, not even inside a function, and every layer may use
+it.  ``get_block("shape", k=1)`` gives a :class:`Block`: the block with those config fields
+changed.  The CLI (``phongfx verilog``, ``phongfx sim``), the tables
 and the tests choose blocks from here.
 
 Adding a block is one line below plus its four files (and their tests).
@@ -18,6 +19,13 @@ from importlib import import_module
 import numpy as np
 
 __all__ = ["Entry", "Block", "REGISTRY", "get_block", "block_names"]
+
+
+#: What a :class:`Block` needs of the layers above, loaded by path as the faces are: the
+#: golden value type its raw codes become, and the marking of a component built only to be
+#: asked its latency (:func:`phongfx.hdl.block.unbuilt`).
+FIXED = "phongfx.golden.fixed:Fixed"
+UNBUILT = "phongfx.hdl.block:unbuilt"
 
 
 def _load(path):
@@ -84,11 +92,11 @@ class Block:
 
     def golden(self, raw_inputs):
         """Run the golden model on raw input codes; returns raw output codes (int64 arrays)."""
-        from phongfx.golden.fixed import Fixed
+        fixed_type = _load(FIXED)
         fixed = {}
         for name, (fmt, lanes) in self.config.inputs.items():
             raw = np.asarray(raw_inputs[name], dtype=np.int64)
-            fixed[name] = Fixed(raw, fmt)
+            fixed[name] = fixed_type(raw, fmt)
         outputs = self.golden_function(self.config, **fixed)
         result = {}
         for name, (fmt, lanes) in self.config.outputs.items():
@@ -105,8 +113,7 @@ class Block:
     @property
     def latency(self):
         """The component's latency in cycles (builds it without elaborating)."""
-        from phongfx.hdl.block import unbuilt
-        return unbuilt(self.component()).latency
+        return _load(UNBUILT)(self.component()).latency
 
     def stimulus(self, count=1000, seed=0):
         """Raw input codes: directed extremes, exhaustive sets where small, then seeded random."""

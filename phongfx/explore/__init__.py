@@ -1,16 +1,17 @@
 """Exploring the trade of cost and speed for accuracy.
 
-* :mod:`.synth`: synthesis, place and route (yowasp Yosys + nextpnr, ECP5 and iCE40),
-  cached; :mod:`.asic`: standard-cell synthesis (Yosys onto the OSU Liberty cells) and
-  static timing (OpenSTA); :mod:`.toolrun`: what both flows share (tool runs, logs,
-  the cache); :mod:`.cost_proxy`: tool-free cost estimates from the elaborated RTLIL
-  (LUT-eq, and µm² fitted to the standard-cell flow: :mod:`.proxy_table`);
+Three rooms and the pieces they share:
+
+* :mod:`.synth`: what a block costs in hardware (FPGA and standard-cell synthesis and
+  timing, tool runs, netlist checks, the tool-free cost proxies);
+* :mod:`.sweep`: TOML grids of methods and widths run on a process pool or Dask,
+  resumable, their Pareto fronts and plots;
+* :mod:`.tables`: every ``phongfx tables`` name and the measured tables (cost,
+  pipeline, proxy calibration, extremes);
 * :mod:`.methods`: the sweepable methods (block, width parameters, how to build and run
   them) and the reference scenes; :mod:`.evaluate`: one method at one width point;
-* :mod:`.sweep_spec`, :mod:`.sweep`: TOML grids run on a process pool or Dask, resumable;
-* :mod:`.report`: Pareto fronts and the report page; :mod:`.tables`: every
-  ``phongfx tables`` name and its module; :mod:`.cost_table`, :mod:`.pipeline_table`,
-  :mod:`.extremes`: the synthesized cost, Fmax-against-depth and extremes tables;
+* :mod:`.report`: Pareto fronts and the report page; :mod:`.progress`: the progress
+  bars of the long runs;
 * :mod:`.compile`: the scene compiler (the cheapest datapath whose error a scene hides).
 
 May import every layer but ``phongfx.cli``.

@@ -39,8 +39,8 @@ independent copies), while :meth:`MethodSpec.config`, which synthesis sees, keep
 
 import numpy as np
 
-from .methods import METHODS, SCENES, MethodSpec, Scene
-from .sweep_scene import file_views, is_scene_file
+from phongfx.explore.methods import METHODS, SCENES, MethodSpec, Scene
+from phongfx.explore.sweep.scene import file_views, is_scene_file
 
 __all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "PIXEL_COEF", "COST_KEYS",
            "ASIC_COST_KEYS", "error_metrics", "pixel_metrics", "pixel_errors", "evaluate"]
@@ -110,7 +110,7 @@ def pixel_errors(terms, reference_spec, scene):
 
 
 def _cost(block, config, options):
-    from . import synth as synth_module
+    from phongfx.explore.synth import fpga as synth_module
 
     if not isinstance(options, dict):
         raise ValueError(f"synth must be a dict of options, not {type(options).__name__}")
@@ -126,11 +126,11 @@ def _cost(block, config, options):
 
 def _proxy(block, config, target):
     """The tool-free cost of ``block`` at ``config`` on ``target``
-    (:func:`~phongfx.explore.cost_proxy.proxy_estimate`): µm² on ``"asic"`` (osu018), else
+    (:func:`~phongfx.explore.synth.proxy.proxy_estimate`): µm² on ``"asic"`` (osu018), else
     LUT-eq and DSP tiles; ``model`` says it is a proxy."""
     from phongfx.core.registry import get_block
 
-    from .cost_proxy import proxy_estimate
+    from phongfx.explore.synth.proxy import proxy_estimate
 
     estimate = proxy_estimate(get_block(block, config), target)
     return {k: estimate[k] for k in ("area_um2", "lut_eq", "dsp", "model") if k in estimate}
@@ -147,10 +147,10 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=No
         Parameters of the method; missing ones take their defaults.
     scenes : sequence of str
         Keys of :data:`SCENES`, or paths of scene files (``.toml``,
-        :mod:`phongfx.explore.sweep_scene`: every frame and light pooled, metrics named
+        :mod:`phongfx.explore.sweep.scene`: every frame and light pooled, metrics named
         after the file's stem).
     synth : dict, optional
-        Options of :func:`phongfx.explore.synth.synth` (``target``, ``freq``, ``device``, ``seed``,
+        Options of :func:`phongfx.explore.synth.fpga.synth` (``target``, ``freq``, ``device``, ``seed``,
         ``workdir``); None skips synthesis.
     proxy : str, optional
         Without ``synth``: a target (``"ecp5"``, ``"ice40"``, ``"asic"``) whose tool-free
@@ -168,7 +168,7 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=No
     ------
     ValueError
         For an unknown method, scene or synth option, or a parameter out of range.
-    phongfx.explore.synth.SynthError
+    phongfx.explore.synth.fpga.SynthError
         When a synthesis tool fails.
     """
     if method not in METHODS:

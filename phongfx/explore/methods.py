@@ -3,16 +3,21 @@
 A :class:`MethodSpec` names a method's block, its width parameters with defaults and
 ranges, how to build the block config from them, and how to run the golden model on a
 :class:`Scene` (the fixed-point result and its float references per pixel).  The
-quantities and references are described in :mod:`phongfx.explore.evaluate`.
+quantities and references are described in :mod:`phongfx.explore.evaluate`.  The methods,
+their parameters and ranges are those of the method registry
+(:data:`phongfx.core.methods.METHODS`), whose ``build`` and ``run`` faces are the
+``build_NAME`` and ``run_NAME`` below.
 """
 
 
 import functools
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from phongfx.config.shape import K_MAX
+from phongfx.core.methods import METHODS as REGISTERED
+from phongfx.core.methods import get_method
 from phongfx.core.registry import REGISTRY, get_block
 from phongfx.golden import euler_setup
 from phongfx.golden.reference import specular
@@ -22,7 +27,9 @@ from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, conventional_inputs
                                        gouraud_inputs, halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES"]
+__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "build_datapath", "run_datapath",
+           "build_spherical", "run_spherical", "build_euler", "run_euler", "build_gouraud", "run_gouraud",
+           "build_schlick", "run_schlick", "build_blinn", "run_blinn", "build_conventional", "run_conventional"]
 
 
 def _check_int(name, value, lo, hi):
@@ -66,44 +73,40 @@ class MethodSpec:
 # --- configs -----------------------------------------------------------------------------
 
 # The three Lyon datapaths take every direction-vector format from ``vec_frac`` through
-# DatapathConfig's derived setting, so a sweep point and ``--set vec_frac=F`` agree.
+# DatapathConfig's derived setting, so a sweep point and ``--set vec_frac=F`` agree.  Every
+# other width is a field's fraction bits (``x2_frac``: ``x2``'s), its integer bits and sign
+# those of the field's default (BlockConfig.frac_changes), never written here a second time.
 
-def _shape_datapath(block):
-    """Builder of a datapath ending in ``difference`` → ``shape`` (Figure 7, halfway)."""
-    def build(p):
-        x2 = f"13.{p['x2_frac']}"
-        base = REGISTRY[block].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-        return base.replace(difference=base.difference.replace(x2=x2),
-                            shape=base.shape.replace(x2=x2, t=f"1.{p['shape_t_frac']}", k=p["k"]))
-    return build
-
-
-def _build_fig8(p):
-    base = REGISTRY["fig8"].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-    return base.replace(root=base.root.replace(frac=f"0.{p['root_frac']}", t=f"1.{p['t_frac']}",
-                                               k=p["k"]))
+def build_datapath(block, p):
+    """The config of a datapath method (``block``) at a sweep point: every direction-vector
+    format from ``vec_frac``, ``lights``, then its unit's own parameters
+    (:meth:`~phongfx.config.base.SpecularUnit.sweep`)."""
+    base = REGISTRY[block].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
+    return base.unit.sweep(base, p)
 
 
-def _build_spherical(p):
+def build_spherical(p):
     _check_int("addr_bits", p["addr_bits"], 2, min(p["theta_frac"] + 1, 16))
-    return REGISTRY["spherical"].default_config().replace(
-        theta=f"S0.{p['theta_frac']}", addr_bits=p["addr_bits"], rom=f"0.{p['rom_bits']}")
+    base = REGISTRY["spherical"].default_config()
+    return base.replace(**base.frac_changes(theta=p["theta_frac"], rom=p["rom_bits"]), addr_bits=p["addr_bits"])
 
 
-def _build_euler(p):
+def build_euler(p):
     _check_int("t_frac", p["t_frac"], 8, p["p_frac"])
     _check_int("ds_frac", p["ds_frac"], 8, p["t_frac"])
-    return REGISTRY["euler"].default_config().replace(
-        p=f"S1.{p['p_frac']}", t=f"S3.{p['t_frac']}", ds=f"S3.{p['ds_frac']}")
+    base = REGISTRY["euler"].default_config()
+    return base.replace(**base.frac_changes(p=p["p_frac"], t=p["t_frac"], ds=p["ds_frac"]))
 
 
-def _build_gouraud(p):
+def build_gouraud(p):
     _check_int("dp_frac", p["dp_frac"], 8, p["p_frac"])
-    return REGISTRY["gouraud"].default_config().replace(p=f"S1.{p['p_frac']}", dp=f"S3.{p['dp_frac']}")
+    base = REGISTRY["gouraud"].default_config()
+    return base.replace(**base.frac_changes(p=p["p_frac"], dp=p["dp_frac"]))
 
 
-def _build_schlick(p):
-    return REGISTRY["schlick"].default_config().replace(t=f"1.{p['t_frac']}", out=f"1.{p['out_frac']}")
+def build_schlick(p):
+    base = REGISTRY["schlick"].default_config()
+    return base.replace(**base.frac_changes(t=p["t_frac"], out=p["out_frac"]))
 
 
 def _tables(block):
@@ -111,9 +114,9 @@ def _tables(block):
     ``conventional``): ``vec`` at ``vec_frac`` fraction bits, the seed ROM's and the log and
     exp ROMs' address bits."""
     def build(p):
-        return REGISTRY[block].default_config().replace(
-            vec=f"S1.{p['vec_frac']}", rsqrt_addr=p["rsqrt_addr"], log_addr=p["table_addr"],
-            exp_addr=p["table_addr"])
+        base = REGISTRY[block].default_config()
+        return base.replace(**base.frac_changes(vec=p["vec_frac"]), rsqrt_addr=p["rsqrt_addr"],
+                            log_addr=p["table_addr"], exp_addr=p["table_addr"])
     return build
 
 
@@ -167,9 +170,13 @@ def _power(c, n):
     return np.where(c > 0, np.maximum(c, 0.0) ** n, 0.0)
 
 
-def _datapath(spec, config, p, scene, own, phong="phong", n_self=None):
-    """Figure 7 / 8 / halfway datapath on one light; floats by Lyon's ``specfuns.m`` rows."""
+def run_datapath(spec, config, p, scene):
+    """A specular unit of the datapath on one light (the ``run`` face of every datapath
+    method), against its float form (its registry entry's, e.g. Lyon's ``specfuns.m`` rows,
+    at the shininess the hardware applies: Figure 8's ``m²``) and its compile face's
+    ``phong_form``."""
     d = scene.data
+    hooks = get_method(spec.name).load("compile")
     spans, n = d["spans"], float(p["n"])
     span = spans.pixel_span()
     one = config.replace(lights=1)
@@ -179,29 +186,17 @@ def _datapath(spec, config, p, scene, own, phong="phong", n_self=None):
     out = get_block(spec.block, config=one).golden(raw)
     fixed = out["spec0"] * one.outputs["spec0"][0].lsb
     args = (d["normal"], d["light"], VIEWER)
-    return fixed, {"phong": specular(phong, *args, n),
-                   "self": specular(own, *args, n if n_self is None else n_self)}, \
+    n_self = float(one.unit.applied_n(one, np.float64(n)))
+    return fixed, {"phong": specular(hooks.phong_form, *args, n),
+                   "self": specular(hooks.float_form(spec.name, p), *args, n_self)}, \
         _terms(out, one.outputs, "diff0", "spec0")
-
-
-def _run_fig7(spec, config, p, scene):
-    return _datapath(spec, config, p, scene, f"lyon-k{p['k']}")
-
-
-def _run_fig8(spec, config, p, scene):
-    m = min(max(round(np.sqrt(p["n"])), 1), config.root.m_max)  # what encode feeds
-    return _datapath(spec, config, p, scene, f"lyon-k{p['k']}", n_self=float(m * m))
-
-
-def _run_halfway(spec, config, p, scene):
-    return _datapath(spec, config, p, scene, f"halfway-g2proj-k{p['k']}", phong="blinn")
 
 
 def _nh_phong(scene, n):
     return _power(scene.data["normal"] @ scene.data["h"], n)
 
 
-def _run_spherical(spec, config, p, scene):
+def run_spherical(spec, config, p, scene):
     d = scene.data
     out = get_block("spherical", config=config).golden(spherical_inputs(d["spans"], d["light"], p["n"], config))
     self_ = shade(d["spans"], "cos2", light=d["light"], n=p["n"])[1]
@@ -226,7 +221,7 @@ def _run_scanline(unit, feed, own):
     return run
 
 
-def _run_schlick(spec, config, p, scene):
+def run_schlick(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("schlick", config=config).golden(schlick_inputs(d["spans"], d["light"], n, config))
     t = np.clip(d["normal"] @ d["h"], 0.0, 1.0)
@@ -234,7 +229,7 @@ def _run_schlick(spec, config, p, scene):
         _terms(out, config.outputs, None, "spec")
 
 
-def _run_blinn(spec, config, p, scene):
+def run_blinn(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("blinn", config=config).golden(blinn_inputs(d["spans"], d["light"], n, config))
     phong = _nh_phong(scene, n)
@@ -242,7 +237,7 @@ def _run_blinn(spec, config, p, scene):
         _terms(out, config.outputs, "diffuse", "specular")
 
 
-def _run_conventional(spec, config, p, scene):
+def run_conventional(spec, config, p, scene):
     """Phong's own ``(R·V)^n`` on the interpolated ``N``; its float form is Phong with the
     backside test (0 where ``N̂·L <= 0``), which on these frames is Phong (lights in front of
     the viewer: ``R·V < 0`` wherever ``N̂·L < 0`` and ``N̂·V >= 0``)."""
@@ -255,33 +250,30 @@ def _run_conventional(spec, config, p, scene):
         _terms(out, config.outputs, "diffuse", "specular")
 
 
-_VEC, _N, _LIGHTS = (4, 16), (1, 8000), (1, 8)
-METHODS = {spec.name: spec for spec in (
-    MethodSpec("fig7", "fig7", {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (0, K_MAX), "n": _N,
-                "lights": _LIGHTS}, _shape_datapath("fig7"), _run_fig7),
-    MethodSpec("fig8", "fig8", {"vec_frac": 10, "root_frac": 9, "t_frac": 15, "k": 1, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "root_frac": (4, 16), "t_frac": (4, 24), "k": (0, K_MAX), "n": (1, 63 * 63),
-                "lights": _LIGHTS}, _build_fig8, _run_fig8),
-    MethodSpec("halfway", "halfway_datapath",
-               {"vec_frac": 10, "x2_frac": 12, "shape_t_frac": 15, "k": 2, "n": 16, "lights": 2},
-               {"vec_frac": _VEC, "x2_frac": (4, 20), "shape_t_frac": (4, 24), "k": (1, K_MAX), "n": _N,
-                "lights": _LIGHTS}, _shape_datapath("halfway_datapath"), _run_halfway),
-    MethodSpec("spherical", "spherical", {"addr_bits": 6, "rom_bits": 6, "theta_frac": 11, "n": 16},
-               {"addr_bits": (2, 16), "rom_bits": (2, 16), "theta_frac": (4, 20), "n": (1, 1000)},
-               _build_spherical, _run_spherical),
-    MethodSpec("euler", "euler", {"p_frac": 30, "t_frac": 30, "ds_frac": 30, "n": 16},
-               {"p_frac": (8, 40), "t_frac": (8, 40), "ds_frac": (8, 40), "n": _N},
-               _build_euler, _run_scanline("euler", euler_inputs, "corrected")),
-    MethodSpec("gouraud", "gouraud", {"p_frac": 30, "dp_frac": 30, "n": 16},
-               {"p_frac": (8, 40), "dp_frac": (8, 40), "n": _N},
-               _build_gouraud, _run_scanline("gouraud", gouraud_inputs, "gouraud")),
-    MethodSpec("schlick", "schlick", {"t_frac": 15, "out_frac": 15, "n": 16},
-               {"t_frac": (2, 30), "out_frac": (2, 30), "n": _N}, _build_schlick, _run_schlick),
-    MethodSpec("blinn", "blinn", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
-               {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
-               _tables("blinn"), _run_blinn),
-    MethodSpec("conventional", "conventional", {"vec_frac": 15, "rsqrt_addr": 9, "table_addr": 8, "n": 16},
-               {"vec_frac": (6, 18), "rsqrt_addr": (2, 16), "table_addr": (1, 14), "n": _N},
-               _tables("conventional"), _run_conventional),
-)}
+build_blinn, build_conventional = _tables("blinn"), _tables("conventional")
+run_euler = _run_scanline("euler", euler_inputs, "corrected")
+run_gouraud = _run_scanline("gouraud", gouraud_inputs, "gouraud")
+
+
+class _Catalog(Mapping):
+    """The methods of :data:`phongfx.core.methods.METHODS` as :class:`MethodSpec`, read from the
+    registry on every access, so a method registered at run time is sweepable at once."""
+
+    def __getitem__(self, name):
+        method = REGISTERED[name]
+        build = (method.load("build") if method.has("build")
+                 else functools.partial(build_datapath, method.block))
+        return MethodSpec(method.name, method.block, method.params, method.ranges, build, method.load("run"))
+
+    def __iter__(self):
+        return iter(REGISTERED)
+
+    def __len__(self):
+        return len(REGISTERED)
+
+    def __repr__(self):
+        return f"METHODS({', '.join(REGISTERED)})"
+
+
+#: name -> :class:`MethodSpec` of every registered method (:mod:`phongfx.core.methods`).
+METHODS = _Catalog()

@@ -1,30 +1,30 @@
 """Sweep results read back: the cheapest invisible-error datapaths, summary and
 ``build/report/index.md``.
 
-A sweep (:mod:`phongfx.explore.sweep`) writes one JSON record per point to ``points.jsonl``
+A sweep (:mod:`phongfx.explore.sweep.run`) writes one JSON record per point to ``points.jsonl``
 (``id, method, params, status, error, seconds, metrics, cost``).  This module answers the
 user's question from those records: for each method, the cheapest datapath whose max
 error is at most one 8-bit level, and which points are Pareto-optimal in error against
 cost.  How records are costed and ranked (LUT-equivalents, µm², the Pareto front) is
-:mod:`phongfx.explore.sweep_front`, the plots :mod:`phongfx.explore.sweep_plot`; both are
+:mod:`phongfx.explore.sweep.front`, the plots :mod:`phongfx.explore.sweep.plot`; both are
 re-exported here, where the report's readers have always found them.
 """
 
 import os
 
-from .sweep_front import (DSP_LUT_WEIGHT, INVISIBLE, MAXIMIZE, cost_key, is_proxy, lut_equivalent, pareto,
-                          target_label, value)
-from .sweep_plot import pareto_plot
+from phongfx.explore.sweep.front import (DSP_LUT_WEIGHT, INVISIBLE, MAXIMIZE, cost_key, is_proxy,
+                                         lut_equivalent, pareto, target_label, value)
+from phongfx.explore.sweep.plot import pareto_plot
 
 __all__ = ["DSP_LUT_WEIGHT", "MAXIMIZE", "INVISIBLE", "load", "value", "cost_key", "is_proxy", "lut_equivalent", "pareto", "BASELINES",
            "cheapest_invisible", "pareto_plot", "summary_markdown", "build_report"]
 
 
 def load(path):
-    """Records of ``points.jsonl`` at ``path`` (:func:`phongfx.explore.sweep.load_records`: one per
+    """Records of ``points.jsonl`` at ``path`` (:func:`phongfx.explore.sweep.run.load_records`: one per
     point, the last written winning; a torn last line ignored, a bad line elsewhere a
     ``ValueError``).  A missing file is ``FileNotFoundError``."""
-    from .sweep import load_records
+    from phongfx.explore.sweep.run import load_records
     if not os.path.exists(path):
         raise FileNotFoundError(f"no sweep results at {path}: run `make sweep` first")
     return load_records(path)
@@ -144,7 +144,7 @@ def _demote(text):
 
 
 def _table_section(name, out_dir, quick):
-    from .tables import table_module
+    from phongfx.explore.tables import table_module
 
     module = table_module(name)
     where = os.path.join(out_dir, name)

@@ -45,26 +45,56 @@ import os
 import time
 import warnings
 
+from collections.abc import Sequence
+
 import numpy as np
 from PIL import Image
 
 from phongfx.config import SphericalConfig
 from phongfx.core.files import atomic_write
+from phongfx.core.methods import METHODS as REGISTERED
+from phongfx.core.methods import get_method
 from phongfx.core.registry import get_block
 from phongfx.golden import euler_setup, spherical_setup
 from phongfx.scene import mesh as meshes
-from phongfx.scene.span_inputs import (blinn_inputs, conventional_inputs, decode, euler_inputs,
+from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, conventional_inputs, decode, euler_inputs,
                                        gouraud_inputs, halfway, spherical_inputs)
+from phongfx.sim.stimulus.datapath import encode
 
 from .figure import error_figure, frame_figure
 
 __all__ = ["FLOAT_METHODS", "UNIT_METHODS", "METHODS", "RENAMED", "method_name", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
-           "shade", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
+           "shade", "shade_euler", "shade_gouraud", "shade_blinn", "shade_conventional", "shade_spherical",
+           "shade_datapath", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
 FLOAT_METHODS = ("phong", "gouraud-float", "euler-float", "corrected-euler", "cosn", "cos2")
-#: The golden fixed-point units, by the names ``phongfx compile`` gives them.
-UNIT_METHODS = ("spherical", "euler", "gouraud", "blinn", "conventional")
-METHODS = FLOAT_METHODS + UNIT_METHODS
+
+
+class _Shaded(Sequence):
+    """``first`` and then the methods of :data:`phongfx.core.methods.METHODS` with a
+    ``shade`` face, in the registry's order, read on every use (a method registered at run
+    time is shaded at once)."""
+
+    def __init__(self, first=()):
+        self.first = tuple(first)
+
+    def _names(self):
+        return self.first + tuple(name for name, method in REGISTERED.items() if method.has("shade"))
+
+    def __getitem__(self, index):
+        return self._names()[index]
+
+    def __len__(self):
+        return len(self._names())
+
+    def __repr__(self):
+        return repr(self._names())
+
+
+#: The golden fixed-point units, by the names ``phongfx compile`` gives them (the
+#: registered methods that have a ``shade`` face).
+UNIT_METHODS = _Shaded()
+METHODS = _Shaded(FLOAT_METHODS)
 #: Former name -> name: the fixed-point units were ``euler-unit`` and ``gouraud-unit``
 #: here while ``euler`` and ``gouraud`` named the float methods, unlike compile.
 RENAMED = {"euler-unit": "euler", "gouraud-unit": "gouraud"}
@@ -149,24 +179,55 @@ def shade(spans, method, *, light=LIGHT, n=20, addr_bits=6, rom_bits=6):
     if method in ("cosn", "cos2"):
         return (_spherical_float(spans, light, 1, False),
                 _spherical_float(spans, h, n, method == "cos2"))
-    if method in ("euler", "gouraud"):
+    return get_method(method).load("shade")(spans, method, light=light, h=h, n=n, addr_bits=addr_bits,
+                                             rom_bits=rom_bits)
+
+
+def _scanline(feed):
+    """The ``shade`` face of a unit interpolating a dot product along the span (Euler,
+    Gouraud; ``feed`` its span inputs): ``N·L`` and ``N·H`` each through it, then clamped and
+    raised like the float methods."""
+    def shade_unit(spans, method, *, light, h, n, **options):
         block = get_block(method)
-        feed = euler_inputs if method == "euler" else gouraud_inputs
-        curve = [decode(method, block.golden(feed(spans, v, block.config)), block.config)
-                 for v in (light, h)]
+        curve = [decode(method, block.golden(feed(spans, v, block.config)), block.config) for v in (light, h)]
         return curve[0], _power(curve[1], n)
-    if method in ("blinn", "conventional"):
+    return shade_unit
+
+
+def _tables(feed):
+    """The ``shade`` face of a unit on the tables of :mod:`phongfx.golden.blinn` (Blinn,
+    conventional Phong; ``feed`` its span inputs): its own diffuse and specular outputs."""
+    def shade_unit(spans, method, *, light, h, n, **options):
         block = get_block(method)
-        feed = blinn_inputs if method == "blinn" else conventional_inputs
         out = block.golden(feed(spans, light, n, block.config))
-        return (decode(method, out, block.config, "diff"),
-                decode(method, out, block.config, "spec"))
+        return decode(method, out, block.config, "diff"), decode(method, out, block.config, "spec")
+    return shade_unit
+
+
+shade_euler, shade_gouraud = _scanline(euler_inputs), _scanline(gouraud_inputs)
+shade_blinn, shade_conventional = _tables(blinn_inputs), _tables(conventional_inputs)
+
+
+def shade_spherical(spans, method, *, light, h, n, addr_bits=6, rom_bits=6):
+    """The spherical unit at ``addr_bits``, ``rom_bits``; its diffuse reads the ``cos`` ROM."""
     config = SphericalConfig(addr_bits=addr_bits, rom=f"0.{rom_bits}")
     block = get_block("spherical", addr_bits=addr_bits, rom=f"0.{rom_bits}")
     raw = spherical_inputs(spans, light, n, config)
     out = block.golden(raw)
     return (decode("spherical", out, config, "diff")[:, 0],
             decode("spherical", out, config, "spec"))
+
+
+def shade_datapath(spans, method, *, light, h, n, **options):
+    """A specular unit of the datapath (its method's block at its defaults, one light,
+    viewer along +z) on the interpolated normals of the span ends: ``diff0``, ``spec0``."""
+    config = get_block(get_method(method).block).config.replace(lights=1)
+    span = spans.pixel_span()
+    count = len(span)
+    raw = encode(config, spans.na[span], spans.nb[span], spans.pixel_t(), np.full(count, float(n)),
+                 VIEWER, VIEWER, [light], [light])
+    out = get_block(get_method(method).block, config=config).golden(raw)
+    return tuple(np.asarray(out[name]) * config.outputs[name][0].lsb for name in ("diff0", "spec0"))
 
 
 def intensity(diffuse, specular, weights=(AMBIENT, KD, KS)):

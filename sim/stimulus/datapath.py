@@ -51,10 +51,8 @@ def encode(config, n0, n1, a, shininess, v0, v1, lights0, lights1):
 def _top_n(config):
     """The largest n the hardware takes (the constant one when it is fixed)."""
     if config.shininess is None:
-        const = config.shininess_const
-        return const * const if config.specular == "fig8" else const
-    name, _, top = config.shininess
-    return top if name == "n" else top * top
+        return config.unit.top_n(config.shininess_const)
+    return config.unit.top_n(config.shininess[2])
 
 
 def stimulus(config, count=1000, seed=0):

@@ -9,7 +9,7 @@ states (Lyon 1993 Figures 7–8 and 5, Schlick 1994 eq. (3), Szirmay-Kalos et al
 Figure 12, Hast et al. eqs. 16–17), checked from exact constants and closed forms in
 Python integers or Fractions, never from the model under test.  This module holds the
 record and the checks several blocks' rows share; ``phongfx tables extremes``
-(:mod:`phongfx.explore.extremes`) runs the rows.
+(:mod:`phongfx.explore.tables.extremes`) runs the rows.
 
 Deterministic: random directions come from a generator seeded per row.
 """

@@ -19,7 +19,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import phongfx.explore.synth as synth_module
+import phongfx.explore.synth.fpga as synth_module
 import phongfx.sim.harness as harness
 from phongfx.cli import main
 from phongfx.core.registry import block_names, get_block

@@ -154,9 +154,9 @@ def test_render_mesh_writes_a_png_and_reports_its_error(tmp_path, capsys):
 
 
 def _accepted_names():
-    from phongfx.explore.asic import LIBRARIES
+    from phongfx.explore.synth.asic import LIBRARIES
     from phongfx.explore.methods import METHODS as COMPILE_METHODS
-    from phongfx.explore.synth import ALL_TARGETS
+    from phongfx.explore.synth.fpga import ALL_TARGETS
     from phongfx.explore.tables import TABLES
     from phongfx.render.mesh import METHODS, RENAMED
     from phongfx.scene.span_inputs import UNITS
@@ -218,7 +218,7 @@ def test_render_frames_checks_the_rtl(tmp_path, capsys):
 
 
 def test_synth_prints_the_table_and_refuses_a_bad_target(monkeypatch, capsys):
-    import phongfx.explore.synth as synth_module
+    import phongfx.explore.synth.fpga as synth_module
     calls = []
 
     def fake(name, **options):

@@ -8,7 +8,7 @@ from phongfx.config.base import MAX_VEC_FRAC
 from phongfx.core.format import Format
 from phongfx.core.registry import REGISTRY
 from phongfx.explore.methods import METHODS
-from phongfx.explore.sweep_spec import expand
+from phongfx.explore.sweep.spec import expand
 
 FACTORIES = {"fig7": fig7_config, "fig8": fig8_config, "halfway": halfway_config}
 DEFAULT_SWEEP = Path(__file__).resolve().parents[2] / "sweeps" / "default.toml"

@@ -8,13 +8,14 @@ HERE = Path(__file__).resolve().parent
 PACKAGE = Path(phongfx.config.__file__).resolve().parent
 
 #: The public names of phongfx.config when it was one module, every one still importable,
-#: and the configs of the blocks added since (ConventionalConfig, BlendConfig, ShaderConfig and
-#: the table of what each shading unit's outputs are to the blend, UNIT_TERMS).
+#: and the configs of the blocks added since (ConventionalConfig, BlendConfig, ShaderConfig).
+#: UNIT_TERMS, the table of what each shading unit's outputs are to the blend, became each
+#: unit config's TERMS, read by phongfx.config.shader.unit_terms.
 PUBLIC = ["BlockConfig", "LirpConfig", "NormalizeConfig", "ReflectConfig", "DifferenceConfig",
           "ShapeConfig", "DiffuseConfig", "RootConfig", "SchlickConfig", "SphericalConfig",
           "HalfwayConfig", "HALFWAY_VARIANTS", "EulerConfig", "GouraudConfig", "BlinnConfig",
           "DatapathConfig", "SPECULAR_UNITS", "fig7_config", "fig8_config", "halfway_config",
-          "MAX_PIPELINE", "ConventionalConfig", "BlendConfig", "ShaderConfig", "UNIT_TERMS"]
+          "MAX_PIPELINE", "ConventionalConfig", "BlendConfig", "ShaderConfig"]
 
 
 def test_public_names_kept():

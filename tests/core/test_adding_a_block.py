@@ -13,13 +13,16 @@ import re
 import sys
 import textwrap
 import types
+from pathlib import Path
 
 import pytest
 
 from phongfx.cli import main
 from phongfx.core.registry import REGISTRY, Entry, get_block
-from phongfx.explore.extremes import run_block
+from phongfx.explore.tables.extremes import run_block
 from phongfx.sim.harness import check
+
+ROOT = Path(__file__).resolve().parents[2]
 
 SOURCES = {
     "phongfx.config.toy": '''
@@ -104,3 +107,136 @@ def test_a_new_block_is_a_block_like_any_other(toy, capsys, tmp_path):
 
     (row,), _ = run_block("toy")
     assert (row["block"], row["golden"], row["rtl"]) == ("toy", "pass", "pass")
+
+
+# ---------------------------------------------------------------- a specular unit
+#
+# A specular unit of Lyon's datapath is one entry of the method registry
+# (phongfx.core.methods.METHODS) and one of the block registry, naming its faces: what the
+# config knows of it (a SpecularUnit: links, shininess port, sweep parameters), its golden
+# model and its hardware inside the datapath; the sweep run, the compiler hooks and the mesh
+# shading of every datapath serve it as they are, and its float form is one string.  The toy
+# unit below is Phong with n = 1 (max(R·L, 0)): the reflected R of Figure 7 and Lambert's
+# block on (R, L), with no shininess port.  A real new unit writes its three faces in the
+# files of its own block (config/NAME.py, golden/NAME.py, hdl/NAME.py); here they are made
+# from source text, like the toy block's.
+
+UNIT_SOURCES = {
+    "toyspec_config": '''
+        from phongfx.config.base import SpecularUnit
+        from phongfx.config.datapath import DatapathConfig
+
+        class ReflectedLambert(SpecularUnit):
+            parts = ("reflect",)  # and diffuse, which every datapath has
+
+            def links(self, c):
+                return [("normalize.out", c.normalize.out, "reflect.vec", c.reflect.vec),
+                        ("reflect.out", c.reflect.out, "diffuse.vec", c.diffuse.vec)]
+
+            def shininess_const(self, c):
+                return 1
+
+            def applied_n(self, c, n):
+                return n * 0 + 1.0
+
+            def spec_format(self, c):
+                return c.diffuse.fmt("out")
+
+            def fit(self, config, n_hi, n_const):
+                return config
+
+        UNIT = ReflectedLambert()
+
+        def toy_datapath_config(**changes):
+            return DatapathConfig(specular="toy", **changes)
+        ''',
+    "toyspec_golden": '''
+        from phongfx.golden.diffuse import diffuse
+        from phongfx.golden.reflect import reflect
+
+        def toy(config, normal, view, lights, shininess):
+            r = reflect(config.reflect, normal, view)["r"]
+            return [diffuse(config.diffuse, r, light)["diff"] for light in lights]
+        ''',
+    "toyspec_hdl": '''
+        from phongfx.hdl.datapath import ReflectedUnit
+        from phongfx.hdl.diffuse import Diffuse
+        from phongfx.hdl.reflect import Reflect
+
+        class ToyUnit(ReflectedUnit):
+            spec_port = "diff"
+
+            def __init__(self, c):
+                super().__init__(c, [Reflect(c.reflect)], [[Diffuse(c.diffuse)] for _ in range(c.lights)])
+
+            def first(self, m, shared, valid, normal, view, light, side):
+                r_valid, inputs = super().first(m, shared, valid, normal, view, light, side)
+                return r_valid, {"n": inputs["r"], "l": inputs["l"]}  # Lambert's block on (R, L)
+        ''',
+}
+
+
+@pytest.fixture
+def toy_unit(monkeypatch):
+    from phongfx.core.methods import METHODS, Method
+    for name, source in UNIT_SOURCES.items():
+        module = types.ModuleType(name)
+        monkeypatch.setitem(sys.modules, name, module)
+        exec(compile(textwrap.dedent(source), f"<{name}>", "exec"), module.__dict__)
+    datapath = "phongfx.sim.stimulus.datapath"
+    monkeypatch.setitem(REGISTRY, "toy_datapath", Entry(  # the block: the datapath with the toy unit
+        "toy_datapath", "toyspec_config:toy_datapath_config", "phongfx.golden.datapath:datapath",
+        "phongfx.hdl.datapath:Datapath", f"{datapath}:stimulus", f"{datapath}:extremes"))
+    monkeypatch.setitem(METHODS, "toy", Method(  # the method: its search space, faces and float form
+        "toy", "toy_datapath", {"vec_frac": 10, "n": 16, "lights": 2},
+        {"vec_frac": (4, 16), "n": (1, 8000), "lights": (1, 8)},
+        {"unit": "toyspec_config:UNIT", "golden": "toyspec_golden:toy", "component": "toyspec_hdl:ToyUnit",
+         "run": "phongfx.explore.methods:run_datapath", "compile": "phongfx.explore.compile.units:DATAPATH",
+         "shade": "phongfx.render.mesh:shade_datapath"}, float_form="phong"))
+    return get_block("toy_datapath")
+
+
+def test_a_new_specular_unit_is_selectable_everywhere(toy_unit, tmp_path):
+    import numpy as np
+
+    from phongfx.config import DatapathConfig
+    from phongfx.core.methods import specular_units
+    from phongfx.explore.compile.compiler import check_methods, compile_scene
+    from phongfx.explore.evaluate import SCENES
+    from phongfx.explore.methods import METHODS
+    from phongfx.explore.sweep.spec import load_spec
+    from phongfx.render import mesh
+    from phongfx.scene.file import load_scene
+
+    # the datapath: config, golden model and hardware agree, cycle by cycle
+    assert "toy" in specular_units() and DatapathConfig(specular="toy").used == (
+        "lirp", "normalize", "reflect", "diffuse")
+    config = toy_unit.config
+    assert config.shininess is None and str(config.outputs["spec0"][0]) == "1.10"
+    with pytest.raises(ValueError, match="reflect.out .* must equal diffuse.vec"):
+        DatapathConfig(specular="toy", reflect=config.reflect.replace(out="S1.11"))
+    raw = toy_unit.stimulus(count=60, seed=2)
+    out = toy_unit.golden(raw)
+    assert (out["spec0"] >= 0).all() and out["spec0"].max() == 1 << 10  # R = L somewhere: 1.0
+    assert check(toy_unit, raw, backend="amaranth").ok
+    # the front (LIRP, normalizer), then R and Lambert's block on (R, L)
+    assert toy_unit.latency == sum(get_block(name).latency for name in ("lirp", "normalize", "reflect", "diffuse"))
+
+    # the sweeps: a sweep spec accepts it and its run measures it against Phong
+    points = load_spec({"scenes": ["torus"], "grid": [{"method": "toy", "vec_frac": [8, 12]}]})["points"]
+    assert [(p["method"], p["params"]["vec_frac"]) for p in points] == [("toy", 8), ("toy", 12)]
+    spec = METHODS["toy"]
+    fixed, refs, terms = spec.run(spec, spec.config({"vec_frac": 12}), spec.resolve({}), SCENES["torus"])
+    assert np.abs(fixed - refs["self"]).max() < 0.01  # R·L in 12 bits against float R·L
+    assert terms["diff"][1] == terms["spec"][1]
+
+    # the compiler: its method list accepts it and it is searched like fig7
+    assert check_methods(["toy"]) == ["toy"]
+    compiled = compile_scene(load_scene(ROOT / "scenes" / "torus.toml"), methods=["toy"])
+    assert list(compiled.results) == ["toy"]
+
+    # the renderer: render mesh's method list has it and shades with it
+    assert "toy" in mesh.METHODS and "toy" in mesh.UNIT_METHODS
+    spans = mesh.meshes.rasterize(mesh.build_mesh("torus", polygons=200), mesh.meshes.rotation(10), 32, 32)
+    diffuse, specular = mesh.shade(spans, "toy")
+    assert diffuse.shape == specular.shape == (spans.visible.shape[0],) and specular.max() > 0.9

@@ -3,10 +3,10 @@ import time
 import numpy as np
 import pytest
 
-import phongfx.explore.synth
+import phongfx.explore.synth.fpga
 from phongfx.core.registry import REGISTRY, get_block
 from phongfx.explore.evaluate import COST_KEYS, METHODS, SCENES, error_metrics, evaluate
-from phongfx.explore.synth import SynthError
+from phongfx.explore.synth.fpga import SynthError
 
 NAMES = ("fig7", "fig8", "halfway", "spherical", "euler", "gouraud", "schlick", "blinn", "conventional")
 NOT_WIDTHS = ("n", "k", "lights")
@@ -197,7 +197,7 @@ def test_synth_path_maps_the_result(monkeypatch):
         return {"lut4": 1234, "ff": 567, "carry": 89, "dsp": 6, "bram_bits": 0, "fmax_mhz": 151.5,
                 "pixels_per_second": 151.5e6, "latency": 17, "cells": {}, "cached": True}
 
-    monkeypatch.setattr(phongfx.explore.synth, "synth", fake)
+    monkeypatch.setattr(phongfx.explore.synth.fpga, "synth", fake)
     params = {"vec_frac": 8, "lights": 1}
     result = evaluate("halfway", params, scenes=(), synth={"target": "ecp5", "freq": 150})
     assert result["metrics"] == {}
@@ -211,7 +211,7 @@ def test_synth_path_maps_the_result(monkeypatch):
     def broken(name, **options):
         raise SynthError("nextpnr failed (exit code 1)")
 
-    monkeypatch.setattr(phongfx.explore.synth, "synth", broken)
+    monkeypatch.setattr(phongfx.explore.synth.fpga, "synth", broken)
     with pytest.raises(SynthError, match=r"^nextpnr failed"):
         evaluate("euler", {}, scenes=(), synth={"target": "ecp5"})
 

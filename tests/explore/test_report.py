@@ -220,7 +220,7 @@ def test_build_report_shows_the_synthesis_progress_of_its_tables(tmp_path, monke
     # `phongfx report` synthesizes for minutes: every candidate is named, counted and timed
     import re
 
-    from phongfx.explore import cost_table
+    from phongfx.explore.tables import cost as cost_table
 
     def fake(name, *, target, freq, workdir, progress=None, **kwargs):
         progress("yosys")

@@ -2,7 +2,7 @@ import numpy as np
 
 from phongfx.config import BlendConfig, ShaderConfig, halfway_config
 from phongfx.core.registry import get_block
-from phongfx.explore.extremes import run_block
+from phongfx.explore.tables.extremes import run_block
 
 
 def test_the_shader_is_the_unit_then_the_blend():

@@ -10,7 +10,7 @@ from amaranth.sim import Simulator
 from phongfx.config import MAX_PIPELINE, BlendConfig, ReflectConfig
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
-from phongfx.explore.cost_proxy import rtlil_features, rtlil_of
+from phongfx.explore.synth.proxy import rtlil_features, rtlil_of
 from phongfx.hdl.blend import Blend, adder_tree, shift_add
 from phongfx.hdl.fixed import FixedValue
 from phongfx.sim.harness import check

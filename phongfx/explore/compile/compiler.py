@@ -35,9 +35,9 @@ all renders, and ``max_unrounded`` against the reference before its rounding
 
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
-(:func:`phongfx.explore.synth.synth`, cached) with ``synth=True``, else the tool-free
-proxies :func:`phongfx.explore.cost_proxy.proxy_cost` (LUT-eq) and
-:func:`phongfx.explore.cost_proxy.proxy_area` (µm², fitted to the standard-cell flow).
+(:func:`phongfx.explore.synth.fpga.synth`, cached) with ``synth=True``, else the tool-free
+proxies :func:`phongfx.explore.synth.proxy.proxy_cost` (LUT-eq) and
+:func:`phongfx.explore.synth.proxy.proxy_area` (µm², fitted to the standard-cell flow).
 """
 
 from dataclasses import dataclass, field
@@ -91,8 +91,8 @@ def width_params(method, against="phong"):
     defines the reference)."""
     spec = METHODS[method]
     out = {k: (v, spec.ranges[k]) for k, v in spec.params.items() if k not in _FIXED}
-    out.update(runs.EXTRA.get(method, {}))
-    if against == "phong" and method in runs.DATAPATHS:
+    out.update(runs.extra(method))
+    if against == "phong" and runs.is_datapath(method) and "k" in spec.params:
         out["k"] = (spec.params["k"], spec.ranges["k"])
     return out
 

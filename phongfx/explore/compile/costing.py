@@ -1,14 +1,14 @@
 """What a compiled design costs, and when two costs are too close to call.
 
 :func:`cost` prices one shader on the target asked for: synthesized (cached,
-:func:`phongfx.explore.synth.synth`) or by the tool-free proxies of
-:mod:`phongfx.explore.cost_proxy`.  A choice between methods whose costs differ by less
+:func:`phongfx.explore.synth.fpga.synth`) or by the tool-free proxies of
+:mod:`phongfx.explore.synth.proxy`.  A choice between methods whose costs differ by less
 than the cost model can resolve is no choice: :func:`tie` flags it, with what decided it
 and the runner-up, rather than presenting a 0.15% margin as a winner.
 """
 
 from phongfx.core.registry import get_block
-from phongfx.explore.synth import SynthError
+from phongfx.explore.synth.fpga import SynthError
 
 from . import run as runs
 
@@ -39,7 +39,7 @@ def cost(method, config, synth=False, copies=1, *, target="ecp5", device=None, f
     ``area_um2``); the other keys are per copy, and ``target``, ``device``, ``freq``,
     ``seed`` and ``model`` say what produced it (synthesized on an FPGA: also ``part`` and
     ``utilisation``).  ``progress``: the synthesis flow's stages."""
-    from phongfx.explore.asic import DEFAULT_LIBRARY
+    from phongfx.explore.synth.asic import DEFAULT_LIBRARY
 
     block = get_block(runs.block_name(method), config=config)
     key, unit_name = COST_UNITS[target]
@@ -49,10 +49,10 @@ def cost(method, config, synth=False, copies=1, *, target="ecp5", device=None, f
              "seed": seed if synth and target != "asic" else None,
              "model": f"{target}-synth" if synth else f"{target}-proxy", "unit": unit_name}
     if not synth:
-        from phongfx.explore.cost_proxy import proxy_estimate
+        from phongfx.explore.synth.proxy import proxy_estimate
         unit = proxy_estimate(block, target, device)
     else:
-        from phongfx.explore.synth import synth as run_synth
+        from phongfx.explore.synth.fpga import synth as run_synth
         result = run_synth(block.name, config=config, target=target, device=device, freq=freq, seed=seed,
                            progress=progress)
         if target == "asic":

@@ -2,7 +2,7 @@
 
 Each width point the search measures costs a render of every frame through the golden
 model; an interrupted compile of a large scene would otherwise measure them all again
-(the synthesis results are cached on their own, :mod:`phongfx.explore.toolrun`).  A
+(the synthesis results are cached on their own, :mod:`phongfx.explore.synth.toolrun`).  A
 :class:`Journal` appends one JSON line per measured point, flushed at once, to
 ``<folder>/<key>.jsonl``; the key covers the scene's frames (every array of every
 :class:`~phongfx.scene.geometry.FrameGeometry`), its output bits and requirement, and the

@@ -15,6 +15,7 @@ import numpy as np
 
 from phongfx.config import HalfwayConfig, ShapeConfig, fig7_config, fig8_config, halfway_config
 from phongfx.core.files import atomic_write
+from phongfx.core.methods import get_method
 from phongfx.core.registry import get_block
 from phongfx.golden.reference import METHODS, specular_all
 from phongfx.render.lyon import amounts, composite, scene_inputs, shade
@@ -59,7 +60,7 @@ def run(out_dir="build/figure9", backend="verilator-fast", radius=64, progress=N
         float_image = composite(scene, px, floats[method], float_diff)
         row = {"method": method, "float": float_image, "fixed": []}
         for label, config in FIXED_ROWS.get(method, []):
-            name = {"fig7": "fig7", "fig8": "fig8", "halfway": "halfway_datapath"}[config.specular]
+            name = get_method(config.specular).block
             block = get_block(name, config=config)
             golden, stats = shade(block, scene_inputs(config, scene, px), backend, progress=progress)
             checked += stats["pixels"]

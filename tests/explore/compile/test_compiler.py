@@ -274,7 +274,7 @@ def _fake_synth(name, *, config=None, **options):
 
 
 def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
-    import phongfx.explore.synth as synth_module
+    import phongfx.explore.synth.fpga as synth_module
     monkeypatch.setattr(synth_module, "synth", _fake_synth)
     best = compile_scene(_torus(), methods=["fig7"], synth=True).best
     vec = best["params"]["vec_frac"]

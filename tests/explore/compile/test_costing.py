@@ -26,7 +26,7 @@ def test_a_margin_below_the_model_resolution_is_a_tie():
 
 
 def test_a_failed_synthesis_names_its_log_without_a_dangling_colon(monkeypatch):
-    import phongfx.explore.synth as synth_module
+    import phongfx.explore.synth.fpga as synth_module
 
     def broken(name, **options):
         raise synth_module.SynthError("nextpnr failed (exit code 1); log build/x/nextpnr.log:\nERROR: ...")
@@ -43,7 +43,7 @@ def test_utilisation_is_a_share_of_the_device():
 
 
 def test_synthesis_reports_each_candidate_and_the_manifest_keys(monkeypatch):
-    import phongfx.explore.synth as synth_module
+    import phongfx.explore.synth.fpga as synth_module
     seen = []
 
     def fake(name, *, config=None, progress=None, seed=1, **options):

@@ -93,7 +93,7 @@ def test_the_cli_prints_the_hint_and_the_relaxed_requirement_is_met(tmp_path, ca
 
 
 def test_an_infeasible_method_is_not_synthesized(monkeypatch):
-    import phongfx.explore.synth as synth_module
+    import phongfx.explore.synth.fpga as synth_module
     calls = []
     monkeypatch.setattr(synth_module, "synth", lambda *a, **k: calls.append(a) or {})
     compiled = compile_scene(_scene("[4, 128]"), methods=["fig7"], synth=True)

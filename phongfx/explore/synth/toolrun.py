@@ -1,0 +1,95 @@
+"""Running the synthesis tools: one private folder per run, logs read back, results cached.
+
+Both flows (:mod:`.fpga` for the FPGAs, :mod:`.asic` for standard cells) run external
+programs the way :mod:`phongfx.sim.tools` does (its names are re-exported here), and a
+report is trusted only when the files the log names parse (:func:`read_json`).
+
+A result is cached in ``<workdir>/<key>/result.json`` (:func:`cached_run`), ``<workdir>``
+being the per-user cache's ``synth/`` or ``sta/`` folder (:mod:`phongfx.core.cache`)
+unless given: the run works in a private folder beside it and is renamed into place only
+when complete, so a folder with a ``result.json`` is a finished run, an interrupted one
+leaves nothing and a failed one leaves its logs in ``failed/<key>``.
+"""
+
+import json
+from pathlib import Path
+
+from phongfx.core.cache import folder, make_entry
+from phongfx.sim.tools import SynthError, run, run_yosys, tail, tool
+
+__all__ = ["SynthError", "RESULT", "tool", "run", "run_yosys", "tail", "read_json", "harness", "design_rtlil",
+           "cached_run"]
+
+#: The file written last in a run folder: its presence means a complete run.
+RESULT = "result.json"
+
+
+def read_json(path, what, log):
+    """JSON file ``path``, or a :class:`SynthError` naming ``what`` and the end of ``log``."""
+    try:
+        return json.loads(Path(path).read_text())
+    except (OSError, ValueError) as error:
+        raise SynthError(f"{what} missing or incomplete ({error}); log {log}:\n{tail(log)}") from None
+
+
+def harness(module, in_width, out_width):
+    """Verilog of ``<module>_synth``: block ``module`` between two shift registers.
+
+    Ports ``clk``, ``rst``, ``si`` (serial in), ``load`` and ``so`` (serial out).  Each
+    clock shifts ``si`` into the ``{i.payload, i.valid}`` register; ``load`` captures
+    ``{o.payload, o.valid}`` into the output register, which otherwise shifts out
+    through ``so``.  Nothing is constant, so Yosys can remove none of the block.
+    """
+    wi, wo = in_width + 1, out_width + 1
+    return f"""
+module {module}_synth(clk, rst, si, load, so);
+  input clk, rst, si, load;
+  output so;
+  reg [{wi - 1}:0] in_shift = 0;
+  reg [{wo - 1}:0] out_shift = 0;
+  wire o_valid;
+  wire [{out_width - 1}:0] o_payload;
+  {module} dut (
+    .clk(clk), .rst(rst),
+    .i__valid(in_shift[0]), .i__payload(in_shift[{wi - 1}:1]),
+    .o__valid(o_valid), .o__payload(o_payload)
+  );
+  assign so = out_shift[{wo - 1}];
+  always @(posedge clk) begin
+    in_shift <= {{in_shift[{wi - 2}:0], si}};
+    out_shift <= load ? {{o_payload, o_valid}} : {{out_shift[{wo - 2}:0], 1'b0}};
+  end
+endmodule
+"""
+
+
+def design_rtlil(block, module, dsp=None):
+    """RTLIL of ``block`` (a :class:`~phongfx.core.registry.Block`) emitted as ``module``, as
+    the flows' cache keys hash it: without source locations, and without the
+    simulation-only overflow flags (they cost nothing in a netlist, and the flows
+    synthesize without them); its products mapped onto ``dsp``'s DSPs
+    (:func:`~phongfx.hdl.dsp.dsp_mapping`) when given."""
+    from amaranth.back import rtlil
+
+    from phongfx.hdl.dsp import dsp_mapping
+    from phongfx.hdl.overflow import overflow_checks
+
+    with overflow_checks(False), dsp_mapping(dsp):
+        return rtlil.convert(block.component(), name=module, emit_src=False)
+
+
+def cached_run(workdir, key, flow, cache="synth"):
+    """The result in ``<workdir>/<key>``, else ``flow(work)`` run in a fresh private folder
+    renamed there when it returns (:func:`phongfx.core.cache.make_entry`).  ``workdir``
+    None is the per-user cache's folder ``cache``.  Adds ``cached`` and ``directory``
+    to the result."""
+    def make(work):
+        result = flow(work)
+        (work / RESULT).write_text(json.dumps(result, indent=1) + "\n")
+        return result
+
+    final, result = make_entry(folder(cache) if workdir is None else workdir, key, RESULT, make)
+    if result is None:
+        result = json.loads((final / RESULT).read_text())
+        return {**result, "cached": True, "directory": str(final)}
+    return {**result, "cached": False, "directory": str(final)}
