@@ -1,5 +1,6 @@
 # phongfx: `make sim` shades Lyon's scene through the Figure 7 datapath (golden + RTL),
-# `make test` runs the test suite.  Both create .venv and install everything from PyPI.
+# `make test` runs the test suite (`make check`: its in-process tier).  Both create .venv
+# and install everything from PyPI.
 
 PYTHON ?= python3
 VENV ?= .venv
@@ -14,7 +15,7 @@ DEBIAN_STAMP := $(VENV)/.debian-stamp
 
 DOCS_OUT ?= build/docs
 
-.PHONY: sim test test-all docs synth sweep sweep-asic report bench identity clean
+.PHONY: sim check test test-all docs synth sweep sweep-asic report bench identity clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -44,12 +45,32 @@ sim: $(STAMP)
 	    tail -n 1 build/sim/lyon-balls/testbench/make.log; exit $$status; \
 	else echo "note: iverilog missing; the exported testbench is in build/sim/lyon-balls/testbench"; fi
 
+# Test tiers (marks set at collection by tests/conftest.py): `make check` runs in-process
+# (golden models, configs, scenes, Amaranth simulation of every block, import rules) in a
+# couple of minutes; `make test` adds the rest (commands, compiler, sweeps, renders) and
+# every external tool (Verilator, Yosys, nextpnr, OpenSTA, SymbiYosys, Icarus); `make
+# test-all` adds the long runs marked slow.  Tool results are cached per user
+# (`phongfx cache --info`), so a second run is warm.
+# JOBS: pytest-xdist workers; worksteal hands each a contiguous run of tests (those of a file
+# mostly share a worker, and its builds) and lets an idle one take over the rest of a long file.
+JOBS ?= auto
+PYTEST := $(VENV)/bin/python -m pytest -q -n $(JOBS) --dist worksteal --durations=10
+TOOLS_FREE := not slow and not needs_verilator and not needs_yosys and not needs_sta and not needs_sby \
+	and not needs_iverilog
+
+# the in-process tier: the folders of the golden models, configs, scenes, the core, the HDL
+# (Amaranth simulation of every block) and the checkers, and the import rules
+CHECK_PATHS := tests/golden tests/config tests/scene tests/core tests/hdl tests/sim tests/test_imports.py
+
+check: $(STAMP)
+	$(PYTEST) -m "$(TOOLS_FREE)" $(CHECK_PATHS)
+
 test: $(STAMP) $(DEBIAN_STAMP)
-	$(VENV)/bin/python -m pytest -q --durations=10
+	$(PYTEST)
 
 # everything, including tests marked slow (long sweeps)
 test-all: $(STAMP) $(DEBIAN_STAMP)
-	$(VENV)/bin/python -m pytest -q -m "" --durations=10
+	$(PYTEST) -m ""
 
 # the documentation (docs/): warnings are errors and every cross-reference must resolve
 docs: $(STAMP)

@@ -47,6 +47,9 @@ INTENDED = {
 }
 #: a run folder's random suffix (``build/synth/.<key>.<random>/``)
 TEMPORARY = re.compile(r"(/\.[0-9a-f]+)\.[A-Za-z0-9_]+/")
+#: where a failed run's folder is kept since the per-user cache (``synth/failed/<key>/``):
+#: the same run folder as the one above, under another name
+FAILED = re.compile(r"/failed/([0-9a-f]+)/")
 SRC = re.compile(r"\(\* src = \"[^\"]*\" \*\)\s*")
 
 
@@ -63,7 +66,8 @@ def normalize_json(value, root=None):
     if isinstance(value, list):
         return [normalize_json(v, root) for v in value]
     if isinstance(value, str) and root:
-        return TEMPORARY.sub(r"\1.<random>/", value.replace(os.path.abspath(root), "<capture>"))
+        value = FAILED.sub(r"/.\1.<random>/", value.replace(os.path.abspath(root), "<capture>"))
+        return TEMPORARY.sub(r"\1.<random>/", value)
     return value
 
 
@@ -110,6 +114,8 @@ def capture(out, ref=None, synth_tables=False, parts=PARTS, synth_cache=None):
         env["PYTHONPATH"] = site
     work = os.path.join(out, "work")  # the commands' cwd: no source folder shadows the install
     os.makedirs(work, exist_ok=True)
+    # the per-user cache in work/build: where revisions before it kept their caches (build/synth ...)
+    env["PHONGFX_CACHE"] = os.path.join(work, "build")
     log = os.path.join(out, "commands.log")
     if synth_cache is not None:
         shutil.copytree(os.path.join(synth_cache, "work", "build", "synth"),

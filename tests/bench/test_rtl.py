@@ -7,7 +7,7 @@ import pytest
 from bench import rtl, scaling
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_scaling_smoke_checks_every_size_and_plots(tmp_path):
     rows = scaling.measure(blocks=("euler", "shape"), sizes=(64, 256))
     assert [(r["block"], r["pixels"]) for r in rows] == [("euler", 64), ("euler", 256),
@@ -17,7 +17,7 @@ def test_scaling_smoke_checks_every_size_and_plots(tmp_path):
     assert open(path, "rb").read(8) == b"\x89PNG\r\n\x1a\n"
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_rtl_smoke_reports_every_back_end(tmp_path):
     out = tmp_path / "rtl.json"
     assert rtl.main(["--pixels", "300", "--small", "40", "--no-cold-build", "--out", str(out)]) == 0

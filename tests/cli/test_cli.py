@@ -25,14 +25,15 @@ def test_verilog_writes_a_module(tmp_path):
     assert "module shape(" in text and "o__payload" in text
 
 
+@pytest.mark.needs_verilator
 def test_sim_passes_and_reports(capsys):
     assert main(["sim", "lirp", "--vectors", "50", "--bubbles", "0.1"]) == 0
     assert "0 mismatching cycle(s)" in capsys.readouterr().out
 
 
-@pytest.mark.verilator
-def test_sim_of_the_ecp5_netlist_and_of_the_dsp_mapped_rtl(capsys, tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)  # build/synth and build/verilator under the test's folder
+@pytest.mark.needs_verilator
+@pytest.mark.needs_yosys
+def test_sim_of_the_ecp5_netlist_and_of_the_dsp_mapped_rtl(capsys):
     assert main(["sim", "lirp", "--set", "pipeline=3", "--netlist", "ecp5", "--vectors", "50"]) == 0
     out = capsys.readouterr().out
     assert "lirp on ecp5 netlist (45k, verilator-fast): " in out and "0 mismatching cycle(s)" in out
@@ -207,7 +208,7 @@ def test_render_mesh_former_unit_name_works_with_a_note(tmp_path, capsys):
     assert json.loads(captured.out)["method"] == "gouraud"
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_render_frames_checks_the_rtl(tmp_path, capsys):
     assert main(["render", "frames", "--units", "gouraud", "--size", "32", "--quiet",
                  "--out", str(tmp_path)]) == 0
@@ -234,15 +235,13 @@ def test_synth_prints_the_table_and_refuses_a_bad_target(monkeypatch, capsys):
     assert capsys.readouterr().err == "phongfx: error: target must be one of 'ecp5', 'ice40', 'asic', not 'nope'\n"
 
 
-def test_synth_asic_prints_area_and_json(tmp_path, capsys, asic_tools):
-    work = str(tmp_path / "w")
-    assert main(["synth", "shape", "--set", "t=1.7", "--target", "asic", "--library", "osu035", "--quiet",
-                 "--workdir", work]) == 0
+def test_synth_asic_prints_area_and_json(capsys, asic_tools):
+    # the per-user cache: the same synthesis as test_asic's osu035 run, done once
+    assert main(["synth", "shape", "--set", "t=1.7", "--target", "asic", "--library", "osu035", "--quiet"]) == 0
     text = capsys.readouterr().out
     assert text.startswith("| block | library | area µm² | cells | FF | Fmax MHz |")
     assert "| shape | osu035 |" in text and "worst path" in text
-    assert main(["synth", "shape", "--set", "t=1.7", "--target", "asic", "--device", "osu035", "--json",
-                 "--workdir", work]) == 0
+    assert main(["synth", "shape", "--set", "t=1.7", "--target", "asic", "--device", "osu035", "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
     assert result["cached"] is True and result["library"] == "osu035" and result["area_um2"] > 0
     assert result["fmax_mhz"] == pytest.approx(1000 / result["critical_path"]["ns"])
@@ -289,12 +288,10 @@ def test_verilog_top_writes_the_named_port_top(tmp_path):
     assert "input  in_n0_x     12  S1.10" in text and "out_overflow" not in text
 
 
+@pytest.mark.needs_iverilog
 def test_testbench_writes_and_passes_under_icarus(tmp_path, capsys):
     import re
-    import shutil
 
-    if shutil.which("iverilog") is None:
-        pytest.skip("Icarus Verilog (iverilog) is not installed; apt-get install iverilog")
     out = tmp_path / "tb"
     assert main(["testbench", "diffuse", "-o", str(out), "--count", "5", "--seed", "3", "--run", "icarus",
                  "--quiet"]) == 0

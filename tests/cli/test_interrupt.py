@@ -1,4 +1,5 @@
-"""Ctrl-C: a real SIGINT to a child ``phongfx``: exit 130, one line, no half-built folder."""
+"""Ctrl-C: a real SIGINT to a child ``phongfx``: exit 130, one line, no half-built folder (in the
+per-user cache, pointed at the test's folder, or beside an output)."""
 
 import os
 import signal
@@ -13,9 +14,9 @@ from tests.explore.compile.test_compiler import TORUS
 
 
 def _interrupted(args, cwd, folder):
-    """Run ``python -m phongfx.cli ARGS`` in ``cwd``, SIGINT it once its work has begun (a hidden
-    work folder appears in ``cwd/folder``, plus a moment); (code, stderr)."""
-    env = {k: v for k, v in os.environ.items() if k != "PHONGFX_BUILD"}  # the cache under cwd/build
+    """Run ``python -m phongfx.cli ARGS`` in ``cwd`` with the cache in ``cwd/cache``, SIGINT it
+    once its work has begun (a work folder appears in ``cwd/folder``, plus a moment); (code, stderr)."""
+    env = dict(os.environ, PHONGFX_CACHE=str(Path(cwd, "cache")))  # an empty cache of its own
     child = subprocess.Popen([sys.executable, "-m", "phongfx.cli", *args], cwd=cwd, env=env,
                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
@@ -29,7 +30,11 @@ def _interrupted(args, cwd, folder):
 
 
 def _hidden(root):
-    return sorted(str(p) for p in Path(root).rglob(".*") if p.is_dir()) if Path(root).is_dir() else []
+    """Work folders under ``root``: hidden ones (an output being staged) and cache entries being made."""
+    if not Path(root).is_dir():
+        return []
+    return sorted(str(p) for p in Path(root).rglob("*")
+                  if p.is_dir() and (p.name.startswith(".") or ".part-" in p.name))
 
 
 def test_version():
@@ -37,27 +42,28 @@ def test_version():
     assert done.returncode == 0 and done.stdout.startswith("phongfx ")
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_ctrl_c_during_a_verilator_build_exits_130_in_one_line_and_leaves_no_temporary_folder(tmp_path):
     # an empty cache: the first Verilator build of lirp takes several seconds
-    code, err = _interrupted(["sim", "lirp", "--vectors", "10"], tmp_path, "build/verilator")
+    code, err = _interrupted(["sim", "lirp", "--vectors", "10"], tmp_path, "cache/verilator")
     assert code == 130
     assert err.strip().splitlines() == ["phongfx: interrupted"]
     assert "Traceback" not in err
-    assert _hidden(tmp_path / "build") == []
+    assert _hidden(tmp_path) == [] and not (tmp_path / "cache" / "verilator" / "failed").exists()
+    assert not (tmp_path / "build").exists()  # no cache in the current folder
 
 
+@pytest.mark.needs_yosys
 def test_ctrl_c_during_synthesis_exits_130_in_one_line_and_leaves_no_temporary_folder(tmp_path):
     # Yosys, then nextpnr, on the shape unit: several seconds
-    code, err = _interrupted(["synth", "shape", "--quiet"], tmp_path, "build/synth")
+    code, err = _interrupted(["synth", "shape", "--quiet"], tmp_path, "cache/synth")
     assert code == 130
     assert err.strip().splitlines() == ["phongfx: interrupted"]
-    assert _hidden(tmp_path / "build") == []
+    assert _hidden(tmp_path) == [] and not (tmp_path / "cache" / "synth" / "failed").exists()
+    assert not (tmp_path / "build").exists()
 
 
-
-
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_ctrl_c_during_compile_keeps_the_previous_result_whole(tmp_path):
     (tmp_path / "tiny.toml").write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"

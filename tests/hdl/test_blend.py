@@ -16,7 +16,7 @@ from phongfx.hdl.fixed import FixedValue
 from phongfx.sim.harness import check
 
 DEPTHS = range(MAX_PIPELINE + 1)
-BACKENDS = ["amaranth", pytest.param("verilator-fast", marks=pytest.mark.verilator)]
+BACKENDS = ["amaranth", pytest.param("verilator-fast", marks=pytest.mark.needs_verilator)]
 
 GREY = dict(ambient=((0.05, 0.05, 0.05),), diffuse=(((0.6,) * 3, (0.3,) * 3),),
             specular=(((0.4,) * 3, (0.25,) * 3),))
@@ -85,7 +85,7 @@ def test_harness_amaranth(name, depth):
     check(blend(depth, **CONFIGS[name]), count=120, seed=depth, bubbles=0.2).raise_on_mismatch()
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name, depth", [("grey", 0), ("coloured", 2), ("materials", 4), ("one light", 3),
                                          ("no diff", 1)])
 def test_harness_verilator_fast(name, depth):

@@ -66,7 +66,7 @@ def test_harness_fig8_local_viewer():
 
 
 #: the constant-shininess checks run on the simulator and the fast Verilator back end
-FAST = ["amaranth", pytest.param("verilator-fast", marks=pytest.mark.verilator)]
+FAST = ["amaranth", pytest.param("verilator-fast", marks=pytest.mark.needs_verilator)]
 
 
 @pytest.mark.parametrize("backend", FAST)

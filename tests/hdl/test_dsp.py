@@ -80,7 +80,7 @@ def test_mapping_names_its_targets():
             pass
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("inputs,output", [(True, True), (True, False), (False, True)])
 @pytest.mark.parametrize("fmts", [("S7.0", "S6.0"), ("7.0", "S6.0"), ("6.0", "7.0")])
 def test_model_is_the_product_exhaustively_on_small_operands(fmts, inputs, output):
@@ -101,7 +101,7 @@ def _extremes_and_random(fmt, count, rng):
     return np.concatenate([np.repeat(fixed, len(fixed)), rng.integers(fmt.min_raw, fmt.max_raw + 1, count)])
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("fmts,dsps", [(("S17.0", "S17.0"), 1), (("17.0", "17.0"), 1), (("18.0", "S17.0"), 2),
                                        (("13.0", "22.0"), 2), (("S19.0", "S21.0"), 4)])
 @pytest.mark.parametrize("split", [False, True])
@@ -150,7 +150,7 @@ def test_blocks_map_every_variable_product(name, depth):
     assert get_block(name, pipeline=depth).latency == block.latency
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name,depth", [("lirp", 1), ("difference", 3), ("normalize", 2), ("root", 1),
                                         ("reflect", 4), ("difference", 4)])
 def test_mapped_blocks_match_golden(name, depth):
@@ -161,7 +161,7 @@ def test_mapped_blocks_match_golden(name, depth):
 
 
 @pytest.mark.slow
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name", ["fig7", "fig8"])
 @pytest.mark.parametrize("depth", [1, 2, 3, 4])
 def test_mapped_datapaths_match_golden(name, depth):

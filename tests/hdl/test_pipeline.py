@@ -85,12 +85,12 @@ def test_datapath_latency_is_the_sum_of_its_blocks(name):
         assert block.latency == front + unit
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name", ["fig7", "fig8"])
 @pytest.mark.parametrize("depth", [2, 3])
 def test_datapath_deep_on_verilator(name, depth):
     block = get_block(name, pipeline=depth)
-    check(block, backend="verilator", bubbles=0.2, count=300, seed=5).raise_on_mismatch()
+    check(block, backend="verilator-fast", bubbles=0.2, count=300, seed=5).raise_on_mismatch()
 
 
 @pytest.mark.parametrize("name, depth", [("fig7", 2), ("fig8", 3)])

@@ -20,7 +20,7 @@ def test_latency_is_the_unit_and_the_blend():
         assert get_block("shader", config=shader).latency == unit.latency + blend.latency
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_copies_of_different_latencies_meet_at_the_blend():
     # a point light's copy normalizes its L (3 cycles more): the directional one's terms wait
     units = (ConventionalConfig(local_light=True), ConventionalConfig())
@@ -36,7 +36,7 @@ def test_harness(backend):
     check(get_block("shader"), backend=backend, bubbles=0.2, count=count, seed=5).raise_on_mismatch()
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name, changes", [
     # two materials, one coloured light: the material port selects the constants
     ("fig8 two materials", dict(units=(fig8_config(lights=1),), blend=BlendConfig(

@@ -22,9 +22,6 @@ from tests.hdl.test_emit import WAIVED
 ROOT = Path(__file__).resolve().parent.parent.parent
 CONTROL = {"clk": ("input", 1), "rst": ("input", 1), "in_valid": ("input", 1), "in_ready": ("output", 1),
            "out_valid": ("output", 1), "out_ready": ("input", 1)}
-needs_icarus = pytest.mark.skipif(
-    shutil.which("iverilog") is None or shutil.which("vvp") is None,
-    reason="Icarus Verilog (iverilog, vvp) is not installed; apt-get install iverilog")
 
 
 def module_ports(text, module):
@@ -117,6 +114,7 @@ def test_top_refuses_what_it_cannot_wrap():
         Top(get_block("lirp").component(), "a b")
 
 
+@pytest.mark.needs_verilator
 def test_top_lints_clean(tmp_path):
     executable = tool_environment()
     path = tmp_path / "spherical_top.v"
@@ -200,14 +198,14 @@ def _power_up(tmp_path, name, top_text=None):
     return run_icarus(bench.directory, name)
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 @pytest.mark.parametrize("name", ["lirp", "blinn"])
 def test_defined_from_power_up_under_icarus(tmp_path, name):
     ok, text = _power_up(tmp_path, name)
     assert ok and "PASS" in text, text[-3000:]
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 def test_without_the_time_zero_wake_icarus_starts_at_x(tmp_path):
     # Yosys' own trigger (a declaration initializer) is no event under -g2012: out_valid is X
     # until the valid pipeline has been refilled; this is why top_verilog wakes the blocks

@@ -67,11 +67,13 @@ def _check_proven(proofs):
     assert all(proof.dsps >= 1 for proof in proofs)  # the gate really maps onto MULT18X18D
 
 
+@pytest.mark.needs_yosys
 def test_registry_cases_are_proven(cases):
     _check_proven(prove_dsp_mapping(timeout=120, cases=_representative(cases)))
 
 
 @pytest.mark.slow
+@pytest.mark.needs_yosys
 def test_every_registry_case_is_proven(cases):
     proofs = prove_dsp_mapping(timeout=300, cases=cases)
     _check_proven(proofs)
@@ -89,6 +91,7 @@ def _broken_model(tmp_path, old, new):
 A_BITS = "wire [17:0] a = {A17, A16, A15, A14, A13, A12, A11, A10, A9, A8, A7, A6, A5, A4, A3, A2, A1, A0};"
 
 
+@pytest.mark.needs_yosys
 @pytest.mark.parametrize("case", [
     DspCase("product", Format.parse("16.0"), Format.parse("16.0"), True, True),
     DspCase("product", Format.parse("S11.0"), Format.parse("S13.0"), True, True, isolate=True),
@@ -105,6 +108,7 @@ def test_a_dropped_operand_bit_is_a_counterexample(tmp_path, case):
     assert prove_case(case, timeout=120).status == "proven"  # the same case with the true model
 
 
+@pytest.mark.needs_yosys
 def test_an_unsigned_operand_b_is_a_counterexample(tmp_path):
     # SIGNEDB ignored: a negative B operand is read as a large positive one
     model = _broken_model(tmp_path, "wire signed [18:0] b_value = {b_in[18] & b_in[17], b_in[17:0]};",
@@ -114,6 +118,7 @@ def test_an_unsigned_operand_b_is_a_counterexample(tmp_path):
     assert proof.status == "counterexample" and proof.operands["b"] < 0 and proof.operands["a"] != 0, proof
 
 
+@pytest.mark.needs_yosys
 def test_a_proof_past_its_time_out_is_unknown():
     case = DspCase("product", Format.parse("9.0"), Format.parse("9.0"), False, False)
     proof = prove_case(case, timeout=0.01)

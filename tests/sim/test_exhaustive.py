@@ -19,7 +19,7 @@ import pytest
 from phongfx.core.registry import get_block
 from phongfx.sim.harness import check
 
-pytestmark = pytest.mark.verilator
+pytestmark = pytest.mark.needs_verilator
 
 
 def _every_x2(k):

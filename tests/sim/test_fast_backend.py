@@ -15,7 +15,7 @@ from phongfx.core.registry import get_block
 from phongfx.sim import build_cache, fast_backend
 from phongfx.sim.harness import check, pack, run_backend, schedule
 
-pytestmark = pytest.mark.verilator
+pytestmark = pytest.mark.needs_verilator
 
 PORTS = {
     "s": (Format.parse("S1.10"), 1),

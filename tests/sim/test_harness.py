@@ -288,7 +288,7 @@ def _stimulus(cycles, width, seed):
     return valid, payload
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_back_ends_sample_alike():
     cycles = 3 * verilator_backend.BLOCK + 5  # several testbench windows and a partial one
     valid, payload = _stimulus(cycles, Mixed.WIDTH, seed=8)
@@ -299,7 +299,7 @@ def test_back_ends_sample_alike():
         assert out_payload == expected, backend
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_back_ends_give_identical_outputs():
     inputs = _inputs()
     packed = pack(LIRP.config.inputs, inputs)
@@ -315,7 +315,7 @@ def test_back_ends_give_identical_outputs():
 
 # ---------------------------------------------------------------- Verilator specifics
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_verilator_build_is_cached():
     component = LIRP.component()
     first = verilator_backend.build(component)
@@ -331,7 +331,7 @@ def test_verilator_build_is_cached():
     assert verilator_backend.build(_with(TruncatingLirp).component()).directory != first.directory
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_verilator_speed_is_the_simulation_alone(monkeypatch):
     """``make sim``'s cocotb cycles/s once counted the Verilator build (71 to 1,321 cycles/s
     from run to run, by the state of the cache): a slow build must not change the figure."""
@@ -350,16 +350,17 @@ def test_verilator_speed_is_the_simulation_alone(monkeypatch):
     assert result.cycles_per_second == result.cycles / result.seconds
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_verilator_build_failure_raises_with_log(monkeypatch, tmp_path):
     monkeypatch.setattr(build_cache, "verilog", lambda *args, **kwargs: "module broken(;\n")
     with pytest.raises(RuntimeError, match=r"(?s)^Verilator build of lirp failed .*%Error") as info:
         verilator_backend.build(LIRP.component(), build_dir=tmp_path)
-    assert "lirp_tb.v" in str(info.value)
-    assert not [p for p in tmp_path.iterdir() if not p.name.startswith(".")]  # nothing cached
+    assert "lirp_tb.v" in str(info.value) and f"log {tmp_path / 'failed'}" in str(info.value)
+    # nothing cached: the failed build's folder, log included, is kept apart under failed/
+    assert [p.name for p in tmp_path.iterdir()] == ["failed"]
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_verilator_run_failure_raises_with_log(monkeypatch):
     monkeypatch.setattr(verilator_backend, "TB_MODULE", "phongfx.sim.no_such_testbench")
     with pytest.raises(RuntimeError, match=r"^Verilator run of lirp_tb failed: ") as info:

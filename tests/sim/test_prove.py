@@ -11,19 +11,25 @@ from phongfx.sim import prove as proofs
 from phongfx.sim.prove import assumptions, prove
 
 
+@pytest.mark.needs_sby
 @pytest.mark.parametrize("name, claims, static", [("lirp", 4, 0), ("shape", 3, 0), ("root", 5, 3),
                                                   ("normalize", 1, 0)])
-def test_the_default_blocks_are_proven(tmp_path, name, claims, static):
-    proof = prove(get_block(name), workdir=tmp_path)
+def test_the_default_blocks_are_proven(name, claims, static):
+    proof = prove(get_block(name))
     assert len(proof.claims) == claims and proof.counts["static"] == static
     assert proof.counts["proven"] == claims - static and proof.exit_code == 0
     assert all(c.seconds > 0 for c in proof.claims if c.status == "proven")
+    # the verdicts are kept in the per-user cache: a rerun proves nothing again
+    again = prove(get_block(name))
+    assert [(c.status, c.seconds) for c in again.claims] == [(c.status, c.seconds) for c in proof.claims]
+    assert all(c.cached for c in again.claims if c.status == "proven")
 
 
 def test_blocks_without_error_quantizes_have_nothing_to_prove(tmp_path):
-    # reflect and difference saturate where they could overflow: no claim is made
+    # reflect and difference saturate where they could overflow: no claim is made, no tool runs
     for name in ("reflect", "difference"):
         proof = prove(get_block(name), workdir=tmp_path)
+        assert not tmp_path.exists() or list(tmp_path.iterdir()) == []
         assert proof.claims == [] and proof.exit_code == 0
 
 
@@ -35,8 +41,9 @@ def test_the_domain_is_the_golden_models():
     assert assumptions(get_block("normalize").config) == []  # its n is a vector, not a shininess
 
 
-def test_a_narrowed_output_has_a_counterexample_the_golden_model_confirms(tmp_path):
-    proof = prove(get_block("lirp", out="S0.10"), workdir=tmp_path)
+@pytest.mark.needs_sby
+def test_a_narrowed_output_has_a_counterexample_the_golden_model_confirms():
+    proof = prove(get_block("lirp", out="S0.10"))
     assert proof.exit_code == 1 and proof.counts == {"proven": 1, "static": 0, "counterexample": 3, "unknown": 0}
     for claim in proof.claims[1:]:
         assert claim.confirmed is True and "the golden model refuses them too" in claim.why
@@ -45,15 +52,17 @@ def test_a_narrowed_output_has_a_counterexample_the_golden_model_confirms(tmp_pa
         assert any(abs(code) >= 1024 for code in lanes)
 
 
-def test_without_its_domain_the_proof_fails_so_it_is_not_vacuous(tmp_path, monkeypatch):
+@pytest.mark.needs_sby
+def test_without_its_domain_the_proof_fails_so_it_is_not_vacuous(monkeypatch):
     # a > 1 makes 1 - a negative: the first claim breaks, and the golden model refuses that a
     monkeypatch.setattr(proofs, "assumptions", lambda config: [])
-    proof = prove(get_block("lirp"), workdir=tmp_path)
+    proof = prove(get_block("lirp"))
     first = proof.claims[0]
     assert first.status == "counterexample" and first.inputs["a"] > 1024
     assert first.confirmed is False and "outside the domain the golden model accepts" in first.why
 
 
+@pytest.mark.needs_sby
 def test_cli_exit_codes_and_json(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     assert main(["prove", "shape", "--json", "--quiet"]) == 0
@@ -69,8 +78,9 @@ def test_cli_exit_codes_and_json(tmp_path, monkeypatch, capsys):
 
 
 @pytest.mark.slow
+@pytest.mark.needs_sby
 @pytest.mark.parametrize("name", ["fig7", "fig8", "halfway_datapath", "halfway", "schlick"])
-def test_the_datapaths_are_proven(tmp_path, name):
+def test_the_datapaths_are_proven(name):
     # about 100-160 s each for the three datapaths (blinn's and conventional's table lookups time out)
-    proof = prove(get_block(name), workdir=tmp_path)
+    proof = prove(get_block(name))
     assert proof.counts["counterexample"] == 0 and proof.counts["unknown"] == 0

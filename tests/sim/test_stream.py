@@ -27,8 +27,7 @@ TIMING = "counted in cycles where the pipeline moves"
 
 @pytest.fixture(params=STREAM_BACKENDS)
 def stream_backend(request):
-    if request.param.startswith("verilator"):
-        request.applymarker(pytest.mark.verilator)
+    """The stream tests' back ends (the Verilator one marked at collection, in conftest)."""
     return request.param
 
 
@@ -223,7 +222,7 @@ def test_correct_handshake_passes_with_stalls_and_a_reset(stream_backend):
                      r"re-sent\)$", result.describe())
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_stream_back_ends_agree_cycle_for_cycle():
     runs = [check(LIRP, _inputs(), backend=backend, stalls=0.5, bubbles=0.3, reset_at=60, seed=9,
                   handshake=IgnoresReady, max_report=50) for backend in STREAM_BACKENDS]
@@ -312,7 +311,7 @@ def test_late_valid_is_caught_in_moving_cycles(stream_backend):
     assert first.what == f"o.valid is 0, expected 1 (latency 2, {TIMING})"
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_fast_vcd_is_written(tmp_path):
     path = tmp_path / "lirp.vcd"
     result = check(LIRP, _inputs(20), backend="verilator-fast", stalls=0.3, reset_at=10, vcd=path)
@@ -326,6 +325,7 @@ def test_fast_vcd_is_written(tmp_path):
 
 # ---------------------------------------------------------------- the command line
 
+@pytest.mark.needs_verilator
 def test_cli_sim_takes_stalls_and_a_reset(capsys, tmp_path):
     from phongfx.cli import main
 
@@ -346,7 +346,7 @@ def test_cli_sim_takes_stalls_and_a_reset(capsys, tmp_path):
         assert f"phongfx: error: {message}" in capsys.readouterr().err
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_cli_sim_writes_a_cocotb_vcd(capsys, tmp_path):
     from phongfx.cli import main
 
@@ -355,7 +355,7 @@ def test_cli_sim_writes_a_cocotb_vcd(capsys, tmp_path):
     assert "$enddefinitions" in path.read_text()
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 def test_cli_sim_writes_a_fast_vcd(capsys, tmp_path):
     from phongfx.cli import main
 

@@ -53,7 +53,7 @@ def _check(name, backend, inputs, stalls, bubbles, seed):
     return result
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name", NAMES)
 def test_block_under_stalls_and_reset_fast(name):
     block = get_block(name)
@@ -66,7 +66,7 @@ def test_block_under_stalls_and_reset_amaranth(name):
 
 
 @pytest.mark.slow
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name", NAMES)
 @pytest.mark.parametrize("seed, stalls, bubbles", [
     (31, 0.7, 0.5),  # mostly stalled, mostly idle

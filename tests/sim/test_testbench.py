@@ -14,9 +14,6 @@ from phongfx.hdl.top import port_map, top_verilog
 from phongfx.sim import testbench as tb
 from phongfx.sim.harness import pack, payload_fields
 
-needs_icarus = pytest.mark.skipif(
-    shutil.which("iverilog") is None or shutil.which("vvp") is None,
-    reason="Icarus Verilog (iverilog, vvp) is not installed; apt-get install iverilog")
 PASS = re.compile(r"^PASS (\d+) vectors, (\d+) cycles \(mid-stream reset after (\d+) results dropped (\d+) "
                   r"in flight\)$", re.M)
 
@@ -46,14 +43,14 @@ def check_pass(bench, ok, text):
     return cycles
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 @pytest.mark.parametrize("name", ["lirp", "diffuse", "shape", "spherical", "blinn"])
 def test_passes_under_icarus(tmp_path, name):
     bench, _, _ = export(tmp_path, name)
     check_pass(bench, *tb.run_icarus(bench.directory, name))
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("name", ["lirp", "spherical",
                                   pytest.param("diffuse", marks=pytest.mark.slow),
                                   pytest.param("shape", marks=pytest.mark.slow),
@@ -94,14 +91,14 @@ def test_files_and_their_layout(tmp_path):
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary left
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 def test_vcd_is_written(tmp_path):
     bench, _, _ = export(tmp_path, "diffuse", vcd=True)
     check_pass(bench, *tb.run_icarus(bench.directory, "diffuse"))
     assert (bench.directory / "tb_diffuse.vcd").read_text().startswith("$")
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 def test_a_wrong_expected_value_fails_with_the_mismatch(tmp_path):
     bench, _, expected = export(tmp_path, "lirp", limit=200)
     path = bench.directory / "lirp_expected.memh"
@@ -127,7 +124,7 @@ def _edit_top(bench, name, pattern, replacement):
     path.write_text(text)
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 def test_a_handshake_that_ignores_out_ready_fails(tmp_path):
     bench, _, _ = export(tmp_path, "lirp", limit=200)
     # the pipeline moves whatever out_ready says: results change under a stall and are lost
@@ -136,7 +133,7 @@ def test_a_handshake_that_ignores_out_ready_fails(tmp_path):
     assert not ok and "out_valid or out_* changed while out_ready was low" in text, text[-3000:]
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 def test_a_reset_that_keeps_results_in_flight_fails(tmp_path):
     bench, _, _ = export(tmp_path, "lirp", limit=200)
     # lirp's only 1-bit registers in the shipped top are its valid pipeline
@@ -145,7 +142,7 @@ def test_a_reset_that_keeps_results_in_flight_fails(tmp_path):
     assert not ok and "out_valid high with nothing in flight" in text, text[-3000:]
 
 
-@needs_icarus
+@pytest.mark.needs_iverilog
 def test_a_stream_that_never_ends_times_out(tmp_path):
     bench, _, _ = export(tmp_path, "lirp", limit=200)
     config = get_block("lirp").config

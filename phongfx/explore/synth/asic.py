@@ -24,7 +24,8 @@ The libraries are the Oklahoma State University cells shipped by Debian's
 3.3 V): 32 and 39 cells, each a handful of gates, adders and flip-flops; no multiplier or
 RAM macros, so a ROM becomes logic and a multiplier full adders.
 
-The result is cached (:func:`~phongfx.explore.synth.toolrun.cached_run`) under a key of the
+The result is cached (:func:`~phongfx.explore.synth.toolrun.cached_run`, in the per-user
+cache's ``sta/`` folder unless ``workdir`` is given) under a key of the
 design, library file, flow version and tool versions, but not the clock: a result holds
 the minimum period, and ``freq`` only decides ``met``.
 """
@@ -215,7 +216,7 @@ def _flow(block, module, library, source, work, progress):
     return result
 
 
-def asic_synth(block, module, *, library=DEFAULT_LIBRARY, freq=150, workdir="build/synth", progress=None):
+def asic_synth(block, module, *, library=DEFAULT_LIBRARY, freq=150, workdir=None, progress=None):
     """Synthesize ``block`` (a :class:`~phongfx.core.registry.Block`) onto ``library``'s cells and
     time it (module docstring).
 
@@ -241,5 +242,5 @@ def asic_synth(block, module, *, library=DEFAULT_LIBRARY, freq=150, workdir="bui
     key = digest(["asic", FLOW_VERSION, block.name, repr(block.config), library,
                   _file_digest(str(source), source.stat().st_mtime_ns), design_rtlil(block, module),
                   *_tool_versions()])
-    result = cached_run(workdir, key, lambda work: _flow(block, module, library, source, work, progress))
+    result = cached_run(workdir, key, lambda work: _flow(block, module, library, source, work, progress), cache="sta")
     return {**result, "freq": freq, "met": bool(result["fmax_mhz"] >= freq)}

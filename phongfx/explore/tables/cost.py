@@ -109,7 +109,7 @@ def _accuracy(methods, n):
     return result
 
 
-def cost_table(blocks=BLOCKS, *, target="ecp5", device=None, freq=150, n=N, workdir="build/synth",
+def cost_table(blocks=BLOCKS, *, target="ecp5", device=None, freq=150, n=N, workdir=None,
                progress=None):
     """Rows of synthesis results for ``blocks`` plus ``difference+shape``; accuracy of the
     whole datapaths and the Phong baseline.  ``target`` ``"asic"`` with ``device`` a

@@ -51,7 +51,7 @@ def _to_stderr(text):
 
 
 def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", device=None, freq=FREQ, seeds=SEEDS,
-                  workdir="build/synth", progress=None):
+                  workdir=None, progress=None):
     """Rows ``{name, depth, fmax_mhz, fmax_seeds, lut4, ff, dsp, latency, critical_path,
     met}`` (on ``target="asic"``: ``area_um2`` instead of ``lut4`` and ``dsp``, one run: the
     standard-cell flow has no placement seed), one per (name, depth), from

@@ -68,7 +68,7 @@ def fit(features, areas):
     return dict(zip(FEATURES, (float(v) for v in x)))
 
 
-def calibration_rows(points=POINTS, *, library="osu018", workdir="build/synth", progress=None):
+def calibration_rows(points=POINTS, *, library="osu018", workdir=None, progress=None):
     """One row per point: ``label``, ``block``, its :func:`rtlil_features`, the synthesized
     ``area_um2`` and ``fmax_mhz``, the ``proxy_um2`` of the stored coefficients and the
     ``error`` (proxy / synthesis − 1)."""
@@ -93,7 +93,7 @@ def _ranking_agrees(rows):
     return int(agree), len(pairs)
 
 
-def proxy_table(points=POINTS, *, library="osu018", workdir="build/synth", refit=False, progress=None):
+def proxy_table(points=POINTS, *, library="osu018", workdir=None, refit=False, progress=None):
     """The calibration result: ``rows``, ``coefficients`` (stored), the ``refit`` ones
     (when asked), the largest error over all points and over :data:`DATAPATHS`, and
     the rank agreement over all points and over the datapaths' points."""

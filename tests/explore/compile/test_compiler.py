@@ -166,6 +166,7 @@ def test_an_unreachable_requirement_chooses_nothing(tmp_path, capsys):
     assert data["chosen"] is None and data["methods"]["fig7"]["feasible"] is False
 
 
+@pytest.mark.needs_verilator
 def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     path = tmp_path / "tiny.toml"
     path.write_text(TORUS.format(error=1.0, against="phong"))
@@ -189,6 +190,8 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     assert "0 mismatches" in capsys.readouterr().out
 
 
+@pytest.mark.needs_verilator
+@pytest.mark.needs_iverilog
 def test_the_shipped_top_has_named_ports_and_its_testbench_passes_under_icarus(tmp_path, capsys):
     path = tmp_path / "tiny.toml"
     path.write_text(TORUS.format(error=1.0, against="phong"))
@@ -250,6 +253,8 @@ def test_unknown_method_and_missing_scene_exit_2(tmp_path, capsys):
 
 
 @pytest.mark.slow
+@pytest.mark.needs_verilator
+@pytest.mark.needs_sby
 @pytest.mark.parametrize("name", ["lyon-balls", "torus", "local-mesh"])
 def test_example_scenes_compile_and_verify(tmp_path, name):
     out = tmp_path / name

@@ -89,9 +89,9 @@ def _cell_areas(path):
             re.findall(r"cell \((\w+)\) \{[^{}]*?\barea : ([\d.]+);", text)}
 
 
-def test_smoke_shape_osu018(tmp_path, monkeypatch, asic_tools):
+def test_smoke_shape_osu018(monkeypatch, asic_tools):
     """Figure 7d, k = 1: one squarer; a narrower t is a smaller squarer, visibly."""
-    wide = synth("shape", config=get_block("shape", k=1).config, target="asic", workdir=tmp_path)
+    wide = synth("shape", config=get_block("shape", k=1).config, target="asic")
     areas = _cell_areas(LIBRARIES["osu018"].path)
     assert len(areas) == 32
     assert wide["area_um2"] == pytest.approx(sum(areas[c] * n for c, n in wide["cells"].items()))
@@ -101,7 +101,7 @@ def test_smoke_shape_osu018(tmp_path, monkeypatch, asic_tools):
     assert wide["area_delay"] == pytest.approx(wide["area_um2"] * wide["critical_path"]["ns"])
     assert wide["met"] is (wide["fmax_mhz"] >= 150)
     narrow_config = get_block("shape", k=1, t="1.7").config
-    narrow = synth("shape", config=narrow_config, target="asic", workdir=tmp_path)
+    narrow = synth("shape", config=narrow_config, target="asic")
     # a squarer's area goes with the square of its width: 16 bits against 8
     assert 2.5 < wide["area_um2"] / narrow["area_um2"] < 5
     assert "| shape | osu018 |" in markdown([wide])
@@ -110,16 +110,15 @@ def test_smoke_shape_osu018(tmp_path, monkeypatch, asic_tools):
         raise AssertionError("a tool ran on a cache hit")
     for module in (asic_module, sim_tools):
         monkeypatch.setattr(module, "run", fail)
-    again = synth("shape", config=get_block("shape", k=1).config, target="asic", freq=500,
-                  workdir=tmp_path)
+    again = synth("shape", config=get_block("shape", k=1).config, target="asic", freq=500)
     assert again["cached"] is True and again["freq"] == 500 and again["met"] is (again["fmax_mhz"] >= 500)
     assert again["area_um2"] == wide["area_um2"]
 
 
-def test_osu035_is_larger_and_slower(tmp_path, asic_tools):
+def test_osu035_is_larger_and_slower(asic_tools):
     config = get_block("shape", k=1, t="1.7").config
-    small = synth("shape", config=config, target="asic", device="osu018", workdir=tmp_path)
-    large = synth("shape", config=config, target="asic", device="osu035", workdir=tmp_path)
+    small = synth("shape", config=config, target="asic", device="osu018")
+    large = synth("shape", config=config, target="asic", device="osu035")
     # the OSU cells are drawn to scalable rules: every osu035 cell is 4 times its osu018 twin
     assert large["area_um2"] / small["area_um2"] == pytest.approx(4, rel=0.02)
     assert large["fmax_mhz"] < small["fmax_mhz"]

@@ -181,10 +181,11 @@ def _harness_ffs(block):
     return len(component.i.payload.as_value()) + 1 + len(component.o.payload.as_value()) + 1
 
 
-def test_smoke_shape_ecp5(tmp_path, monkeypatch):
+@pytest.mark.needs_yosys
+def test_smoke_shape_ecp5(monkeypatch):
     """Figure 7d with k = 1: one 16×16 squarer, so one MULT18X18D; latency 1 + k."""
     block = get_block("shape", k=1)
-    result = synth("shape", config=block.config, workdir=tmp_path)
+    result = synth("shape", config=block.config)
     assert result["dsp"] == 1
     assert result["cells"]["MULT18X18D"] == 1
     assert result["latency"] == 2
@@ -200,29 +201,31 @@ def test_smoke_shape_ecp5(tmp_path, monkeypatch):
         raise AssertionError("a tool ran on a cache hit")
     for module in (synth_module, sim_tools):
         monkeypatch.setattr(module, "run", fail)
-    assert synth("shape", config=block.config, workdir=tmp_path)["cached"] is True
+    assert synth("shape", config=block.config)["cached"] is True
 
 
-def test_pipelined_ecp5_products_are_dsps_with_their_registers(tmp_path):
+@pytest.mark.needs_yosys
+def test_pipelined_ecp5_products_are_dsps_with_their_registers():
     """Figure 7d with k = 1 at depth 3: the squarer is a MULT18X18D with the t register as its
     input registers and the product's as its output register; below depth 3 Yosys maps it."""
     block = get_block("shape", k=1, pipeline=3)
     assert dsp_mapping_of(block, "ecp5") == "ecp5" and dsp_mapping_of(block, "ice40") is None
     assert dsp_mapping_of(get_block("shape", k=1, pipeline=2), "ecp5") is None
-    result = synth("shape", config=block.config, workdir=tmp_path)
+    result = synth("shape", config=block.config)
     assert result["dsp"] == 1 and result["dsp_untimed"] == 1
     assert result["latency"] == 3
     # the DSP holds both registers: t (16 bits) and t·t (32) leave the fabric
-    plain = synth("shape", config=get_block("shape", k=1).config, workdir=tmp_path)
+    plain = synth("shape", config=get_block("shape", k=1).config)
     assert plain["dsp_untimed"] == 0 and plain["fmax_bound_mhz"] == plain["fmax_mhz"]
     assert result["fmax_bound_mhz"] == min(result["fmax_mhz"], 1000 / DSP_INTERNAL_NS)
     assert "nextpnr does not time the multiply between them" in markdown([result])
 
 
 @pytest.mark.slow
-def test_ice40_small_block(tmp_path):
+@pytest.mark.needs_yosys
+def test_ice40_small_block():
     block = get_block("shape", k=1)
-    result = synth("shape", config=block.config, target="ice40", workdir=tmp_path)
+    result = synth("shape", config=block.config, target="ice40")
     assert result["device"] == TARGETS["ice40"].default_device == "up5k"
     assert result["dsp"] == 1  # synth_ice40 -dsp: one SB_MAC16 for the 16×16 squarer
     assert result["carry"] > 0 and result["lut4"] > 0
@@ -231,9 +234,10 @@ def test_ice40_small_block(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.needs_yosys
 @pytest.mark.parametrize("name", ["fig7", "fig8"])
-def test_lyon_datapaths_ecp5(name, tmp_path):
-    result = synth(name, freq=150, workdir=tmp_path)
+def test_lyon_datapaths_ecp5(name):
+    result = synth(name, freq=150)
     assert result["latency"] == get_block(name).latency
     assert result["dsp"] > 0 and result["ff"] > 0
     assert result["placed"]["TRELLIS_FF"][0] == result["ff"] + _harness_ffs(get_block(name))

@@ -68,10 +68,11 @@ def test_extremes_amaranth(block):
     _check_rows("amaranth", block)
 
 
-@pytest.mark.verilator
+@pytest.mark.needs_verilator
 @pytest.mark.parametrize("block", block_names())
 def test_extremes_verilator(block):
-    _check_rows("verilator", block)
+    # verilator-fast: the cocotb back end checks the same Verilog (tests/conftest.py COCOTB_TESTS)
+    _check_rows("verilator-fast", block)
 
 
 def test_rtl_mismatch_is_attributed_to_its_row(monkeypatch):
