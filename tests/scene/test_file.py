@@ -212,9 +212,14 @@ def test_files(tmp_path):
         load_scene(scene)
 
 
-def test_readme_shows_the_example_scenes_whole():
-    with open(os.path.join(SCENES, "..", "README.md"), encoding="utf-8") as file:
-        readme = file.read()
+def test_the_scene_page_shows_the_example_scenes_whole():
+    # the page includes the files themselves, whole (no :lines: or :start-after:), so the
+    # reference a user reads is the scene that is shipped
+    with open(os.path.join(SCENES, "..", "docs", "scenes.rst"), encoding="utf-8") as file:
+        page = file.read()
     for name in ("lyon-balls", "local-mesh"):
-        with open(os.path.join(SCENES, f"{name}.toml"), encoding="utf-8") as file:
-            assert f"```toml\n{file.read().rstrip()}\n```" in readme
+        include = f".. literalinclude:: ../scenes/{name}.toml\n"
+        assert include in page
+        options = page.split(include, 1)[1].split("\n\n", 1)[0]
+        assert all(option.strip().split(":")[1] in ("language", "caption")
+                   for option in options.splitlines() if option.strip()), options
