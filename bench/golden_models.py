@@ -1,6 +1,6 @@
-"""Two rival models of the Figure 7 datapath, for :mod:`bench.golden`.
+"""Rival models of the Figure 7 datapath, for :mod:`bench.golden`.
 
-Both compute what :func:`phongfx.golden.datapath.datapath` computes for a Figure 7
+The first two compute what :func:`phongfx.golden.datapath.datapath` computes for a Figure 7
 configuration (Lyon 1993, Figures 7a–d: LIRP ``N' = (1-a)N0 + aN1``, normalizer
 ``g2 = 1 + (y + y²)/2`` with ``y = 1 - N'·N'``, reflect ``R = 2(N·V)N - V``,
 ``D = R - L``, ``2x = n·D·D``, shape ``f_k``; and the diffuse term ``max(N·L, 0)``),
@@ -8,6 +8,10 @@ with the same formats, rounding and saturation, so their outputs are bit-identic
 
 * :func:`fig7_apytypes` with ``apytypes`` arrays (C++, exact fixed-point growth);
 * :func:`fig7_loop` one pixel at a time on plain Python ints, as in Lyon's appendix.
+
+The third, :func:`fig7_float`, is the same formula in float64 with nothing quantized: not
+bit-identical, but the speed a bit-exact model is held against (it does the same array
+passes, without the roundings and range checks).
 
 Unsigned formats are held by apytypes as signed ones with the same top (one more
 integer bit for the sign); nothing on this path quantizes a negative value into
@@ -18,7 +22,7 @@ never differ.
 
 import numpy as np
 
-__all__ = ["fig7_apytypes", "fig7_loop"]
+__all__ = ["fig7_apytypes", "fig7_loop", "fig7_float"]
 
 
 def _check(config):
@@ -142,3 +146,36 @@ def fig7_loop(config, raw):
             out[f"diff{index}"].append(0 if lit < 0 else _quantize(
                 lit, n_fmt.frac_bits + fl - diff_fmt.frac_bits, diff_fmt, config.diffuse.rounding))
     return {key: np.array(value, dtype=np.int64) for key, value in out.items()}
+
+
+def fig7_float(config, raw):
+    """Figure 7's formula on the values of the raw input codes, in float64 numpy, nothing
+    quantized: LIRP, ``g2`` normalizer, reflect, and per light ``D = R - L``, ``2x = n·D·D``,
+    ``f_k`` (0 once ``x/2^k >= 1``) and ``max(N·L, 0)``; float ``spec<i>``, ``diff<i>`` out."""
+    _check(config)
+
+    def load(name):
+        return raw[name] * config.inputs[name][0].lsb
+
+    def dot(u, v):  # the X, Y, Z lanes added as the golden model adds them
+        w = u * v
+        return w[:, 0] + w[:, 1] + w[:, 2]
+
+    a = load("a")[:, None]
+    p = load("n0") * (1 - a) + load("n1") * a
+    y = 1 - dot(p, p)
+    normal = p * (1 + (y + y * y) / 2)[:, None]
+    view = load("v")
+    r = (2 * dot(normal, view))[:, None] * normal - view
+    shininess, k = load("n"), config.shape.k
+    out = {}
+    for index in range(config.lights):
+        light = load(f"l{index}")
+        d = r - light
+        v = shininess * dot(d, d) / 2 ** (k + 1)
+        t = 1 - v
+        for _ in range(k):
+            t = t * t
+        out[f"spec{index}"] = np.where(v >= 1, 0.0, t)
+        out[f"diff{index}"] = np.maximum(dot(normal, light), 0.0)
+    return out

@@ -10,6 +10,7 @@ Amaranth, so a block's golden model and its component read alike.
 
 import math
 from fractions import Fraction
+from functools import lru_cache
 
 import numpy as np
 
@@ -51,39 +52,77 @@ def quantize_raw(raw, frm, to, rounding, overflow, op="quantize"):
     frm, to = Format.parse(frm), Format.parse(to)
     check_rounding(rounding)
     check_overflow(overflow)
-    raw = _as_raw(raw)
+    # the codes need not lie in ``frm`` (from_float wraps codes of any size through here)
+    return _narrow(_as_raw(raw), frm, to, rounding, overflow, op, inside=False)
+
+
+def _narrow(raw, frm, to, rounding, overflow, op, inside):
+    """:func:`quantize_raw` of an int64 array, its arguments checked; ``inside``: every code
+    lies in ``frm`` (a :class:`Fixed`'s do), so the formats alone may show that none leaves ``to``."""
     drop = frm.frac_bits - to.frac_bits
     if drop > 0:
-        # split into kept part and dropped remainder: adding the rounding constant
-        # to the raw code first could overflow int64 for 63/64-bit formats
-        kept, rest = raw >> drop, raw & ((1 << drop) - 1)
-        half = 1 << (drop - 1)
-        if rounding == "round_half_up":
-            kept = kept + (rest >= half)
-        elif rounding == "round_half_even":
-            kept = kept + ((rest > half) | ((rest == half) & (kept & 1).astype(bool)))
-        raw = kept.astype(np.int64)
+        if rounding == "truncate":
+            raw = raw >> drop
+        elif rounding == "round_half_up" and _sum_fits(frm.max_raw, 1 << (drop - 1)):
+            # floor((x + half) / 2^drop) = floor(x / 2^drop) + (x mod 2^drop >= half): the
+            # split below in two passes instead of five, where the sum cannot pass int64
+            raw = raw + (1 << (drop - 1))
+            raw >>= drop
+        else:
+            # split into kept part and dropped remainder: adding the rounding constant
+            # to the raw code first could overflow int64 for 63/64-bit formats
+            kept, rest = raw >> drop, raw & ((1 << drop) - 1)
+            half = 1 << (drop - 1)
+            if rounding == "round_half_up":
+                kept += rest >= half
+            else:
+                kept += (rest > half) | ((rest == half) & (kept & 1).astype(bool))
+            raw = kept
     elif drop < 0:
         # a signed code of w bits moved left by k needs w+k bits, an unsigned one
         # w+k bits plus the sign bit int64 always has
         if frm.width - drop > (64 if frm.signed else 63):
             raise ValueError(f"{op}: {frm} moved to {-drop} more fraction bits does not fit in int64")
         raw = raw << -drop
-    bad = (raw < to.min_raw) | (raw > to.max_raw)
-    if np.any(bad):
+    if inside:
+        lo, hi = _reach(frm, drop, rounding != "truncate")
+        if lo >= to.min_raw and hi <= to.max_raw:
+            return raw  # no code of ``frm`` can leave ``to``: decided by the formats, not the data
+    if overflow == "wrap":
+        # keeping the low bits leaves a code inside ``to`` as it is: no need to find the others
+        if to.width < 64:  # 64 bits: int64 is already two's complement of that width
+            raw = raw & ((1 << to.width) - 1)
+            if to.signed:
+                # subtract 2**width in two halves: 2**63 itself is no int64
+                half = 1 << (to.width - 1)
+                raw = np.where(raw >= half, (raw - half) - half, raw)
+        return raw
+    # one min/max pair finds whether anything is out; the mask only when something is
+    if raw.size and (raw.min() < to.min_raw or raw.max() > to.max_raw):
         if overflow == "error":
+            bad = (raw < to.min_raw) | (raw > to.max_raw)
             first = raw[bad].flat[0] if raw.ndim else raw
             raise _overflow_error(op, to, int(np.count_nonzero(bad)), int(first))
-        if overflow == "saturate":
-            raw = np.clip(raw, to.min_raw, to.max_raw)
-        else:
-            if to.width < 64:  # 64 bits: int64 is already two's complement of that width
-                raw = raw & ((1 << to.width) - 1)
-                if to.signed:
-                    # subtract 2**width in two halves: 2**63 itself is no int64
-                    half = 1 << (to.width - 1)
-                    raw = np.where(raw >= half, (raw - half) - half, raw)
+        # np.clip's wrapper looks the dtype's limits up on every call: the two ufuncs
+        raw = np.maximum(raw, to.min_raw)
+        np.minimum(raw, to.max_raw, out=raw)
     return raw
+
+
+_INT64_MAX = (1 << 63) - 1
+
+
+def _sum_fits(top, addend):
+    return top + addend <= _INT64_MAX
+
+
+@lru_cache(maxsize=4096)
+def _reach(frm, drop, rounds):
+    """The raw codes ``frm``'s codes can become after moving ``drop`` fraction bits (rounding
+    up at most one step when ``rounds``): ``(lo, hi)``, exact Python ints."""
+    if drop > 0:
+        return frm.min_raw >> drop, (frm.max_raw >> drop) + (1 if rounds else 0)
+    return frm.min_raw << -drop, frm.max_raw << -drop
 
 
 def _overflow_error(op, to, count, first):
@@ -95,6 +134,7 @@ def _overflow_error(op, to, count, first):
         f"first offending value {first / to.one} (raw {first})")
 
 
+@lru_cache(maxsize=4096)
 def _raw_bound(bound, fmt, lower):
     """Exact raw bound for ``raw >= bound`` (``lower``) or ``raw <= bound``, as a Python int,
     or None when the format's whole range satisfies it, or "all" when none of it does."""
@@ -111,18 +151,21 @@ def check_range(name, value, lo, hi):
     """Refuse input values outside ``lo..hi`` (floats) with a message naming ``name``."""
     # exact bounds in raw codes: comparing int64 codes against float bounds rounds
     # the codes of formats wider than 53 bits
-    bad = np.zeros(value.raw.shape, dtype=bool)
-    for bound, lower in ((lo, True), (hi, False)):
-        raw = _raw_bound(bound, value.fmt, lower)
-        if raw == "all":
+    low, high = _raw_bound(lo, value.fmt, True), _raw_bound(hi, value.fmt, False)
+    raw = value.raw
+    if not raw.size or (low is None and high is None):
+        return value
+    if "all" not in (low, high) and (low is None or raw.min() >= low) and (high is None or raw.max() <= high):
+        return value  # one min/max pair: the mask below only to say what is wrong
+    bad = np.zeros(raw.shape, dtype=bool)
+    for raw_bound, lower in ((low, True), (high, False)):
+        if raw_bound == "all":
             bad[...] = True
-        elif raw is not None:
-            bad |= (value.raw < raw) if lower else (value.raw > raw)
-    if np.any(bad):
-        first = value.raw[bad].flat[0]
-        raise ValueError(f"{name} must be in {lo:g}..{hi:g}; {int(np.count_nonzero(bad))} value(s) "
-                         f"are not, first {int(first) * value.fmt.lsb:g} (raw {int(first)})")
-    return value
+        elif raw_bound is not None:
+            bad |= (raw < raw_bound) if lower else (raw > raw_bound)
+    first = raw[bad].flat[0]
+    raise ValueError(f"{name} must be in {lo:g}..{hi:g}; {int(np.count_nonzero(bad))} value(s) "
+                     f"are not, first {int(first) * value.fmt.lsb:g} (raw {int(first)})")
 
 
 class Fixed:
@@ -145,6 +188,20 @@ class Fixed:
             raise ValueError(
                 f"raw codes must lie in {self.fmt.min_raw}..{self.fmt.max_raw} for format "
                 f"{self.fmt}; {int(np.count_nonzero(bad))} do not, first {int(self.raw[bad].flat[0])}")
+
+    @classmethod
+    def _of(cls, raw, fmt):
+        """``raw`` in ``fmt`` without the range check of ``__init__``: for the results of this
+        class's own operations, which lie in ``fmt`` by construction (an exact operation's
+        format covers every result of its operands' formats; a quantize saturates, wraps or
+        raises).  The range check, two reductions per array, was a fifth of the model's time."""
+        if type(raw) is not np.ndarray:  # an operation on two 0-d arrays gives a numpy scalar
+            raw = _as_raw(raw)
+        # left writeable: a fresh result is nobody else's, and a view of an operand is a
+        # view of its read-only array, so read-only too
+        value = cls.__new__(cls)
+        value.fmt, value.raw = fmt, raw
+        return value
 
     @classmethod
     def from_float(cls, value, fmt, rounding="round_half_up", overflow="error"):
@@ -196,8 +253,7 @@ class Fixed:
     @classmethod
     def const(cls, value, fmt):
         """A scalar constant that ``fmt`` holds exactly (e.g. 1.0)."""
-        fmt = Format.parse(fmt)
-        return cls(fmt.exact_raw(value), fmt)
+        return _const(value, Format.parse(fmt))
 
     def to_float(self):
         return self.raw.astype(np.float64) * self.fmt.lsb
@@ -209,7 +265,7 @@ class Fixed:
         return len(self.raw)
 
     def __getitem__(self, index):
-        return Fixed(self.raw[index], self.fmt)
+        return Fixed._of(self.raw[index], self.fmt)
 
     @property
     def shape(self):
@@ -218,24 +274,25 @@ class Fixed:
     # -- exact arithmetic -------------------------------------------------------------------
 
     def _align(self, fmt):
-        return self.raw << (fmt.frac_bits - self.fmt.frac_bits)
+        shift = fmt.frac_bits - self.fmt.frac_bits
+        return self.raw << shift if shift else self.raw  # ``<< 0`` would copy the array
 
     def __add__(self, other):
         other = _coerce(other)
         fmt = self.fmt.add(other.fmt)
-        return Fixed(self._align(fmt) + other._align(fmt), fmt)
+        return Fixed._of(self._align(fmt) + other._align(fmt), fmt)
 
     def __sub__(self, other):
         other = _coerce(other)
         fmt = self.fmt.sub(other.fmt)
-        return Fixed(self._align(fmt) - other._align(fmt), fmt)
+        return Fixed._of(self._align(fmt) - other._align(fmt), fmt)
 
     def __mul__(self, other):
         other = _coerce(other)
-        return Fixed(self.raw * other.raw, self.fmt.mul(other.fmt))
+        return Fixed._of(self.raw * other.raw, self.fmt.mul(other.fmt))
 
     def __neg__(self):
-        return Fixed(-self.raw, self.fmt.neg())
+        return Fixed._of(-self.raw, self.fmt.neg())
 
     __radd__ = __add__
     __rmul__ = __mul__
@@ -251,25 +308,34 @@ class Fixed:
 
     def shift(self, amount):
         """Exact multiply by ``2**amount``: moves the point, not the bits."""
-        return Fixed(self.raw << self.fmt.shift_raw(amount), self.fmt.shift(amount))
+        move = self.fmt.shift_raw(amount)
+        return Fixed._of(self.raw << move if move else self.raw, self.fmt.shift(amount))
 
     def sum(self, axis=-1):
         """Exact sum along ``axis`` (an adder tree: the format grows as for repeated adds)."""
         count = self.raw.shape[axis]
-        fmt = self.fmt
-        for _ in range(count - 1):
-            fmt = fmt.add(self.fmt)
+        fmt = _sum_format(self.fmt, count)
         if 1 <= count <= 4:  # the X, Y, Z lanes: explicit adds beat numpy's reduction machinery
             lanes = np.moveaxis(self.raw, axis, 0)
-            total = lanes[0].copy()
-            for lane in lanes[1:]:
+            total = lanes[0].copy() if count == 1 else lanes[0] + lanes[1]
+            for lane in lanes[2:]:
                 total += lane
-            return Fixed(total, fmt)
-        return Fixed(self.raw.sum(axis=axis), fmt)
+            return Fixed._of(total, fmt)
+        return Fixed._of(self.raw.sum(axis=axis), fmt)
 
     def dot(self, other):
         """Exact dot product over the last axis (three multipliers and an adder tree)."""
-        return (self * _coerce(other)).sum(axis=-1)
+        other = _coerce(other)
+        a, b = self.raw, other.raw
+        count = a.shape[-1] if a.ndim else 0
+        if not 1 <= count <= 4 or b.ndim == 0 or b.shape[-1] != count:
+            return (self * other).sum(axis=-1)
+        # lane by lane: products of one lane at a time, no (count, 3) temporary
+        product = self.fmt.mul(other.fmt)
+        total = a[..., 0] * b[..., 0]
+        for lane in range(1, count):
+            total += a[..., lane] * b[..., lane]
+        return Fixed._of(total, _sum_format(product, count))
 
     def _compare_raw(self, other):
         # comparisons against a number use its exact raw code in this format.
@@ -295,14 +361,32 @@ class Fixed:
     def quantize(self, to, rounding, overflow, op="quantize"):
         """The one narrowing step: to format ``to`` with named rounding and overflow."""
         to = Format.parse(to)
-        return Fixed(quantize_raw(self.raw, self.fmt, to, rounding, overflow, op=op), to)
+        check_rounding(rounding)
+        check_overflow(overflow)
+        return Fixed._of(_narrow(self.raw, self.fmt, to, rounding, overflow, op, inside=True), to)
 
     def where(self, condition, other):
         """``self`` where ``condition`` else ``other``: a multiplexer; formats must match."""
         other = _coerce(other)
         if other.fmt != self.fmt:
             raise ValueError(f"where: both sides must have the same format, not {self.fmt} and {other.fmt}")
-        return Fixed(np.where(condition, self.raw, other.raw), self.fmt)
+        return Fixed._of(np.where(condition, self.raw, other.raw), self.fmt)
+
+
+@lru_cache(maxsize=1024)
+def _const(value, fmt):
+    """:meth:`Fixed.const`, made once per value and format: the golden models ask for the same
+    few constants (1, 0) on every call, and a Fixed is read-only."""
+    return Fixed(fmt.exact_raw(value), fmt)
+
+
+@lru_cache(maxsize=1024)
+def _sum_format(fmt, count):
+    """Format of the exact sum of ``count`` values of ``fmt`` (an adder tree)."""
+    total = fmt
+    for _ in range(count - 1):
+        total = total.add(fmt)
+    return total
 
 
 def _coerce(value):

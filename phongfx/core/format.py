@@ -29,6 +29,11 @@ OVERFLOWS = ("saturate", "wrap", "error")
 
 _PATTERN = re.compile(r"^(S?)([0-9]+)\.([0-9]+)$")
 
+#: The result format of an operation is asked for once per array operation of a golden
+#: model, thousands of times per batch, always for the same few formats: a Format is
+#: frozen, so each answer is kept (``lru_cache`` keys on the operands' fields).
+_operation = lru_cache(maxsize=8192)
+
 
 def check_rounding(rounding):
     if rounding not in ROUNDINGS:
@@ -145,12 +150,14 @@ class Format:
         scale = 1 << (frac_bits - self.frac_bits)
         return self.min_raw * scale, self.max_raw * scale
 
+    @_operation
     def add(self, other):
         """Format of ``self + other`` (binary points aligned)."""
         f = max(self.frac_bits, other.frac_bits)
         (alo, ahi), (blo, bhi) = self._aligned(f), other._aligned(f)
         return Format.covering(alo + blo, ahi + bhi, f)
 
+    @_operation
     def sub(self, other):
         """Format of ``self - other`` (always signed: hardware subtractors are)."""
         f = max(self.frac_bits, other.frac_bits)
@@ -158,11 +165,13 @@ class Format:
         result = Format.covering(alo - bhi, ahi - blo, f)
         return Format(result.int_bits, f, True) if not result.signed else result
 
+    @_operation
     def mul(self, other):
         """Format of ``self * other``: fraction bits add, range from the corner products."""
         corners = [a * b for a in (self.min_raw, self.max_raw) for b in (other.min_raw, other.max_raw)]
         return Format.covering(min(corners), max(corners), self.frac_bits + other.frac_bits)
 
+    @_operation
     def neg(self):
         """Format of ``-self``."""
         return Format.covering(-self.max_raw, -self.min_raw, self.frac_bits).as_signed()
@@ -170,6 +179,7 @@ class Format:
     def as_signed(self):
         return self if self.signed else Format(self.int_bits, self.frac_bits, True)
 
+    @_operation
     def shift(self, amount):
         """Format of ``self * 2**amount``: the raw bits do not move, only the point.
 
