@@ -35,6 +35,9 @@ def _as_raw(raw):
     return view
 
 
+_INT64_MAX = (1 << 63) - 1
+
+
 def quantize_raw(raw, frm, to, rounding, overflow, op="quantize"):
     """Narrow raw codes of format ``frm`` to format ``to``.
 
@@ -63,7 +66,7 @@ def _narrow(raw, frm, to, rounding, overflow, op, inside):
     if drop > 0:
         if rounding == "truncate":
             raw = raw >> drop
-        elif rounding == "round_half_up" and _sum_fits(frm.max_raw, 1 << (drop - 1)):
+        elif rounding == "round_half_up" and frm.max_raw + (1 << (drop - 1)) <= _INT64_MAX:
             # floor((x + half) / 2^drop) = floor(x / 2^drop) + (x mod 2^drop >= half): the
             # split below in two passes instead of five, where the sum cannot pass int64
             raw = raw + (1 << (drop - 1))
@@ -105,21 +108,13 @@ def _narrow(raw, frm, to, rounding, overflow, op, inside):
             raise _overflow_error(op, to, int(np.count_nonzero(bad)), int(first))
         # np.clip's wrapper looks the dtype's limits up on every call: the two ufuncs
         raw = np.maximum(raw, to.min_raw)
-        np.minimum(raw, to.max_raw, out=raw)
+        raw = np.minimum(raw, to.max_raw, out=raw if raw.ndim else None)
     return raw
-
-
-_INT64_MAX = (1 << 63) - 1
-
-
-def _sum_fits(top, addend):
-    return top + addend <= _INT64_MAX
 
 
 @lru_cache(maxsize=4096)
 def _reach(frm, drop, rounds):
-    """The raw codes ``frm``'s codes can become after moving ``drop`` fraction bits (rounding
-    up at most one step when ``rounds``): ``(lo, hi)``, exact Python ints."""
+    """``(lo, hi)``: what ``frm``'s codes can become moved ``drop`` fraction bits (rounded up one step at most)."""
     if drop > 0:
         return frm.min_raw >> drop, (frm.max_raw >> drop) + (1 if rounds else 0)
     return frm.min_raw << -drop, frm.max_raw << -drop
@@ -149,8 +144,7 @@ def _raw_bound(bound, fmt, lower):
 
 def check_range(name, value, lo, hi):
     """Refuse input values outside ``lo..hi`` (floats) with a message naming ``name``."""
-    # exact bounds in raw codes: comparing int64 codes against float bounds rounds
-    # the codes of formats wider than 53 bits
+    # exact raw bounds: int64 codes compared with float bounds round past 53 bits
     low, high = _raw_bound(lo, value.fmt, True), _raw_bound(hi, value.fmt, False)
     raw = value.raw
     if not raw.size or (low is None and high is None):
@@ -191,14 +185,12 @@ class Fixed:
 
     @classmethod
     def _of(cls, raw, fmt):
-        """``raw`` in ``fmt`` without the range check of ``__init__``: for the results of this
-        class's own operations, which lie in ``fmt`` by construction (an exact operation's
-        format covers every result of its operands' formats; a quantize saturates, wraps or
-        raises).  The range check, two reductions per array, was a fifth of the model's time."""
+        """``raw`` in ``fmt`` unchecked: the results of this class's operations lie in ``fmt`` by
+        construction (an exact operation's format covers its operands' whole ranges; a quantize
+        saturates, wraps or raises), and the check was a fifth of the golden models' time."""
         if type(raw) is not np.ndarray:  # an operation on two 0-d arrays gives a numpy scalar
             raw = _as_raw(raw)
-        # left writeable: a fresh result is nobody else's, and a view of an operand is a
-        # view of its read-only array, so read-only too
+        # left writeable: a fresh result is nobody else's; a view of an operand is read-only
         value = cls.__new__(cls)
         value.fmt, value.raw = fmt, raw
         return value
@@ -210,20 +202,21 @@ class Fixed:
         check_rounding(rounding)
         check_overflow(overflow)
         value = np.asarray(value, dtype=np.float64)
-        if not np.all(np.isfinite(value)):
+        # one min/max pair: whether every value is finite, and (value·2^frac and each
+        # rounding being monotone) the range of the codes, before any array pass
+        ends = np.array([value.min(), value.max()]) if value.size else np.zeros(2)
+        if not np.all(np.isfinite(ends)):
             raise ValueError(f"from_float: values must be finite to convert to {fmt}")
         with np.errstate(over="ignore", invalid="ignore"):
             # exact (a power of two) unless it overflows to inf, which is out of range anyway
-            scaled = value * float(fmt.one)
-            if rounding == "truncate":
-                raw = np.floor(scaled)
-            elif rounding == "round_half_up":
-                # floor(x + 0.5) in floats rounds the sum (0.49999999999999994 -> 1);
-                # the fraction x - floor(x) is exact
-                floor = np.floor(scaled)
-                raw = floor + (scaled - floor >= 0.5)
-            else:
-                raw = np.rint(scaled)  # ties to even
+            raw = _round_float(value * float(fmt.one), rounding)
+            lo, hi = _round_float(ends * float(fmt.one), rounding)
+        inside = lo >= fmt.min_raw and hi <= fmt.max_raw
+        if fmt.width <= 53 and (inside or overflow == "saturate"):
+            # the bounds are floats exactly: clip (saturating as below) and convert in two passes
+            if not inside:
+                raw = np.clip(raw, float(fmt.min_raw), float(fmt.max_raw))
+            return cls._of(raw.astype(np.int64), fmt)
         # the range checks in floats are exact: min_raw and max_raw + 1 are 0 or powers of two
         low, high = raw < float(fmt.min_raw), raw >= float(fmt.max_raw + 1)
         bad = low | high
@@ -313,8 +306,7 @@ class Fixed:
 
     def sum(self, axis=-1):
         """Exact sum along ``axis`` (an adder tree: the format grows as for repeated adds)."""
-        count = self.raw.shape[axis]
-        fmt = _sum_format(self.fmt, count)
+        count, fmt = self.raw.shape[axis], _sum_format(self.fmt, self.raw.shape[axis])
         if 1 <= count <= 4:  # the X, Y, Z lanes: explicit adds beat numpy's reduction machinery
             lanes = np.moveaxis(self.raw, axis, 0)
             total = lanes[0].copy() if count == 1 else lanes[0] + lanes[1]
@@ -326,13 +318,11 @@ class Fixed:
     def dot(self, other):
         """Exact dot product over the last axis (three multipliers and an adder tree)."""
         other = _coerce(other)
-        a, b = self.raw, other.raw
+        a, b, product = self.raw, other.raw, self.fmt.mul(other.fmt)
         count = a.shape[-1] if a.ndim else 0
         if not 1 <= count <= 4 or b.ndim == 0 or b.shape[-1] != count:
             return (self * other).sum(axis=-1)
-        # lane by lane: products of one lane at a time, no (count, 3) temporary
-        product = self.fmt.mul(other.fmt)
-        total = a[..., 0] * b[..., 0]
+        total = a[..., 0] * b[..., 0]  # lane by lane: no (count, 3) temporary of products
         for lane in range(1, count):
             total += a[..., lane] * b[..., lane]
         return Fixed._of(total, _sum_format(product, count))
@@ -371,6 +361,19 @@ class Fixed:
         if other.fmt != self.fmt:
             raise ValueError(f"where: both sides must have the same format, not {self.fmt} and {other.fmt}")
         return Fixed._of(np.where(condition, self.raw, other.raw), self.fmt)
+
+
+def _round_float(scaled, rounding):
+    """Float codes of ``scaled`` (a fresh array of values times ``2^frac``, overwritten)."""
+    if rounding == "truncate":
+        return np.floor(scaled)
+    if rounding == "round_half_up":
+        # floor(x + 0.5) in floats rounds the sum (0.49999999999999994 -> 1); x - floor(x) is exact
+        floor = np.floor(scaled)
+        scaled -= floor
+        floor += scaled >= 0.5
+        return floor
+    return np.rint(scaled)  # ties to even
 
 
 @lru_cache(maxsize=1024)
