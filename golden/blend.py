@@ -53,16 +53,17 @@ def blend(config, **ports):
     ValueError
         A ``material`` code outside ``0..materials − 1``.
     """
-    count = len(ports["spec0"])
+    # each table checked once against the coefficient format, then looked up per pixel (a
+    # coefficient ROM addressed by ``material``); with one material, its constants as they are
+    coef = config.coef_format
+    tables = [config.coefficients(m) for m in range(config.materials)]
+    ambient = Fixed(np.array([a for a, _, _ in tables], dtype=np.int64), coef)     # (materials, 3)
+    diffuse = Fixed(np.array([d for _, d, _ in tables], dtype=np.int64), coef)     # (materials, lights, 3)
+    specular = Fixed(np.array([s for _, _, s in tables], dtype=np.int64), coef)
     if config.materials > 1:
         index = check_range("material", ports["material"], 0, config.materials - 1).raw
     else:
-        index = np.zeros(count, dtype=np.int64)
-    coef = config.coef_format
-    tables = [config.coefficients(m) for m in range(config.materials)]
-    ambient = np.array([a for a, _, _ in tables], dtype=np.int64)         # (materials, 3)
-    diffuse = np.array([d for _, d, _ in tables], dtype=np.int64)         # (materials, lights, 3)
-    specular = np.array([s for _, _, s in tables], dtype=np.int64)
+        index = 0
 
     spec = []
     for i in range(config.lights):
@@ -74,10 +75,10 @@ def blend(config, **ports):
 
     out = {}
     for c, name in enumerate(CHANNELS):
-        acc = Fixed(ambient[index, c], coef)
+        acc = ambient[index, c]
         for i in range(config.lights):
             if config.diff:
-                acc = acc + ports[f"diff{i}"] * Fixed(diffuse[index, i, c], coef)
-            acc = acc + spec[i] * Fixed(specular[index, i, c], coef)
+                acc = acc + ports[f"diff{i}"] * diffuse[index, i, c]
+            acc = acc + spec[i] * specular[index, i, c]
         out[name] = acc.quantize(f"{config.bits}.0", config.rounding, "saturate", op=f"blend {name}")
     return out

@@ -7,12 +7,15 @@ with the pixel's material.  Nothing is narrowed between them: the blend takes th
 unit's output formats as they are.
 """
 
+import numpy as np
+
 from phongfx.core.registry import REGISTRY
 
 from .blend import blend
+from .chunks import chunked, stateless
 from .fixed import Fixed
 
-__all__ = ["shader", "shader_terms"]
+__all__ = ["shader", "shader_terms", "shader_raw"]
 
 
 def shader(config, **ports):
@@ -49,3 +52,19 @@ def shader_terms(config, **ports):
     if "material" in ports:
         terms["material"] = ports["material"]
     return terms
+
+
+def shader_raw(config, raw):
+    """:func:`shader` on raw input codes ``raw`` (``{port: int array}``): raw ``r``, ``g``,
+    ``b`` codes and, when the blend has them, each light's ``diff<i>`` term (the scene
+    compiler's backside test); a chunk of pixels at a time when the unit keeps no state
+    (:mod:`~phongfx.golden.chunks`: the same codes, faster)."""
+    def shade(part):
+        terms = shader_terms(config, **{name: Fixed(part[name], fmt) for name, (fmt, _) in config.inputs.items()})
+        out = {name: value.raw for name, value in blend(config.blend, **terms).items()}
+        if config.blend.diff:
+            out.update((f"diff{i}", terms[f"diff{i}"].raw) for i in range(config.blend.lights))
+        return out
+
+    raw = {name: np.asarray(raw[name], dtype=np.int64) for name in config.inputs}
+    return chunked(shade, raw) if stateless(raw) else shade(raw)

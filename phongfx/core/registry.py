@@ -22,9 +22,11 @@ __all__ = ["Entry", "Block", "REGISTRY", "get_block", "block_names"]
 
 
 #: What a :class:`Block` needs of the layers above, loaded by path as the faces are: the
-#: golden value type its raw codes become, and the marking of a component built only to be
-#: asked its latency (:func:`phongfx.hdl.block.unbuilt`).
+#: golden value type its raw codes become, the chunk-by-chunk run of a golden model
+#: (:mod:`phongfx.golden.chunks`), and the marking of a component built only to be asked
+#: its latency (:func:`phongfx.hdl.block.unbuilt`).
 FIXED = "phongfx.golden.fixed:Fixed"
+CHUNKS = "phongfx.golden.chunks"
 UNBUILT = "phongfx.hdl.block:unbuilt"
 
 
@@ -90,13 +92,20 @@ class Block:
     stimulus_function: object
     extremes_function: object
 
-    def golden(self, raw_inputs):
-        """Run the golden model on raw input codes; returns raw output codes (int64 arrays)."""
+    def golden(self, raw_inputs, whole=False):
+        """Run the golden model on raw input codes; returns raw output codes (int64 arrays).
+
+        A block without state runs :data:`phongfx.golden.chunks.CHUNK` pixels at a time
+        unless ``whole``: the same outputs, faster (:mod:`phongfx.golden.chunks`)."""
+        chunks = import_module(CHUNKS)
+        raw = {name: np.asarray(raw_inputs[name], dtype=np.int64) for name in self.config.inputs}
+        if whole or not chunks.stateless(raw):
+            return self._golden(raw)
+        return chunks.chunked(self._golden, raw)
+
+    def _golden(self, raw_inputs):
         fixed_type = _load(FIXED)
-        fixed = {}
-        for name, (fmt, lanes) in self.config.inputs.items():
-            raw = np.asarray(raw_inputs[name], dtype=np.int64)
-            fixed[name] = fixed_type(raw, fmt)
+        fixed = {name: fixed_type(raw_inputs[name], fmt) for name, (fmt, lanes) in self.config.inputs.items()}
         outputs = self.golden_function(self.config, **fixed)
         result = {}
         for name, (fmt, lanes) in self.config.outputs.items():

@@ -34,3 +34,20 @@ def test_extreme_rows_hold():
     assert len(rows) == 2
     for row in rows:
         assert row["golden"] == "pass" and row["rtl"] == "pass", row
+
+
+def test_shader_raw_gives_the_shader_codes_and_the_diffuse_terms_chunk_by_chunk():
+    from phongfx.golden.chunks import CHUNK
+    from phongfx.golden.shader import shader_raw
+
+    shader = get_block("shader")
+    raw = shader.stimulus(count=CHUNK + 500, seed=6)
+    out = shader_raw(shader.config, raw)
+    whole = shader.golden(raw, whole=True)
+    unit = get_block("fig7", config=shader.config.units[0]).golden(raw, whole=True)
+    assert set(out) == {"r", "g", "b", "diff0", "diff1"}
+    for name in "rgb":
+        assert np.array_equal(out[name], whole[name])
+    for name in ("diff0", "diff1"):
+        assert np.array_equal(out[name], unit[name])
+    assert len(out["r"]) > CHUNK and np.count_nonzero(out["diff0"]) > 100
