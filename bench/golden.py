@@ -3,8 +3,14 @@
 Run ``python -m bench.golden`` (``--help`` for sizes).  In one run it measures the whole
 Figure 7 datapath (Lyon 1993, Figures 6–7: LIRP, g2 normalizer, reflect, ``D·D``, ``2x``,
 shape, and the diffuse term, two lights), the Figure 8 datapath and the Euler unit of
-Hast et al. over spans, on 1, 4 and 16 Mpixel batches (10^6 pixels), against
+Hast et al. over spans, on 1, 4 and 16 Mpixel batches (10^6 pixels).  "ours" is
+``Block.golden`` as every caller runs it: a stateless datapath a chunk of
+:data:`~phongfx.golden.chunks.CHUNK` pixels at a time (:mod:`phongfx.golden.chunks`),
+"whole" the same model on the whole batch at once.  Figure 7 is measured against
 
+* :func:`fig7_float`: the same formula in float64 numpy with nothing quantized, run in
+  the same chunks and whole (the faster counts): the speed the bit-exact model is held
+  to, within 2×;
 * :func:`fig7_apytypes`: the same Figure 7 computation written with ``apytypes``
   (C++ arbitrary-precision fixed point, multithreaded), bit-identical to ours;
 * :func:`fig7_loop`: one pixel at a time in plain Python ints, in the style of Lyon's
@@ -32,10 +38,11 @@ import numpy as np
 
 from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
+from phongfx.golden.chunks import CHUNK, chunked
 
-from .golden_models import fig7_apytypes, fig7_loop
+from .golden_models import fig7_apytypes, fig7_float, fig7_loop
 
-__all__ = ["SIZES", "CHUNK", "inputs", "chunked", "measure", "peak_memory", "run", "table", "main"]
+__all__ = ["SIZES", "inputs", "measure", "peak_memory", "run", "table", "main"]
 
 #: Batch sizes in pixels.
 SIZES = (1_000_000, 4_000_000, 16_000_000)
@@ -76,30 +83,17 @@ def measure(*functions, repeats=1):
     return best
 
 
-#: Pixels per call of the chunked golden model: its int64 temporaries stay in cache.
-CHUNK = 1 << 16
+def _float(config, raw):
+    """:func:`fig7_float` in the chunks ours runs in."""
+    return chunked(lambda part: fig7_float(config, part), raw)
 
 
-def chunked(block, raw, chunk=CHUNK):
-    """``block.golden`` on ``chunk`` pixels at a time (a datapath without state), concatenated."""
-    count = len(next(iter(raw.values())))
-    out = None
-    for start in range(0, count, chunk):
-        part = block.golden({key: value[start:start + chunk] for key, value in raw.items()})
-        if out is None:  # written in place: no second copy of every output to join at the end
-            out = {key: np.empty((count, *value.shape[1:]), value.dtype) for key, value in part.items()}
-        for key, value in part.items():
-            out[key][start:start + len(value)] = value
-    return out
-
-
-_MODELS = {"golden": lambda block, raw: block.golden(raw),
-           "chunked": lambda block, raw: chunked(block, raw),
+_MODELS = {"ours": lambda block, raw: block.golden(raw),
+           "whole": lambda block, raw: block.golden(raw, whole=True),
+           "float64": lambda block, raw: _float(block.config, raw),
+           "float64_whole": lambda block, raw: fig7_float(block.config, raw),
            "apytypes": lambda block, raw: fig7_apytypes(block.config, raw),
            "loop": lambda block, raw: fig7_loop(block.config, raw)}
-
-
-_PROBE = {"ours": "golden", "chunked": "chunked", "apytypes": "apytypes"}
 
 
 def _probe(name, model, pixels):
@@ -152,46 +146,46 @@ def run(sizes=SIZES, loop_pixels=20_000, check_pixels=200_000, out_dir="build/be
     sample = inputs("fig7", check_pixels)
     ours = fig7.golden(sample)
     _same(ours, fig7_apytypes(fig7.config, sample), "apytypes Figure 7")
-    _same(ours, chunked(fig7, sample), "chunked golden Figure 7")
+    _same(ours, fig7.golden(sample, whole=True), "whole-batch golden Figure 7")
     loop_sample = {key: value[:loop_pixels] for key, value in sample.items()}
     looped = fig7_loop(fig7.config, loop_sample)
     (loop_seconds,) = measure(lambda: fig7_loop(fig7.config, loop_sample), repeats=2)
     loop_peak = peak_memory("fig7", "loop", loop_pixels)
     _same({k: v[:loop_pixels] for k, v in ours.items()}, looped, "per-pixel loop Figure 7")
-    say(f"bit-identical on {check_pixels} pixels (apytypes) and {loop_pixels} (loop)")
+    say(f"bit-identical on {check_pixels} pixels (apytypes, whole batch) and {loop_pixels} (loop)")
     rows = []
     for name in ("fig7", "fig8", "euler"):
         block = get_block(name)
         for pixels in sizes:
             raw = inputs(name, pixels)
             repeats = 3 if pixels <= 4_000_000 else 1
-            models = {"ours": lambda: block.golden(raw)}
-            if name != "euler":  # the Euler unit carries state from pixel to pixel: no cuts
-                models["chunked"] = lambda: chunked(block, raw)
-            if name == "fig7":
-                models["apytypes"] = lambda: fig7_apytypes(block.config, raw)
-                # the loop takes its turn too (on its small batch), under the same load
-                models["loop"] = lambda: fig7_loop(block.config, loop_sample)
-            times = dict(zip(models, measure(*models.values(), repeats=repeats)))
+            # the Euler unit carries state from pixel to pixel: never cut, so no "whole" apart
+            names = ["ours"] + (["whole"] if name != "euler" else [])
+            if name == "fig7":  # the loop takes its turn too (on its small batch), under the same load
+                names += ["float64", "float64_whole", "apytypes", "loop"]
+            runs = [(lambda m, r: lambda: _MODELS[m](block, r))(m, loop_sample if m == "loop" else raw)
+                    for m in names]
+            times = dict(zip(names, measure(*runs, repeats=repeats)))
             loop_seconds = min(loop_seconds, times.pop("loop", loop_seconds))
             row = {"datapath": name, "pixels": pixels}
             for model, seconds in times.items():
-                row.update({f"{model}_seconds": seconds, f"{model}_pixels_per_second": pixels / seconds,
-                            f"{model}_peak_bytes": peak_memory(name, _PROBE[model], pixels)})
+                row.update({f"{model}_seconds": seconds, f"{model}_pixels_per_second": pixels / seconds})
+                if model != "float64_whole":
+                    row[f"{model}_peak_bytes"] = peak_memory(name, model, pixels)
             if name == "fig7":
                 row["loop_pixels_per_second"] = loop_pixels / loop_seconds  # best so far
-                for model in ("ours", "chunked"):
-                    row[f"ratio_apytypes_{model}"] = times["apytypes"] / times[model]
-                    row[f"ratio_loop_{model}"] = row[f"{model}_pixels_per_second"] / row["loop_pixels_per_second"]
+                row["ratio_float64"] = times["ours"] / min(times["float64"], times["float64_whole"])
+                row["ratio_apytypes"] = times["apytypes"] / times["ours"]
+                row["ratio_loop"] = row["ours_pixels_per_second"] / row["loop_pixels_per_second"]
             rows.append(row)
             say(_line(row))
             del raw
     profile = _profile(fig7, inputs("fig7", min(sizes)))
     result = {"rows": rows, "loop": {"pixels": loop_pixels, "seconds": loop_seconds, "peak_bytes": loop_peak},
-              "check_pixels": check_pixels, "profile_fig7": profile,
+              "check_pixels": check_pixels, "chunk": CHUNK, "profile_fig7": profile,
               "apytypes": {"version": apytypes.__version__, "threads": apytypes.n_threads()},
               "numpy": np.__version__, "python": platform.python_version(), "machine": platform.machine(),
-              "targets": {"ratio_apytypes": 2.0, "ratio_loop": 100.0}}
+              "targets": {"ratio_float64": 2.0, "ratio_apytypes": 10.0, "ratio_loop": 100.0}}
     path = f"{out_dir}/golden.json"
     atomic_write(path, lambda tmp: open(tmp, "w").write(json.dumps(result, indent=2)))
     result["path"] = path
@@ -203,30 +197,33 @@ def _mpx(row, model):
 
 
 def _mib(row, model):
-    return f"{row[model + '_peak_bytes'] / 2**20:.0f}" if model + "_seconds" in row else "-"
+    return f" ({row[model + '_peak_bytes'] / 2**20:.0f})" if model + "_peak_bytes" in row else ""
 
 
 def _line(row):
     return (f"{row['datapath']:6s} {row['pixels'] / 1e6:5.1f} Mpx  Mpx/s: ours {_mpx(row, 'ours')}, "
-            f"chunked {_mpx(row, 'chunked')}, apytypes {_mpx(row, 'apytypes')}")
+            f"whole {_mpx(row, 'whole')}, float64 {_mpx(row, 'float64')} (whole {_mpx(row, 'float64_whole')}), "
+            f"apytypes {_mpx(row, 'apytypes')}")
 
 
 def table(result):
     """Markdown table of :func:`run`'s result."""
-    lines = ["| datapath | Mpixels | ours Mpx/s (MiB) | ours chunked Mpx/s (MiB) | apytypes Mpx/s (MiB) | "
-             "ours ÷ apytypes | chunked ÷ apytypes | ours ÷ loop | chunked ÷ loop |", "|---" * 9 + "|"]
+    models = ("ours", "whole", "float64", "float64_whole", "apytypes")
+    lines = ["| datapath | Mpixels | ours Mpx/s (MiB) | ours whole batch | float64 chunked | float64 whole | "
+             "apytypes | ours time ÷ float64 | ours ÷ apytypes | ours ÷ loop |", "|---" * 10 + "|"]
     for row in result["rows"]:
-        ratios = ["-"] * 4
+        ratios = ["-"] * 3
         if "apytypes_seconds" in row:
-            ratios = [f"{row['ratio_apytypes_ours']:.2f}", f"{row['ratio_apytypes_chunked']:.2f}",
-                      f"{row['ratio_loop_ours']:.0f}", f"{row['ratio_loop_chunked']:.0f}"]
-        cells = [f"{_mpx(row, m)} ({_mib(row, m)})" for m in ("ours", "chunked", "apytypes")]
+            ratios = [f"{row['ratio_float64']:.2f}", f"{row['ratio_apytypes']:.1f}", f"{row['ratio_loop']:.0f}"]
+        cells = [_mpx(row, m) + _mib(row, m) for m in models]
         lines.append(f"| {row['datapath']} | {row['pixels'] / 1e6:g} | " + " | ".join(cells + ratios) + " |")
-    loop = result["loop"]
+    loop, targets = result["loop"], result["targets"]
     lines += ["", f"Per-pixel loop: {loop['pixels'] / loop['seconds']:.0f} px/s on {loop['pixels']} pixels "
               f"({loop['peak_bytes'] / 2**20:.0f} MiB).  apytypes {result['apytypes']['version']} on "
-              f"{result['apytypes']['threads']} threads; ours single-threaded numpy, chunks of {CHUNK} pixels.  "
-              f"Targets: ours ≥ 2× apytypes, ≥ 100× the loop.",
+              f"{result['apytypes']['threads']} threads; ours and float64 single-threaded numpy, chunks of "
+              f"{result['chunk']} pixels.  Targets: ours within {targets['ratio_float64']:g}× the time of float64 "
+              f"(the faster of its two runs), ≥ {targets['ratio_apytypes']:g}× apytypes, "
+              f"≥ {targets['ratio_loop']:g}× the loop.",
               f"Where ours spends its time (Figure 7, {min(r['pixels'] for r in result['rows']) / 1e6:g} Mpx, "
               f"one call):"]
     lines += [f"- {p['share']:5.1%} {p['function']}" for p in result["profile_fig7"]]

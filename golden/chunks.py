@@ -20,8 +20,9 @@ import numpy as np
 
 __all__ = ["CHUNK", "stateless", "chunked"]
 
-#: Pixels per chunk: the best of 8K–128K on the Figure 7 datapath (``make bench``).
-CHUNK = 1 << 15
+#: Pixels per chunk: the best of 8K–128K for the Figure 7 datapath (measured with ``make bench``
+#: on a loaded 2-core machine; 16K–128K were within the noise of each other).
+CHUNK = 1 << 16
 
 
 def stateless(ports):

@@ -13,7 +13,7 @@ than 63 bits (unsigned) or 64 bits (signed) is refused.
 
 import re
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 __all__ = ["Format", "ROUNDINGS", "OVERFLOWS", "check_rounding", "check_overflow"]
 
@@ -77,6 +77,11 @@ class Format:
                 f"{limit} bits")
         if self.width == 0:
             raise ValueError("format 0.0 has no bits")
+        # hashed by every cached operation on it, thousands of times per golden-model call
+        object.__setattr__(self, "_hash", hash((self.int_bits, self.frac_bits, self.signed)))
+
+    def __hash__(self):
+        return self._hash
 
     @classmethod
     def parse(cls, text):
@@ -95,16 +100,18 @@ class Format:
     def __repr__(self):
         return f"Format({str(self)!r})"
 
-    @property
+    # the properties below are asked for on every array operation of a golden model; a
+    # Format is frozen, so each is computed once (kept in the instance, not a field)
+    @cached_property
     def width(self):
         """Total bits: ``n+m``, or ``1+n+m`` when signed."""
         return self.int_bits + self.frac_bits + (1 if self.signed else 0)
 
-    @property
+    @cached_property
     def min_raw(self):
         return -(1 << (self.int_bits + self.frac_bits)) if self.signed else 0
 
-    @property
+    @cached_property
     def max_raw(self):
         return (1 << (self.int_bits + self.frac_bits)) - 1
 
@@ -113,7 +120,7 @@ class Format:
         """Value of one raw step, ``2**-frac_bits``."""
         return 2.0 ** -self.frac_bits
 
-    @property
+    @cached_property
     def one(self):
         """Raw code of 1.0 (whether or not the format can hold it)."""
         return 1 << self.frac_bits
