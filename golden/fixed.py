@@ -4,7 +4,7 @@ A :class:`Fixed` is a numpy ``int64`` array of raw codes paired with its
 :class:`~phongfx.core.format.Format`.  Arithmetic is exact and the result format grows
 as the hardware's would (:meth:`Format.add`, :meth:`Format.mul`, ...); the only
 narrowing operation is :meth:`Fixed.quantize`, which names its rounding and its
-overflow policy.  :mod:`phongfx.hdl.fixed` implements the same ``quantize`` for
+overflow policy (the step itself, on raw codes, is :mod:`phongfx.golden.quantize`).  :mod:`phongfx.hdl.fixed` implements the same ``quantize`` for
 Amaranth, so a block's golden model and its component read alike.
 """
 
@@ -16,117 +16,9 @@ import numpy as np
 
 from phongfx.core.format import Format, check_overflow, check_rounding
 
+from .quantize import FixedOverflowError, as_raw, narrow, overflow_error, quantize_raw, round_float
+
 __all__ = ["Fixed", "FixedOverflowError", "quantize_raw", "check_range"]
-
-
-class FixedOverflowError(OverflowError):
-    """A ``quantize`` with ``overflow="error"`` met a value outside its format."""
-
-
-def _as_raw(raw):
-    """``raw`` as a read-only ``int64`` array; no copy when it already is one (the golden
-    model's results are fresh arrays, and copying every one was a quarter of its time),
-    so a caller must not change an array after wrapping it."""
-    array = np.asarray(raw)
-    if array.dtype.kind not in "iub":
-        raise TypeError(f"raw codes must be integers, not {array.dtype}")
-    view = array.astype(np.int64, copy=False).view()
-    view.flags.writeable = False
-    return view
-
-
-_INT64_MAX = (1 << 63) - 1
-
-
-def quantize_raw(raw, frm, to, rounding, overflow, op="quantize"):
-    """Narrow raw codes of format ``frm`` to format ``to``.
-
-    Parameters
-    ----------
-    raw : array of int64
-    frm, to : Format
-    rounding : {"truncate", "round_half_up", "round_half_even"}
-        Applied when ``to`` has fewer fraction bits.
-    overflow : {"saturate", "wrap", "error"}
-        Applied when the rounded value falls outside ``to``.
-    op : str
-        Name of the operation, for the error message.
-    """
-    frm, to = Format.parse(frm), Format.parse(to)
-    check_rounding(rounding)
-    check_overflow(overflow)
-    # the codes need not lie in ``frm`` (from_float wraps codes of any size through here)
-    return _narrow(_as_raw(raw), frm, to, rounding, overflow, op, inside=False)
-
-
-def _narrow(raw, frm, to, rounding, overflow, op, inside):
-    """:func:`quantize_raw` of an int64 array, its arguments checked; ``inside``: every code
-    lies in ``frm`` (a :class:`Fixed`'s do), so the formats alone may show that none leaves ``to``."""
-    drop = frm.frac_bits - to.frac_bits
-    if drop > 0:
-        if rounding == "truncate":
-            raw = raw >> drop
-        elif rounding == "round_half_up" and frm.max_raw + (1 << (drop - 1)) <= _INT64_MAX:
-            # floor((x + half) / 2^drop) = floor(x / 2^drop) + (x mod 2^drop >= half): the
-            # split below in two passes instead of five, where the sum cannot pass int64
-            raw = raw + (1 << (drop - 1))
-            raw >>= drop
-        else:
-            # split into kept part and dropped remainder: adding the rounding constant
-            # to the raw code first could overflow int64 for 63/64-bit formats
-            kept, rest = raw >> drop, raw & ((1 << drop) - 1)
-            half = 1 << (drop - 1)
-            if rounding == "round_half_up":
-                kept += rest >= half
-            else:
-                kept += (rest > half) | ((rest == half) & (kept & 1).astype(bool))
-            raw = kept
-    elif drop < 0:
-        # a signed code of w bits moved left by k needs w+k bits, an unsigned one
-        # w+k bits plus the sign bit int64 always has
-        if frm.width - drop > (64 if frm.signed else 63):
-            raise ValueError(f"{op}: {frm} moved to {-drop} more fraction bits does not fit in int64")
-        raw = raw << -drop
-    if inside:
-        lo, hi = _reach(frm, drop, rounding != "truncate")
-        if lo >= to.min_raw and hi <= to.max_raw:
-            return raw  # no code of ``frm`` can leave ``to``: decided by the formats, not the data
-    if overflow == "wrap":
-        # keeping the low bits leaves a code inside ``to`` as it is: no need to find the others
-        if to.width < 64:  # 64 bits: int64 is already two's complement of that width
-            raw = raw & ((1 << to.width) - 1)
-            if to.signed:
-                # subtract 2**width in two halves: 2**63 itself is no int64
-                half = 1 << (to.width - 1)
-                raw = np.where(raw >= half, (raw - half) - half, raw)
-        return raw
-    # one min/max pair finds whether anything is out; the mask only when something is
-    if raw.size and (raw.min() < to.min_raw or raw.max() > to.max_raw):
-        if overflow == "error":
-            bad = (raw < to.min_raw) | (raw > to.max_raw)
-            first = raw[bad].flat[0] if raw.ndim else raw
-            raise _overflow_error(op, to, int(np.count_nonzero(bad)), int(first))
-        # np.clip's wrapper looks the dtype's limits up on every call: the two ufuncs
-        raw = np.maximum(raw, to.min_raw)
-        raw = np.minimum(raw, to.max_raw, out=raw if raw.ndim else None)
-    return raw
-
-
-@lru_cache(maxsize=4096)
-def _reach(frm, drop, rounds):
-    """``(lo, hi)``: what ``frm``'s codes can become moved ``drop`` fraction bits (rounded up one step at most)."""
-    if drop > 0:
-        return frm.min_raw >> drop, (frm.max_raw >> drop) + (1 if rounds else 0)
-    return frm.min_raw << -drop, frm.max_raw << -drop
-
-
-def _overflow_error(op, to, count, first):
-    # ``first`` is the first offending raw code, an exact int (it may be past int64:
-    # int / int is correctly rounded where float(int) would overflow)
-    return FixedOverflowError(
-        f"{op}: {count} value(s) overflow format {to} "
-        f"(range {to.min_raw * to.lsb}..{to.max_raw * to.lsb}); "
-        f"first offending value {first / to.one} (raw {first})")
 
 
 @lru_cache(maxsize=4096)
@@ -176,7 +68,7 @@ class Fixed:
 
     def __init__(self, raw, fmt):
         self.fmt = Format.parse(fmt)
-        self.raw = _as_raw(raw)
+        self.raw = as_raw(raw)
         if self.raw.size and (self.raw.min() < self.fmt.min_raw or self.raw.max() > self.fmt.max_raw):
             bad = (self.raw < self.fmt.min_raw) | (self.raw > self.fmt.max_raw)
             raise ValueError(
@@ -189,7 +81,7 @@ class Fixed:
         construction (an exact operation's format covers its operands' whole ranges; a quantize
         saturates, wraps or raises), and the check was a fifth of the golden models' time."""
         if type(raw) is not np.ndarray:  # an operation on two 0-d arrays gives a numpy scalar
-            raw = _as_raw(raw)
+            raw = as_raw(raw)
         # left writeable: a fresh result is nobody else's; a view of an operand is read-only
         value = cls.__new__(cls)
         value.fmt, value.raw = fmt, raw
@@ -209,8 +101,8 @@ class Fixed:
             raise ValueError(f"from_float: values must be finite to convert to {fmt}")
         with np.errstate(over="ignore", invalid="ignore"):
             # exact (a power of two) unless it overflows to inf, which is out of range anyway
-            raw = _round_float(value * float(fmt.one), rounding)
-            lo, hi = _round_float(ends * float(fmt.one), rounding)
+            raw = round_float(value * float(fmt.one), rounding)
+            lo, hi = round_float(ends * float(fmt.one), rounding)
         inside = lo >= fmt.min_raw and hi <= fmt.max_raw
         if fmt.width <= 53 and (inside or overflow == "saturate"):
             # the bounds are floats exactly: clip (saturating as below) and convert in two passes
@@ -227,7 +119,7 @@ class Fixed:
                 first = raw.flat[index]
                 # past the float range a finite value is an integer: its code is exact
                 first = int(first) if np.isfinite(first) else int(value.flat[index]) * fmt.one
-                raise _overflow_error("from_float", fmt, int(np.count_nonzero(bad)), first)
+                raise overflow_error("from_float", fmt, int(np.count_nonzero(bad)), first)
             if overflow == "saturate":
                 codes = np.where(high, fmt.max_raw, np.where(low, fmt.min_raw, codes))
             else:
@@ -282,7 +174,7 @@ class Fixed:
 
     def __mul__(self, other):
         other = _coerce(other)
-        return Fixed._of(self.raw * other.raw, self.fmt.mul(other.fmt))
+        return Fixed._of(_product(self.raw, other.raw), self.fmt.mul(other.fmt))
 
     def __neg__(self):
         return Fixed._of(-self.raw, self.fmt.neg())
@@ -353,27 +245,35 @@ class Fixed:
         to = Format.parse(to)
         check_rounding(rounding)
         check_overflow(overflow)
-        return Fixed._of(_narrow(self.raw, self.fmt, to, rounding, overflow, op, inside=True), to)
+        return Fixed._of(narrow(self.raw, self.fmt, to, rounding, overflow, op, inside=True), to)
 
     def where(self, condition, other):
         """``self`` where ``condition`` else ``other``: a multiplexer; formats must match."""
         other = _coerce(other)
         if other.fmt != self.fmt:
             raise ValueError(f"where: both sides must have the same format, not {self.fmt} and {other.fmt}")
+        if isinstance(condition, np.ndarray) and condition.dtype == bool:
+            # a mux to 0 is a multiply by the condition: np.where branches on every element,
+            # 5-8× slower where the condition is as random as a backside test
+            if other.raw.ndim == 0 and other.raw == 0:
+                return Fixed._of(self.raw * condition, self.fmt)
+            if self.raw.ndim == 0 and self.raw == 0:
+                return Fixed._of(other.raw * ~condition, self.fmt)
         return Fixed._of(np.where(condition, self.raw, other.raw), self.fmt)
 
 
-def _round_float(scaled, rounding):
-    """Float codes of ``scaled`` (a fresh array of values times ``2^frac``, overwritten)."""
-    if rounding == "truncate":
-        return np.floor(scaled)
-    if rounding == "round_half_up":
-        # floor(x + 0.5) in floats rounds the sum (0.49999999999999994 -> 1); x - floor(x) is exact
-        floor = np.floor(scaled)
-        scaled -= floor
-        floor += scaled >= 0.5
-        return floor
-    return np.rint(scaled)  # ties to even
+def _product(a, b):
+    """``a * b``; a vector (count, 3) by a column (count, 1) lane by lane, as numpy's broadcast
+    of the length-1 axis runs its inner loop three values at a time (2-3× slower)."""
+    if a.ndim != 2 or b.ndim != 2 or len(a) != len(b) or (a.shape[1] == 1) == (b.shape[1] == 1):
+        return a * b
+    vector, column = (a, b[:, 0]) if b.shape[1] == 1 else (b, a[:, 0])
+    if vector.shape[1] > 4:
+        return a * b
+    out = np.empty(vector.shape, np.int64)
+    for lane in range(vector.shape[1]):
+        np.multiply(vector[:, lane], column, out=out[:, lane])
+    return out
 
 
 @lru_cache(maxsize=1024)
