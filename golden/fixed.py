@@ -16,6 +16,7 @@ import numpy as np
 
 from phongfx.core.format import Format, check_overflow, check_rounding
 
+from .chunks import CHUNK
 from .quantize import FixedOverflowError, as_raw, narrow, overflow_error, quantize_raw, round_float
 
 __all__ = ["Fixed", "FixedOverflowError", "quantize_raw", "check_range"]
@@ -100,15 +101,22 @@ class Fixed:
         if not np.all(np.isfinite(ends)):
             raise ValueError(f"from_float: values must be finite to convert to {fmt}")
         with np.errstate(over="ignore", invalid="ignore"):
-            # exact (a power of two) unless it overflows to inf, which is out of range anyway
-            raw = round_float(value * float(fmt.one), rounding)
             lo, hi = round_float(ends * float(fmt.one), rounding)
         inside = lo >= fmt.min_raw and hi <= fmt.max_raw
         if fmt.width <= 53 and (inside or overflow == "saturate"):
-            # the bounds are floats exactly: clip (saturating as below) and convert in two passes
-            if not inside:
-                raw = np.clip(raw, float(fmt.min_raw), float(fmt.max_raw))
-            return cls._of(raw.astype(np.int64), fmt)
+            # the bounds are floats exactly: clip (saturating as below) and convert, a chunk
+            # at a time so that the float temporaries stay in the CPU's cache
+            flat, out = value.reshape(-1), np.empty(value.size, np.int64)
+            for start in range(0, flat.size, CHUNK):
+                with np.errstate(over="ignore", invalid="ignore"):
+                    raw = round_float(flat[start:start + CHUNK] * float(fmt.one), rounding)
+                if not inside:
+                    np.clip(raw, float(fmt.min_raw), float(fmt.max_raw), out=raw)
+                out[start:start + CHUNK] = raw
+            return cls._of(out.reshape(value.shape), fmt)
+        with np.errstate(over="ignore", invalid="ignore"):
+            # exact (a power of two) unless it overflows to inf, which is out of range anyway
+            raw = round_float(value * float(fmt.one), rounding)
         # the range checks in floats are exact: min_raw and max_raw + 1 are 0 or powers of two
         low, high = raw < float(fmt.min_raw), raw >= float(fmt.max_raw + 1)
         bad = low | high
