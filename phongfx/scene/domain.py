@@ -349,7 +349,8 @@ def domain(spec, geometries=None):
     surface, cap, span_angle, ball, span_length = (_lyon_surface(spec, geometries) if lyon
                                                    else _mesh_surface(spec, names))
     tilt = _view_tilt(spec, ball)
-    view_cos_min = -1.0 if cap > 90.0 else max(-1.0, math.cos(math.radians(min(90.0 + cap + tilt, 180.0))))
+    # N within 90° + β of the view axis, V within γ: N·V >= cos(90° + β + γ) = -sin(β + γ)
+    view_cos_min = -math.sin(math.radians(cap + tilt)) if cap <= 90.0 and cap + tilt < 90.0 else -1.0
     derived = None
     if options.max_span_angle_deg is not None:
         derived, span_angle = span_angle, options.max_span_angle_deg

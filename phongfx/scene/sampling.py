@@ -10,49 +10,73 @@ that breaks a bound of the domain (a back-facing pose, an ``n1`` or ``N`` below
 
 import numpy as np
 
-from .mesh import unit
-
-__all__ = ["ENDS", "sample_chunk", "rotations", "random_poses", "cap"]
+__all__ = ["ENDS", "sample_chunk", "random_poses", "rotate", "cap", "span_end"]
 
 #: fraction of points with ``a`` exactly 0, and again exactly 1 (the span's end pixels)
 ENDS = 0.02
 _ROUNDS = 200  # redraws before a bound is declared unreachable (each keeps about half or more)
 
 
-def rotations(axes, radians):
-    """(P, 3, 3) rotations by ``radians`` (P,) about the unit ``axes`` (P, 3) (Rodrigues)."""
-    axes = np.broadcast_to(np.asarray(axes, dtype=np.float64), (len(radians), 3))
-    c, s = np.cos(radians)[:, None, None], np.sin(radians)[:, None, None]
-    x, y, z = axes[:, 0], axes[:, 1], axes[:, 2]
-    zero = np.zeros_like(x)
-    cross = np.stack([np.stack([zero, -z, y], -1), np.stack([z, zero, -x], -1),
-                      np.stack([-y, x, zero], -1)], 1)
-    return c * np.eye(3) + s * cross + (1 - c) * axes[:, :, None] * axes[:, None, :]
+def _dot(u, w):
+    """Row-wise dot products of (P, 3) arrays (einsum: a reduction over an axis of 3 is slow)."""
+    return np.einsum("ij,ij->i", u, w)
 
 
-def _directions(rng, count):
-    return unit(rng.standard_normal((count, 3)))
+def _unit(v):
+    """Each row of ``v`` (P, k) scaled to length 1."""
+    return v / np.maximum(np.sqrt(_dot(v, v)), 1e-300)[:, None]
+
+
+def _cross(u, w):
+    """Row-wise cross products of (P, 3) arrays (``np.cross`` is twice as slow)."""
+    out = np.empty(np.broadcast_shapes(u.shape, w.shape))
+    out[:, 0] = u[:, 1] * w[:, 2] - u[:, 2] * w[:, 1]
+    out[:, 1] = u[:, 2] * w[:, 0] - u[:, 0] * w[:, 2]
+    out[:, 2] = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
+    return out
+
+
+def _axis_angle(axes, radians):
+    """(P, 4) unit quaternions ``(w, x, y, z)`` of rotations by ``radians`` about unit ``axes``."""
+    half = np.asarray(radians, dtype=np.float64) / 2
+    axes = np.broadcast_to(np.asarray(axes, dtype=np.float64), (len(half), 3))
+    return np.concatenate([np.cos(half)[:, None], np.sin(half)[:, None] * axes], axis=1)
+
+
+def _product(p, q):
+    """Quaternion products ``p·q`` (rotation ``q`` first, then ``p``)."""
+    w1, v1, w2, v2 = p[:, :1], p[:, 1:], q[:, :1], q[:, 1:]
+    return np.concatenate([w1 * w2 - _dot(v1, v2)[:, None], w1 * v2 + w2 * v1 + _cross(v1, v2)], axis=1)
+
+
+def rotate(q, v):
+    """(P, 3) the rows of ``v`` turned by the unit quaternions ``q`` (P, 4)."""
+    t = 2 * _cross(q[:, 1:], v)
+    return v + q[:, :1] * t + _cross(q[:, 1:], t)
 
 
 def random_poses(domain, count, rng):
-    """(count, 3, 3) rotations drawn from the domain's pose set (module docstring of
-    :mod:`phongfx.scene.domain`)."""
+    """(count, 4) unit quaternions drawn from the domain's pose set (module docstring of
+    :mod:`phongfx.scene.domain`): ``"motion"`` a uniform angle about the axis, ``"any"``
+    uniform (a uniform unit quaternion is a Haar-uniform rotation), ``"still"`` a uniform
+    frame's pose, then a wobble about a uniform axis with the Haar density of its angle,
+    ``∝ 1 - cos θ``, up to ``wobble_degrees``."""
     if domain.pose == "motion":
         lo, hi = domain.degrees
-        return rotations(domain.axis, np.radians(rng.uniform(lo, hi, count)))
-    if domain.pose == "any":  # a uniform unit quaternion is a uniform (Haar) rotation
-        w, x, y, z = unit(rng.standard_normal((count, 4))).T
-        return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
-                         np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
-                         np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
-    frame = np.radians(np.asarray(domain.still_degrees))[rng.integers(len(domain.still_degrees), size=count)]
-    base = rotations(domain.axis, frame)
-    # Haar measure restricted to angles <= wobble: density of the angle ∝ 1 - cos θ
+        return _axis_angle(domain.axis, np.radians(rng.uniform(lo, hi, count)))
+    if domain.pose == "any":
+        return _unit(rng.standard_normal((count, 4)))
+    frames = np.radians(np.asarray(domain.still_degrees))
+    base = _axis_angle(domain.axis, frames[rng.integers(len(frames), size=count)])
     top = np.radians(domain.wobble_degrees)
     grid = np.linspace(0.0, top, 1025)
     cdf = grid - np.sin(grid)
     angle = np.interp(rng.random(count) * cdf[-1], cdf, grid) if top > 0 else np.zeros(count)
-    return rotations(_directions(rng, count), angle) @ base
+    return _product(_axis_angle(_directions(rng, count), angle), base)
+
+
+def _directions(rng, count):
+    return _unit(rng.standard_normal((count, 3)))
 
 
 def cap(centre, degrees, rng):
@@ -63,42 +87,49 @@ def cap(centre, degrees, rng):
     sin = np.sqrt(np.maximum(1 - cos * cos, 0.0))
     phi = rng.uniform(0, 2 * np.pi, count)
     helper = np.where((np.abs(centre[:, 0]) < 0.9)[:, None], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0])
-    b1 = unit(np.cross(centre, helper))
-    b2 = np.cross(centre, b1)
+    b1 = _unit(_cross(centre, helper))
+    b2 = _cross(centre, b1)
     return (cos[:, None] * centre + (sin * np.cos(phi))[:, None] * b1
             + (sin * np.sin(phi))[:, None] * b2)
 
 
-def _rotate(r, v):
-    return np.einsum("pij,pj->pi", r, v)
+def _front_z(q, f):
+    """(P,) the eye-space z of the rows of ``f`` turned by ``q``: :func:`rotate`'s third
+    component alone, all the face-culling test needs."""
+    w, x, y, z = q.T
+    tx, ty = 2 * (y * f[:, 2] - z * f[:, 1]), 2 * (z * f[:, 0] - x * f[:, 2])
+    tz = 2 * (x * f[:, 1] - y * f[:, 0])
+    return f[:, 2] + w * tz + x * ty - y * tx
 
 
 def _mesh_points(domain, material, rng):
-    """(n0, surface point) of area-weighted faces of each point's material under random poses,
-    redrawn until the turned face faces the viewer."""
+    """(n0, surface point) at uniform points of area-weighted faces of each point's material
+    under random poses, redrawn until the turned face faces the viewer."""
     s = domain.surface
-    count = len(material)
-    n0, point = np.empty((count, 3)), np.empty((count, 3))
-    pending = np.arange(count)
-    for _ in range(_ROUNDS):
-        if not len(pending):
-            return n0, point
-        face = np.empty(len(pending), dtype=np.int64)
-        for m in np.unique(material[pending]):
-            mine = material[pending] == m
-            faces = np.flatnonzero(s.material == m)
-            weight = np.cumsum(s.areas[faces])
-            pick = np.searchsorted(weight, rng.random(int(mine.sum())) * weight[-1], side="right")
-            face[mine] = faces[np.minimum(pick, len(faces) - 1)]
-        r1, r2 = np.sqrt(rng.random(len(pending))), rng.random(len(pending))
-        bary = np.stack([1 - r1, r1 * (1 - r2), r1 * r2], -1)[:, :, None]
-        corners = s.faces[face]
-        pose = random_poses(domain, len(pending), rng)
-        front = _rotate(pose, s.face_normals[face])[:, 2] > 0
-        n0[pending] = _rotate(pose, unit(np.sum(bary * s.normals[corners], 1)))
-        point[pending] = _rotate(pose, np.sum(bary * s.vertices[corners], 1))
-        pending = pending[~front]
-    raise ValueError(f"no face of the scene faces the viewer under pose {domain.pose!r}; the domain is empty")
+    n0, point = np.empty((len(material), 3)), np.empty((len(material), 3))
+    for m in np.unique(material):
+        faces = np.flatnonzero(s.material == m)
+        weight = np.cumsum(s.areas[faces])
+        pending = np.flatnonzero(material == m)
+        for _ in range(_ROUNDS):
+            if not len(pending):
+                break
+            # draw about twice what is missing at once: about half the faces face the viewer
+            draw = 2 * len(pending) + 64
+            face = faces[np.minimum(np.searchsorted(weight, rng.random(draw) * weight[-1], side="right"),
+                                    len(faces) - 1)]
+            pose = random_poses(domain, draw, rng)
+            keep = np.flatnonzero(_front_z(pose, s.face_normals[face]) > 0)[:len(pending)]
+            face, pose, done, pending = face[keep], pose[keep], pending[:len(keep)], pending[len(keep):]
+            r1, r2 = np.sqrt(rng.random(len(done))), rng.random(len(done))
+            bary = np.stack([1 - r1, r1 * (1 - r2), r1 * r2], -1)[:, :, None]
+            corners = s.faces[face]
+            n0[done] = rotate(pose, _unit(np.einsum("pkj,pkj->pj", bary, s.normals[corners])))
+            point[done] = rotate(pose, np.einsum("pkj,pkj->pj", bary, s.vertices[corners]))
+        if len(pending):
+            raise ValueError(f"no face of material {domain.materials[m][0]!r} faces the viewer under "
+                             f"pose {domain.pose!r}; the domain is empty")
+    return n0, point
 
 
 def _lyon_points(domain, rng, count):
@@ -116,15 +147,15 @@ def _in_ball(domain, rng, count):
     return centre + _directions(rng, count) * (radius * np.cbrt(rng.random(count)))[:, None]
 
 
-def _span_end(domain, x0, rng):
+def span_end(domain, x0, rng):
     """``x0 + d·u``: ``u`` uniform in the eye-space xz plane (spans are horizontal),
     ``d`` uniform in [-max_span_length, max_span_length] cut to stay in the ball."""
     count = len(x0)
     psi = rng.uniform(0, 2 * np.pi, count)
     u = np.stack([np.cos(psi), np.zeros(count), np.sin(psi)], -1)
     rel = x0 - np.asarray(domain.ball[0])
-    b = np.sum(rel * u, -1)
-    root = np.sqrt(np.maximum(b * b - (np.sum(rel * rel, -1) - domain.ball[1] ** 2), 0.0))
+    b = _dot(rel, u)
+    root = np.sqrt(np.maximum(b * b - (_dot(rel, rel) - domain.ball[1] ** 2), 0.0))
     lo = np.maximum(-domain.max_span_length, np.minimum(-b - root, 0.0))
     hi = np.minimum(domain.max_span_length, np.maximum(-b + root, 0.0))
     return x0 + (lo + (hi - lo) * rng.random(count))[:, None] * u
@@ -133,7 +164,7 @@ def _span_end(domain, x0, rng):
 def _toward(kind, vector, points):
     if kind in ("directional", "infinity"):
         return [np.broadcast_to(np.asarray(vector, dtype=np.float64), p.shape) for p in points]
-    return [unit(np.asarray(vector) - p) for p in points]
+    return [_unit(np.asarray(vector) - p) for p in points]
 
 
 def _second_normal(domain, n0, a, views, rng):
@@ -146,16 +177,15 @@ def _second_normal(domain, n0, a, views, rng):
         if not len(pending):
             break
         got = cap(n0[pending], domain.max_span_angle_deg, rng)
-        normal = unit((1 - a[pending, None]) * n0[pending] + a[pending, None] * got)
+        normal = _unit((1 - a[pending, None]) * n0[pending] + a[pending, None] * got)
         ok = np.ones(len(pending), dtype=bool)
-        if domain.view_cos_min > -1:
-            for v in views:
-                for n in (got, normal):
-                    ok &= np.sum(n * v[pending], -1) >= domain.view_cos_min
+        for v in views:  # a camera at infinity: one fixed vector
+            for n in (got, normal):
+                ok &= (n @ v if v.ndim == 1 else _dot(n, v[pending])) >= domain.view_cos_min
         n1[pending[ok]] = got[ok]
         pending = pending[~ok]
     a = a[:, None]
-    return n1, unit((1 - a) * n0 + a * n1)
+    return n1, _unit((1 - a) * n0 + a * n1)
 
 
 def sample_chunk(domain, count, rng):
@@ -178,7 +208,7 @@ def sample_chunk(domain, count, rng):
             n[mine] = values[rng.integers(len(values), size=int(mine.sum()))]
         n0, surface = _mesh_points(domain, material, rng)
     x0 = np.where((rng.random(count) < 0.5)[:, None], surface, _in_ball(domain, rng, count))
-    x1 = _span_end(domain, x0, rng)
+    x1 = span_end(domain, x0, rng)
     draw = rng.random(count)
     a = np.where(draw < ENDS, 0.0, np.where(draw >= 1 - ENDS, 1.0, rng.random(count)))
     position = (1 - a)[:, None] * x0 + a[:, None] * x1
@@ -188,7 +218,9 @@ def sample_chunk(domain, count, rng):
         views = _toward("point", path[rng.integers(len(path), size=count)], points)
     else:
         views = _toward(domain.camera[0], domain.camera[1], points)
-    n1, normal = _second_normal(domain, n0, a, views, rng)
+    checks = [] if domain.view_cos_min <= -1 else (
+        [np.asarray(domain.camera[1], dtype=np.float64)] if views[0].strides[0] == 0 else views)
+    n1, normal = _second_normal(domain, n0, a, checks, rng)
     if all(kind == "directional" for kind, _, _ in domain.lights):
         fixed = np.array([vector for _, vector, _ in domain.lights], dtype=np.float64)[:, None, :]
         l0 = l1 = light = np.broadcast_to(fixed, (len(domain.lights), count, 3))
