@@ -10,11 +10,14 @@ that breaks a bound of the domain (a back-facing pose, an ``n1`` or ``N`` below
 
 import numpy as np
 
-__all__ = ["ENDS", "sample_chunk", "random_poses", "rotate", "cap", "span_end"]
+__all__ = ["ENDS", "GROUP", "sample_chunk", "random_poses", "rotate", "cap", "span_end"]
 
 #: fraction of points with ``a`` exactly 0, and again exactly 1 (the span's end pixels)
 ENDS = 0.02
 _ROUNDS = 200  # redraws before a bound is declared unreachable (each keeps about half or more)
+#: points that share one pose (drawn per group, so that the faces facing the viewer under
+#: it are found once for all of them rather than by rejecting back faces point by point)
+GROUP = 16
 
 
 def _dot(u, w):
@@ -93,42 +96,53 @@ def cap(centre, degrees, rng):
             + (sin * np.sin(phi))[:, None] * b2)
 
 
-def _front_z(q, f):
-    """(P,) the eye-space z of the rows of ``f`` turned by ``q``: :func:`rotate`'s third
-    component alone, all the face-culling test needs."""
+def _matrices(q):
+    """(G, 3, 3) rotation matrices of the unit quaternions ``q`` (G, 4)."""
     w, x, y, z = q.T
-    tx, ty = 2 * (y * f[:, 2] - z * f[:, 1]), 2 * (z * f[:, 0] - x * f[:, 2])
-    tz = 2 * (x * f[:, 1] - y * f[:, 0])
-    return f[:, 2] + w * tz + x * ty - y * tx
+    return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+                     np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+                     np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
 
 
 def _mesh_points(domain, material, rng):
-    """(n0, surface point) at uniform points of area-weighted faces of each point's material
-    under random poses, redrawn until the turned face faces the viewer."""
+    """(n0, surface point) of each point: a pose of the pose set shared by :data:`GROUP`
+    points, a face of the point's material drawn by area and redrawn until it faces the
+    viewer under that pose (a pose under which a point's draws keep failing, one with almost
+    no face toward the viewer, is redrawn for its group), a uniform point of the face."""
     s = domain.surface
     n0, point = np.empty((len(material), 3)), np.empty((len(material), 3))
     for m in np.unique(material):
         faces = np.flatnonzero(s.material == m)
         weight = np.cumsum(s.areas[faces])
-        pending = np.flatnonzero(material == m)
-        for _ in range(_ROUNDS):
+        mine = np.flatnonzero(material == m)
+        groups = -(-len(mine) // GROUP)
+        turned = _matrices(random_poses(domain, groups, rng))
+        group = np.arange(groups * GROUP) // GROUP
+        local = np.empty(len(group), dtype=np.int64)
+        pending = np.arange(len(group))
+        for round in range(1, _ROUNDS + 1):
+            pick = np.minimum(np.searchsorted(weight, rng.random(len(pending)) * weight[-1], side="right"),
+                              len(faces) - 1)
+            ok = _dot(turned[group[pending], 2], s.face_normals[faces[pick]]) > 0
+            local[pending[ok]] = pick[ok]
+            pending = pending[~ok]
             if not len(pending):
                 break
-            # draw about twice what is missing at once: about half the faces face the viewer
-            draw = 2 * len(pending) + 64
-            face = faces[np.minimum(np.searchsorted(weight, rng.random(draw) * weight[-1], side="right"),
-                                    len(faces) - 1)]
-            pose = random_poses(domain, draw, rng)
-            keep = np.flatnonzero(_front_z(pose, s.face_normals[face]) > 0)[:len(pending)]
-            face, pose, done, pending = face[keep], pose[keep], pending[:len(keep)], pending[len(keep):]
-            r1, r2 = np.sqrt(rng.random(len(done))), rng.random(len(done))
-            bary = np.stack([1 - r1, r1 * (1 - r2), r1 * r2], -1)[:, :, None]
-            corners = s.faces[face]
-            n0[done] = rotate(pose, _unit(np.einsum("pkj,pkj->pj", bary, s.normals[corners])))
-            point[done] = rotate(pose, np.einsum("pkj,pkj->pj", bary, s.vertices[corners]))
-        if len(pending):
+            if round % 32 == 0:
+                stuck = np.unique(group[pending])
+                turned[stuck] = _matrices(random_poses(domain, len(stuck), rng))
+                pending = np.flatnonzero(np.isin(group, stuck))
+        else:
             raise ValueError(f"no face of material {domain.materials[m][0]!r} faces the viewer under "
                              f"pose {domain.pose!r}; the domain is empty")
+        r1, r2 = np.sqrt(rng.random(len(group))), rng.random(len(group))
+        bary = np.stack([1 - r1, r1 * (1 - r2), r1 * r2], -1)[:, :, None]
+        corners = s.faces[faces[local]]
+        transposed = turned.transpose(0, 2, 1)
+        normal = _unit(np.einsum("pkj,pkj->pj", bary, s.normals[corners])).reshape(groups, GROUP, 3)
+        where = np.einsum("pkj,pkj->pj", bary, s.vertices[corners]).reshape(groups, GROUP, 3)
+        n0[mine] = np.matmul(normal, transposed).reshape(-1, 3)[:len(mine)]
+        point[mine] = np.matmul(where, transposed).reshape(-1, 3)[:len(mine)]
     return n0, point
 
 
@@ -171,21 +185,23 @@ def _second_normal(domain, n0, a, views, rng):
     """``(n1, N)``: ``n1`` uniform in the cap of the span angle about ``n0``, redrawn while it
     or ``N = unit((1-a)n0 + a·n1)`` meets some viewer vector below ``view_cos_min``; after
     the last round the few left take ``n1 = n0`` (a one-normal span, in the domain)."""
-    n1 = n0.copy()
-    pending = np.arange(len(n0))
+    n1, normal = n0.copy(), n0.copy()
+    pending = None  # every point in the first round, without gathering them
     for _ in range(_ROUNDS):
+        centre, t = (n0, a) if pending is None else (n0[pending], a[pending])
+        got = cap(centre, domain.max_span_angle_deg, rng)
+        mixed = _unit((1 - t)[:, None] * centre + t[:, None] * got)
+        ok = np.ones(len(centre), dtype=bool)
+        for v in views:  # a camera at infinity: one fixed vector
+            v = v if v.ndim == 1 or pending is None else v[pending]
+            for n in (got, mixed):
+                ok &= (n @ v if v.ndim == 1 else _dot(n, v)) >= domain.view_cos_min
+        index = np.flatnonzero(ok) if pending is None else pending[ok]
+        n1[index], normal[index] = got[ok], mixed[ok]
+        pending = np.flatnonzero(~ok) if pending is None else pending[~ok]
         if not len(pending):
             break
-        got = cap(n0[pending], domain.max_span_angle_deg, rng)
-        normal = _unit((1 - a[pending, None]) * n0[pending] + a[pending, None] * got)
-        ok = np.ones(len(pending), dtype=bool)
-        for v in views:  # a camera at infinity: one fixed vector
-            for n in (got, normal):
-                ok &= (n @ v if v.ndim == 1 else _dot(n, v[pending])) >= domain.view_cos_min
-        n1[pending[ok]] = got[ok]
-        pending = pending[~ok]
-    a = a[:, None]
-    return n1, _unit((1 - a) * n0 + a * n1)
+    return n1, normal
 
 
 def sample_chunk(domain, count, rng):
