@@ -198,7 +198,7 @@ class Domain:
                "view_cos_min": self.view_cos_min, "face_cap_deg": self.face_cap_deg,
                "view_tilt_deg": self.view_tilt_deg, "max_span_angle_deg": self.max_span_angle_deg,
                "max_span_angle_source": ("user claim ([domain] max_span_angle_deg)" if self.user_span_angle
-                                         else "derived from the meshes (sound)"),
+                                         else "derived (sound)"),
                "derived_max_span_angle_deg": (self.derived_span_angle_deg if self.user_span_angle
                                               else self.max_span_angle_deg),
                "min_normal_length": self.min_normal_length,
@@ -222,14 +222,18 @@ class Domain:
         else:
             pose = (f"each frame's pose turned by up to {self.wobble_degrees:g}° about any axis (a still "
                     f"scene's default: it holds the normals between the frame's pixels)")
-        if self.surface is not None and self.surface.lyon:
-            pose = "the fixed image of Lyon's spheres (they ignore rotation; normals: the front hemisphere)"
+        lyon = self.surface is not None and self.surface.lyon
+        if lyon:
+            pose = "the fixed image of Lyon's spheres (they ignore rotation)"
+            why = "front-hemisphere normals"
+        else:
+            why = f"faces' vertex normals within {self.face_cap_deg:.2f}° of the face's"
+        source = "the image's widest span" if lyon else "the widest triangle"
         claim = (f", the [domain] table's claim (derived: {self.derived_span_angle_deg:.2f}°)"
-                 if self.user_span_angle else ", from the widest triangle")
-        ns = "; ".join(f"{name}: n {_n_summary(values)}" for name, values in self.materials if values)
-        return (f"Poses: {pose}. Every presented normal has N·V >= {self.view_cos_min:.4f} "
-                f"(faces' vertex normals within {self.face_cap_deg:.2f}° of the face, viewer within "
-                f"{self.view_tilt_deg:.2f}° of the view axis); span ends at most "
+                 if self.user_span_angle else f", from {source}")
+        ns = "; ".join(f"{name}: n in {_n_text(values)}" for name, values in self.materials if values)
+        return (f"Poses: {pose}. Every presented normal has N·V >= {self.view_cos_min:.4f} ({why}, "
+                f"viewer within {self.view_tilt_deg:.2f}° of the view axis); span ends at most "
                 f"{self.max_span_angle_deg:.2f}° apart{claim}, so |(1-a)n0 + a·n1| >= "
                 f"{self.min_normal_length:.4f}, any a in [0, 1]; surface points within {self.ball[1]:.4g} "
                 f"of ({_vec(self.ball[0])}), span ends at most {self.max_span_length:.4g} apart; "
@@ -263,6 +267,11 @@ def _n_summary(values):
     if len(values) > 2 and values == list(range(values[0], values[-1] + 1)):
         return {"range": [values[0], values[-1]]}
     return values
+
+
+def _n_text(values):
+    summary = _n_summary(values)
+    return "{}..{}".format(*summary["range"]) if isinstance(summary, dict) else "{" + ", ".join(map(str, summary)) + "}"
 
 
 def _count(count):
@@ -350,7 +359,7 @@ def domain(spec, geometries=None):
                                                    else _mesh_surface(spec, names))
     tilt = _view_tilt(spec, ball)
     # N within 90° + β of the view axis, V within γ: N·V >= cos(90° + β + γ) = -sin(β + γ)
-    view_cos_min = -math.sin(math.radians(cap + tilt)) if cap <= 90.0 and cap + tilt < 90.0 else -1.0
+    view_cos_min = 0.0 - math.sin(math.radians(cap + tilt)) if cap <= 90.0 and cap + tilt < 90.0 else -1.0
     derived = None
     if options.max_span_angle_deg is not None:
         derived, span_angle = span_angle, options.max_span_angle_deg
