@@ -175,12 +175,16 @@ class Domain:
         pixel per span, ``span = arange(count)``, ``frame = -1``), drawn as the module
         docstring says; deterministic for (self, count, seed)."""
         count = _count(count)
-        parts = [sample_chunk(self, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
-                 for index, start in enumerate(range(0, count, CHUNK))]
-        if not parts:
-            parts = [sample_chunk(self, 0, np.random.default_rng((int(seed), 0)))]
-        return self._geometry({key: _join([p[key] for p in parts], 1 if key in _PER_LIGHT else 0)
-                               for key in parts[0]})
+        out = None
+        for index, start in enumerate(range(0, max(count, 1), CHUNK)):
+            part = sample_chunk(self, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
+            if out is None:  # filled chunk by chunk: no second copy of every array
+                out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
+            for key, value in part.items():
+                axis = 1 if key in _PER_LIGHT else 0
+                if out[key].strides[axis] != 0:
+                    np.moveaxis(out[key], axis, 0)[start:start + CHUNK] = np.moveaxis(value, axis, 0)
+        return self._geometry(out)
 
     def _geometry(self, g):
         count = len(g["a"])
@@ -244,17 +248,15 @@ class Domain:
 _PER_LIGHT = ("l0", "l1", "light")
 
 
-def _join(parts, axis):
-    """``parts`` concatenated along ``axis``; broadcasts of one fixed vector (stride 0 along
-    ``axis``: a directional light, a camera at infinity) stay a broadcast, not gigabytes."""
-    full = [p for p in parts if p.shape[axis]]
-    if len(full) == 1:
-        return full[0]
-    if full and all(p.strides[axis] == 0 for p in full):
-        shape = list(full[0].shape)
-        shape[axis] = sum(p.shape[axis] for p in full)
-        return np.broadcast_to(np.take(full[0], [0], axis=axis), shape)
-    return np.concatenate(parts, axis=axis)
+def _empty(value, count, axis):
+    """An array like ``value`` with ``count`` along ``axis``: a broadcast of its one vector
+    when ``value`` is one (stride 0 along ``axis``: a directional light, a camera at
+    infinity), which stays a broadcast rather than gigabytes of copies."""
+    shape = list(value.shape)
+    shape[axis] = count
+    if value.shape[axis] and value.strides[axis] == 0:
+        return np.broadcast_to(np.take(value, [0], axis=axis), shape)
+    return np.empty(shape, dtype=value.dtype)
 
 
 def _vec(v):

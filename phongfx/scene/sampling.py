@@ -137,10 +137,10 @@ def _mesh_points(domain, material, rng):
                              f"pose {domain.pose!r}; the domain is empty")
         r1, r2 = np.sqrt(rng.random(len(group))), rng.random(len(group))
         bary = np.stack([1 - r1, r1 * (1 - r2), r1 * r2], -1)[:, :, None]
-        corners = s.faces[faces[local]]
+        corners = s.faces[faces]  # (F, 3, 3) gathers of whole faces are cheaper than of corners
         transposed = turned.transpose(0, 2, 1)
-        normal = _unit(np.einsum("pkj,pkj->pj", bary, s.normals[corners])).reshape(groups, GROUP, 3)
-        where = np.einsum("pkj,pkj->pj", bary, s.vertices[corners]).reshape(groups, GROUP, 3)
+        normal = _unit(np.einsum("pkj,pkj->pj", bary, s.normals[corners][local])).reshape(groups, GROUP, 3)
+        where = np.einsum("pkj,pkj->pj", bary, s.vertices[corners][local]).reshape(groups, GROUP, 3)
         n0[mine] = np.matmul(normal, transposed).reshape(-1, 3)[:len(mine)]
         point[mine] = np.matmul(where, transposed).reshape(-1, 3)[:len(mine)]
     return n0, point
@@ -185,23 +185,31 @@ def _second_normal(domain, n0, a, views, rng):
     """``(n1, N)``: ``n1`` uniform in the cap of the span angle about ``n0``, redrawn while it
     or ``N = unit((1-a)n0 + a·n1)`` meets some viewer vector below ``view_cos_min``; after
     the last round the few left take ``n1 = n0`` (a one-normal span, in the domain)."""
-    n1, normal = n0.copy(), n0.copy()
-    pending = None  # every point in the first round, without gathering them
+    n1 = cap(n0, domain.max_span_angle_deg, rng)
+    normal = _unit((1 - a)[:, None] * n0 + a[:, None] * n1)
+    pending = np.flatnonzero(~_meets(domain, (n1, normal), views, None))
+    n1[pending], normal[pending] = n0[pending], n0[pending]  # until a redraw meets the bound
     for _ in range(_ROUNDS):
-        centre, t = (n0, a) if pending is None else (n0[pending], a[pending])
-        got = cap(centre, domain.max_span_angle_deg, rng)
-        mixed = _unit((1 - t)[:, None] * centre + t[:, None] * got)
-        ok = np.ones(len(centre), dtype=bool)
-        for v in views:  # a camera at infinity: one fixed vector
-            v = v if v.ndim == 1 or pending is None else v[pending]
-            for n in (got, mixed):
-                ok &= (n @ v if v.ndim == 1 else _dot(n, v)) >= domain.view_cos_min
-        index = np.flatnonzero(ok) if pending is None else pending[ok]
-        n1[index], normal[index] = got[ok], mixed[ok]
-        pending = np.flatnonzero(~ok) if pending is None else pending[~ok]
         if not len(pending):
             break
+        got = cap(n0[pending], domain.max_span_angle_deg, rng)
+        t = a[pending, None]
+        mixed = _unit((1 - t) * n0[pending] + t * got)
+        ok = _meets(domain, (got, mixed), views, pending)
+        n1[pending[ok]], normal[pending[ok]] = got[ok], mixed[ok]
+        pending = pending[~ok]
     return n1, normal
+
+
+def _meets(domain, normals, views, index):
+    """(P,) whether every one of ``normals`` has N·V >= view_cos_min for every one of ``views``
+    (a fixed vector, or per point, taken at ``index`` unless None)."""
+    ok = np.ones(len(normals[0]), dtype=bool)
+    for v in views:
+        v = v if v.ndim == 1 or index is None else v[index]
+        for n in normals:
+            ok &= (n @ v if v.ndim == 1 else _dot(n, v)) >= domain.view_cos_min
+    return ok
 
 
 def sample_chunk(domain, count, rng):
