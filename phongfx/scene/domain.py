@@ -75,7 +75,7 @@ SAMPLES_DEFAULT = 1_000_000
 FINAL_SAMPLES_DEFAULT = 10_000_000
 SEED_DEFAULT = 1
 #: points drawn per generator: ``sample(count, seed)`` is its chunks of this size, concatenated
-CHUNK = 1 << 18
+CHUNK = 1 << 16
 _KEYS = ("pose", "wobble_degrees", "max_span_angle_deg", "samples", "final_samples", "seed")
 _MAX_SAMPLES = 10 ** 10
 

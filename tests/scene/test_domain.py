@@ -173,8 +173,8 @@ def test_sampling_is_deterministic_and_chunked(monkeypatch):
 
 
 def test_fixed_directions_stay_broadcasts():
-    g = domain(_scene("torus")).sample(600000, 1)
-    assert g.light.strides[1] == 0 and g.viewer.strides[0] == 0  # not 600000 copies of one vector
+    g = domain(_scene("torus")).sample(200000, 1)
+    assert g.light.strides[1] == 0 and g.viewer.strides[0] == 0  # not 200000 copies of one vector
     assert np.allclose(g.light[0, -1], 3 ** -0.5)
 
 
