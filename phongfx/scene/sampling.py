@@ -10,7 +10,7 @@ that breaks a bound of the domain (a back-facing pose, an ``n1`` or ``N`` below
 
 import numpy as np
 
-__all__ = ["ENDS", "GROUP", "sample_chunk", "random_poses", "rotate", "cap", "span_end"]
+__all__ = ["ENDS", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
 
 #: fraction of points with ``a`` exactly 0, and again exactly 1 (the span's end pixels)
 ENDS = 0.02
@@ -94,6 +94,12 @@ def cap(centre, degrees, rng):
     b2 = _cross(centre, b1)
     return (cos[:, None] * centre + (sin * np.cos(phi))[:, None] * b1
             + (sin * np.sin(phi))[:, None] * b2)
+
+
+def random_rotations(domain, count, rng):
+    """(count, 3, 3) rotation matrices drawn from the domain's pose set (:func:`random_poses`),
+    for whoever rasterizes whole frames of random poses."""
+    return _matrices(random_poses(domain, count, rng))
 
 
 def _matrices(q):

@@ -15,7 +15,8 @@ from phongfx.scene.domain import Options, domain
 from phongfx.scene.file import Frames, SceneError, load_scene, parse_scene
 from phongfx.scene.geometry import frames
 from phongfx.scene.lyon import Scene, pixels
-from phongfx.scene.sampling import random_poses, rotate, span_end
+from phongfx.scene.geometry import rotation
+from phongfx.scene.sampling import random_poses, random_rotations, rotate, span_end
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
 TOL = 1e-9
@@ -146,10 +147,17 @@ def test_poses(pose):
                             still_degrees=(0.0,))
     q = random_poses(d, 20000, np.random.default_rng(1))
     assert np.allclose(np.linalg.norm(q, axis=-1), 1.0)
+    matrices = random_rotations(d, 50, np.random.default_rng(1))  # the same poses as matrices
+    v = np.array([0.3, -0.5, 0.8])
+    few = random_poses(d, 50, np.random.default_rng(1))
+    assert np.allclose(matrices @ v, rotate(few, np.broadcast_to(v, (50, 3))))
+    assert np.allclose(matrices @ matrices.transpose(0, 2, 1), np.eye(3))
     turned = rotate(q, np.broadcast_to(np.asarray(d.axis), (len(q), 3)))
     angle = np.degrees(2 * np.arccos(np.clip(np.abs(q[:, 0]), 0, 1)))
-    if pose == "motion":  # the axis stays put and the angle covers [0°, 90°]
+    if pose == "motion":  # the axis stays put and the angle covers [0°, 90°], as geometry.rotation turns
         assert np.allclose(turned, d.axis) and 89 < angle.max() <= 90 + 1e-9 and angle.min() < 1
+        signed = np.degrees(2 * np.arctan2(few[0, 1:] @ np.asarray(d.axis), few[0, 0]))
+        assert np.allclose(matrices[0], rotation(d.axis, signed))
     elif pose == "still":  # one frame: a wobble of at most 10°
         assert angle.max() <= 10 + 1e-9 and angle.max() > 9.5
     else:  # Haar: a turned vector is uniform on the sphere
