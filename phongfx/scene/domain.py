@@ -61,7 +61,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .geometry import FrameGeometry, rotation, scene_mesh
+from .geometry import FrameGeometry, scene_mesh
 from .lyon import Scene, pixels
 from .mesh import unit
 from .sampling import sample_chunk
@@ -100,8 +100,8 @@ def parse_options(reader, data, frame_count):
     if pose is not None and pose not in POSES:
         reader.fail(f"domain.pose must be one of {', '.join(POSES)}, not {pose!r}")
     if "wobble_degrees" in data and (pose or ("motion" if frame_count > 1 else "still")) != "still":
-        reader.fail(f"domain.wobble_degrees applies only to pose \"still\", not to pose "
-                    f"{pose or 'motion'!r} (the default for frames.count = {frame_count})")
+        why = f"{pose!r}" if pose else f"'motion' (the default for frames.count = {frame_count})"
+        reader.fail(f"domain.wobble_degrees applies only to pose \"still\", not to pose {why}")
     wobble = reader.number(data.get("wobble_degrees", WOBBLE_DEFAULT), "domain.wobble_degrees", 0, 180)
     angle = data.get("max_span_angle_deg")
     angle = None if angle is None else reader.number(angle, "domain.max_span_angle_deg", 0, 180)

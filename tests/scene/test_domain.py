@@ -242,7 +242,7 @@ def test_domain_table_is_read():
      r"^t: domain\.wobble_degrees applies only to pose \"still\", not to pose 'motion' "
      r"\(the default for frames\.count = 4\)$"),
     ({"pose": "any", "wobble_degrees": 2}, None,
-     r"^t: domain\.wobble_degrees applies only to pose \"still\", not to pose 'any'"),
+     r"^t: domain\.wobble_degrees applies only to pose \"still\", not to pose 'any'$"),
     ({"max_span_angle_deg": -1}, None, r"^t: domain\.max_span_angle_deg must be a number in \[0, 180\], not -1$"),
     ({"samples": 0}, None, r"^t: domain\.samples must be an integer in 1\.\.10000000000, not 0$"),
     ({"final_samples": 1.5}, None, r"^t: domain\.final_samples must be an integer in 1\.\.10000000000, not 1\.5$"),
