@@ -23,11 +23,13 @@ over-approximation, for these reasons:
   least ``cos β`` and the combination is no longer than its weights' sum), so ``N`` is within
   ``90° + β`` of the view axis ``z``.  A viewer direction ``V`` within ``γ`` of ``z`` (a
   camera at infinity: its direction; a local camera: every direction from the bounding ball
-  to it) gives ``N·V >= cos(90° + β + γ) = -sin(β + γ)`` (``-1`` past 180°).  Lyon's
+  to it) gives ``N·V >= cos(90° + β + γ) = -sin(β + γ)`` (``-1`` once ``β + γ >= 90°``).  Lyon's
   spheres present front-hemisphere normals (``β = 0``).
 * **Span angle** (``max_span_angle_deg``).  A span is one triangle's run on one scanline
-  (:func:`~phongfx.scene.mesh.rasterize_screen`); its end normals are normalized convex
-  combinations of the triangle's vertex normals ``n_i``.  For ``u = Σα_i n_i``,
+  (:func:`~phongfx.scene.mesh.rasterize_screen`); its end normals are the triangle's vertex
+  normals ``n_i`` interpolated along its edges, then between them at pixel centres inside the
+  triangle (the fill rule keeps every centre inside), normalized: normalized convex
+  combinations of the ``n_i``.  For ``u = Σα_i n_i``,
   ``w = Σβ_j n_j``: ``u·w >= min n_i·n_j = c`` and ``|u|, |w| <= 1``, so when ``c >= 0`` the
   angle is at most the triangle's largest pairwise vertex-normal angle, for every pose; a
   triangle with a pair over 90° gives 180°.  Lyon's spheres: the widest span of their fixed
@@ -42,18 +44,19 @@ over-approximation, for these reasons:
 * **n**: every integer of a material's range ``[lo, hi]``, its single ``n``, or the
   ``shininess`` list of ``lyon_spheres``; materials no object uses admit none (``()``).
 
-:meth:`Domain.sample` draws (module functions :func:`sample_chunk`): a material uniformly among
-the used ones; ``n`` uniformly among its admissible values; a pose of the pose set (``"motion"``
-uniform angle, ``"any"`` uniform (Haar) rotation, ``"still"`` a uniform frame and a wobble with
-the Haar density ``∝ 1 - cos θ`` up to ``wobble_degrees`` about a uniform axis); ``n0`` the
-normalized interpolated vertex normal at a uniform point of an area-weighted face of the
-material, turned by the pose, kept when the turned face faces the viewer (Lyon: uniform on the
-front hemisphere); ``n1`` uniform in the cap of ``max_span_angle_deg`` about ``n0``, redrawn
-until ``n1`` and ``N`` meet ``view_cos_min``; ``a`` uniform in [0, 1] with 2 % exactly 0 and 2 %
-exactly 1; span start ``x0`` the surface point (half the points) or uniform in the ball,
-``x1 = x0 + d·u`` with ``u`` uniform in the eye-space xz plane and ``d`` uniform in
-``[-max_span_length, max_span_length]`` clipped to the ball; the pixel at ``(1-a)x0 + a·x1``;
-light and viewer vectors from these points as :func:`phongfx.scene.geometry.frames` makes them.
+:meth:`Domain.sample` draws (:mod:`phongfx.scene.sampling`): a material uniformly among the
+used ones; ``n`` uniformly among its admissible values (Lyon: a uniform sphere and its ``n``); a
+pose of the pose set, shared by 16 points (``"motion"`` a uniform angle, ``"any"`` a uniform (Haar)
+rotation, ``"still"`` a uniform frame and a wobble about a uniform axis with the Haar density
+``∝ 1 - cos θ`` of its angle up to ``wobble_degrees``); ``n0`` the normalized interpolated vertex
+normal at a uniform point of a face of the material drawn by area among those facing the viewer
+under the pose, turned by it (Lyon: uniform on the front hemisphere); ``n1`` uniform in the cap of
+``max_span_angle_deg`` about ``n0``, redrawn until ``n1`` and ``N`` meet ``view_cos_min``; ``a``
+uniform in [0, 1] with 2 % exactly 0 and 2 % exactly 1; span start ``x0`` the surface point (half
+the points) or uniform in the ball, ``x1 = x0 + d·u`` with ``u`` uniform in the eye-space xz plane
+and ``d`` uniform in ``[-max_span_length, max_span_length]`` clipped to the ball; the pixel at
+``(1-a)x0 + a·x1``; light and viewer vectors from these points as
+:func:`phongfx.scene.geometry.frames` makes them.
 """
 
 import math
