@@ -67,7 +67,7 @@ import numpy as np
 from .geometry import FrameGeometry, scene_mesh
 from .lyon import Scene, pixels
 from .mesh import unit
-from .sampling import sample_chunk
+from .sampling import face_table, sample_chunk
 
 __all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "CHUNK",
            "Options", "Surface", "Domain", "domain", "parse_options"]
@@ -129,6 +129,7 @@ class Surface:
     areas: np.ndarray = None
     material: np.ndarray = None
     shininess: tuple = ()
+    tables: tuple = ()  # per material index, its faces ready to draw (sampling.FaceTable), or None
 
 
 @dataclass(frozen=True)
@@ -304,7 +305,10 @@ def _mesh_surface(spec, names):
     longest = max(float(np.max(np.linalg.norm(tri[keep][:, i] - tri[keep][:, (i + 1) % 3], axis=-1)))
                   for i in range(3)) if len(faces) else 0.0
     material = np.array([names.index(obj.material) for obj in spec.objects])[owner[keep]]
-    surface = Surface(False, mesh.vertices, normals, faces, f, area[keep] / 2, material)
+    tables = tuple(face_table(mesh.vertices, normals, faces[material == m], f[material == m],
+                              area[keep][material == m]) if np.any(material == m) else None
+                   for m in range(len(names)))
+    surface = Surface(False, mesh.vertices, normals, faces, f, area[keep] / 2, material, tables=tables)
     radius = float(np.max(np.linalg.norm(mesh.vertices, axis=-1)))
     return surface, cap, pair if pair <= 90.0 else 180.0, ((0.0, 0.0, 0.0), radius), longest
 

@@ -8,9 +8,11 @@ that breaks a bound of the domain (a back-facing pose, an ``n1`` or ``N`` below
 ``view_cos_min``) is redrawn, so every point drawn lies in the domain.
 """
 
+from dataclasses import dataclass
+
 import numpy as np
 
-__all__ = ["ENDS", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
+__all__ = ["ENDS", "FaceTable", "face_table", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
 
 #: fraction of points with ``a`` exactly 0, and again exactly 1 (the span's end pixels)
 ENDS = 0.02
@@ -89,11 +91,17 @@ def cap(centre, degrees, rng):
     cos = rng.uniform(np.cos(np.radians(degrees)), 1.0, count)
     sin = np.sqrt(np.maximum(1 - cos * cos, 0.0))
     phi = rng.uniform(0, 2 * np.pi, count)
-    helper = np.where((np.abs(centre[:, 0]) < 0.9)[:, None], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0])
-    b1 = _unit(_cross(centre, helper))
-    b2 = _cross(centre, b1)
-    return (cos[:, None] * centre + (sin * np.cos(phi))[:, None] * b1
-            + (sin * np.sin(phi))[:, None] * b2)
+    u, v = sin * np.cos(phi), sin * np.sin(phi)
+    # a tangent basis without branches (Duff et al., "Building an Orthonormal Basis, Revisited")
+    x, y, z = centre[:, 0], centre[:, 1], centre[:, 2]
+    sign = np.where(z >= 0, 1.0, -1.0)
+    a = -1.0 / (sign + z)
+    b = x * y * a
+    out = np.empty((count, 3))
+    out[:, 0] = cos * x + u * (1 + sign * x * x * a) + v * b
+    out[:, 1] = cos * y + u * (sign * b) + v * (sign + y * y * a)
+    out[:, 2] = cos * z - u * (sign * x) - v * y
+    return out
 
 
 def random_rotations(domain, count, rng):
@@ -110,43 +118,73 @@ def _matrices(q):
                      np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
 
 
+@dataclass(frozen=True)
+class FaceTable:
+    """The faces of one material as :func:`sample_chunk` draws them: per face its corners'
+    unit ``normals`` and ``vertices`` (F, 3, 3), unit winding normal ``face_normals`` (F, 3),
+    and Walker's alias table (``prob``, ``alias``) of its area: a face by area in O(1)."""
+    normals: np.ndarray
+    vertices: np.ndarray
+    face_normals: np.ndarray
+    prob: np.ndarray
+    alias: np.ndarray
+
+    def draw(self, count, rng):
+        """(count,) face indices, each with probability proportional to its area."""
+        index = rng.integers(len(self.prob), size=count)
+        return np.where(rng.random(count) < self.prob[index], index, self.alias[index])
+
+
+def face_table(vertices, normals, faces, face_normals, areas):
+    """The :class:`FaceTable` of ``faces`` (F, 3) of a mesh's ``vertices`` and unit vertex
+    ``normals``, with their ``face_normals`` and ``areas`` (Vose's alias construction)."""
+    scaled = np.asarray(areas, dtype=np.float64) * len(areas) / np.sum(areas)
+    prob, alias = np.ones(len(areas)), np.arange(len(areas))
+    small = [i for i in range(len(areas)) if scaled[i] < 1]
+    large = [i for i in range(len(areas)) if scaled[i] >= 1]
+    while small and large:
+        less, more = small.pop(), large.pop()
+        prob[less], alias[less] = scaled[less], more
+        scaled[more] += scaled[less] - 1
+        (small if scaled[more] < 1 else large).append(more)
+    return FaceTable(normals[faces], vertices[faces], np.asarray(face_normals, dtype=np.float64), prob, alias)
+
+
 def _mesh_points(domain, material, rng):
     """(n0, surface point) of each point: a pose of the pose set shared by :data:`GROUP`
     points, a face of the point's material drawn by area and redrawn until it faces the
     viewer under that pose (a pose under which a point's draws keep failing, one with almost
     no face toward the viewer, is redrawn for its group), a uniform point of the face."""
-    s = domain.surface
     n0, point = np.empty((len(material), 3)), np.empty((len(material), 3))
     for m in np.unique(material):
-        faces = np.flatnonzero(s.material == m)
-        weight = np.cumsum(s.areas[faces])
+        table = domain.surface.tables[m]
         mine = np.flatnonzero(material == m)
         groups = -(-len(mine) // GROUP)
         turned = _matrices(random_poses(domain, groups, rng))
-        group = np.arange(groups * GROUP) // GROUP
-        local = np.empty(len(group), dtype=np.int64)
-        pending = np.arange(len(group))
+        toward = np.ascontiguousarray(turned[:, 2, :])  # a face is drawn when its normal · this > 0
+        local = table.draw(groups * GROUP, rng)
+        ok = np.einsum("gkj,gj->gk", table.face_normals[local].reshape(groups, GROUP, 3), toward).ravel() > 0
+        pending = np.flatnonzero(~ok)
         for round in range(1, _ROUNDS + 1):
-            pick = np.minimum(np.searchsorted(weight, rng.random(len(pending)) * weight[-1], side="right"),
-                              len(faces) - 1)
-            ok = _dot(turned[group[pending], 2], s.face_normals[faces[pick]]) > 0
-            local[pending[ok]] = pick[ok]
-            pending = pending[~ok]
             if not len(pending):
                 break
-            if round % 32 == 0:
-                stuck = np.unique(group[pending])
+            pick = table.draw(len(pending), rng)
+            ok = _dot(toward[pending // GROUP], table.face_normals[pick]) > 0
+            local[pending[ok]] = pick[ok]
+            pending = pending[~ok]
+            if round % 32 == 0 and len(pending):
+                stuck = np.unique(pending // GROUP)
                 turned[stuck] = _matrices(random_poses(domain, len(stuck), rng))
-                pending = np.flatnonzero(np.isin(group, stuck))
+                toward[stuck] = turned[stuck, 2, :]
+                pending = np.flatnonzero(np.isin(np.arange(groups * GROUP) // GROUP, stuck))
         else:
             raise ValueError(f"no face of material {domain.materials[m][0]!r} faces the viewer under "
                              f"pose {domain.pose!r}; the domain is empty")
-        r1, r2 = np.sqrt(rng.random(len(group))), rng.random(len(group))
+        r1, r2 = np.sqrt(rng.random(len(local))), rng.random(len(local))
         bary = np.stack([1 - r1, r1 * (1 - r2), r1 * r2], -1)[:, :, None]
-        corners = s.faces[faces]  # (F, 3, 3) gathers of whole faces are cheaper than of corners
         transposed = turned.transpose(0, 2, 1)
-        normal = _unit(np.einsum("pkj,pkj->pj", bary, s.normals[corners][local])).reshape(groups, GROUP, 3)
-        where = np.einsum("pkj,pkj->pj", bary, s.vertices[corners][local]).reshape(groups, GROUP, 3)
+        normal = _unit(np.einsum("pkj,pkj->pj", bary, table.normals[local])).reshape(groups, GROUP, 3)
+        where = np.einsum("pkj,pkj->pj", bary, table.vertices[local]).reshape(groups, GROUP, 3)
         n0[mine] = np.matmul(normal, transposed).reshape(-1, 3)[:len(mine)]
         point[mine] = np.matmul(where, transposed).reshape(-1, 3)[:len(mine)]
     return n0, point
