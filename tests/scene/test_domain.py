@@ -16,7 +16,7 @@ from phongfx.scene.file import Frames, SceneError, load_scene, parse_scene
 from phongfx.scene.geometry import frames
 from phongfx.scene.lyon import Scene, pixels
 from phongfx.scene.geometry import rotation
-from phongfx.scene.sampling import random_poses, random_rotations, rotate, span_end
+from phongfx.scene.sampling import face_table, random_poses, random_rotations, rotate, span_end
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
 TOL = 1e-9
@@ -124,6 +124,9 @@ def test_samples_lie_in_the_domain(name, options):
     for i, light in enumerate(spec.lights):
         want = (np.asarray(light.vector) - g.position) if light.kind == "point" else np.asarray(light.vector)
         assert np.allclose(g.light[i], want / np.linalg.norm(want, axis=-1, keepdims=True))
+    if spec.camera.kind == "point":
+        want = np.asarray(spec.camera.vector) - g.position
+        assert np.allclose(g.viewer, want / np.linalg.norm(want, axis=-1, keepdims=True))
     material = spec.materials[d.materials[0][0]]
     assert np.all(g.kd == material.kd) and np.all(g.ks == material.ks) and np.all(g.colour == material.colour)
     # the sample reaches toward the bounds, not only the middle of the domain
@@ -139,6 +142,13 @@ def test_sampled_span_ends_stay_in_the_ball_and_within_the_span_length():
     assert np.max(np.linalg.norm(x1, axis=-1)) <= d.ball[1] * (1 + TOL)
     assert np.max(np.linalg.norm(x1 - x0, axis=-1)) <= d.max_span_length * (1 + TOL)
     assert np.max(np.abs(x1[:, 1] - x0[:, 1])) == 0.0  # spans are horizontal: no eye-space y
+
+
+def test_faces_are_drawn_by_area():
+    areas = np.array([1.0, 2.0, 3.0, 4.0, 0.5])
+    table = face_table(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((5, 3), dtype=np.int64), np.zeros((5, 3)), areas)
+    drawn = np.bincount(table.draw(400000, np.random.default_rng(3)), minlength=5) / 400000
+    assert np.allclose(drawn, areas / areas.sum(), atol=0.004)
 
 
 @pytest.mark.parametrize("pose", ["motion", "any", "still"])
