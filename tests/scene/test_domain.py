@@ -96,6 +96,31 @@ def test_the_torus_turned_about_other_axes_stays_in_the_domain(axis):
         assert_inside(d, g, _ends(other, g))
 
 
+def test_two_objects_a_camera_path_and_a_point_light():
+    data = copy.deepcopy(BASE)
+    data["materials"]["m"]["n"] = [3, 5]
+    data["objects"].append({"type": "torus", "material": "spare", "polygons": 32, "scale": 0.5,
+                            "offset": [1.5, 0, 0]})
+    data["lights"].append({"position": [0, 3, 3]})
+    data["camera"] = {"position": [0, 0, 6]}
+    data["frames"] = {"count": 3, "axis": [0, 0, 1], "degrees": 120, "camera_path": [[0, 0, 6], [1, 0, 5], [0, 2, 6]]}
+    data["output"] = {"width": 48, "height": 48}
+    spec = parse_scene(data, name="t")
+    d = domain(spec)
+    assert d.ball[1] == pytest.approx(1.5 + 0.5 * 1.4) and len(d.camera_path) == 3
+    assert d.materials == (("m", (3, 4, 5)), ("spare", (2,)))
+    for g in frames(spec):
+        assert set(g.material) == {0, 1}
+        assert_inside(d, g, _ends(spec, g))
+    g = d.sample(4000, 2)
+    assert_inside(d, g)
+    assert set(g.n[g.material == 0]) == {3.0, 4.0, 5.0} and set(g.n[g.material == 1]) == {2.0}
+    cameras = np.asarray(spec.frames.camera_path)
+    toward = (cameras[None] - g.position[:, None]) / np.linalg.norm(cameras[None] - g.position[:, None], axis=-1,
+                                                                     keepdims=True)
+    assert np.all(np.min(np.linalg.norm(toward - g.viewer[:, None], axis=-1), axis=1) < 1e-9)  # toward a path point
+
+
 def test_a_mesh_wound_inside_out_widens_the_bounds_to_everything():
     spec = _scene("torus")
     obj = spec.objects[0]
