@@ -15,8 +15,6 @@ from phongfx.scene.domain import Options, domain
 from phongfx.scene.file import Frames, SceneError, load_scene, parse_scene
 from phongfx.scene.geometry import frames
 from phongfx.scene.lyon import Scene, pixels
-from phongfx.scene.geometry import rotation
-from phongfx.scene.sampling import face_table, random_poses, random_rotations, rotate, span_end
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
 TOL = 1e-9
@@ -157,46 +155,6 @@ def test_samples_lie_in_the_domain(name, options):
     # the sample reaches toward the bounds, not only the middle of the domain
     assert np.max(_angle(g.n0, g.n1)) > 0.9 * d.max_span_angle_deg
     assert len(np.unique(g.n)) == len(d.materials[0][1])
-
-
-def test_sampled_span_ends_stay_in_the_ball_and_within_the_span_length():
-    d = domain(_scene("local-mesh"))
-    rng = np.random.default_rng(2)
-    x0 = np.asarray(d.ball[0]) + rng.uniform(-1, 1, (5000, 3)) * d.ball[1] / 3 ** 0.5
-    x1 = span_end(d, x0, rng)
-    assert np.max(np.linalg.norm(x1, axis=-1)) <= d.ball[1] * (1 + TOL)
-    assert np.max(np.linalg.norm(x1 - x0, axis=-1)) <= d.max_span_length * (1 + TOL)
-    assert np.max(np.abs(x1[:, 1] - x0[:, 1])) == 0.0  # spans are horizontal: no eye-space y
-
-
-def test_faces_are_drawn_by_area():
-    areas = np.array([1.0, 2.0, 3.0, 4.0, 0.5])
-    table = face_table(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((5, 3), dtype=np.int64), np.zeros((5, 3)), areas)
-    drawn = np.bincount(table.draw(400000, np.random.default_rng(3)), minlength=5) / 400000
-    assert np.allclose(drawn, areas / areas.sum(), atol=0.004)
-
-
-@pytest.mark.parametrize("pose", ["motion", "any", "still"])
-def test_poses(pose):
-    d = dataclasses.replace(domain(_scene("torus")), pose=pose, wobble_degrees=10.0, degrees=(0.0, 90.0),
-                            still_degrees=(0.0,))
-    q = random_poses(d, 20000, np.random.default_rng(1))
-    assert np.allclose(np.linalg.norm(q, axis=-1), 1.0)
-    matrices = random_rotations(d, 50, np.random.default_rng(1))  # the same poses as matrices
-    v = np.array([0.3, -0.5, 0.8])
-    few = random_poses(d, 50, np.random.default_rng(1))
-    assert np.allclose(matrices @ v, rotate(few, np.broadcast_to(v, (50, 3))))
-    assert np.allclose(matrices @ matrices.transpose(0, 2, 1), np.eye(3))
-    turned = rotate(q, np.broadcast_to(np.asarray(d.axis), (len(q), 3)))
-    angle = np.degrees(2 * np.arccos(np.clip(np.abs(q[:, 0]), 0, 1)))
-    if pose == "motion":  # the axis stays put and the angle covers [0°, 90°], as geometry.rotation turns
-        assert np.allclose(turned, d.axis) and 89 < angle.max() <= 90 + 1e-9 and angle.min() < 1
-        signed = np.degrees(2 * np.arctan2(few[0, 1:] @ np.asarray(d.axis), few[0, 0]))
-        assert np.allclose(matrices[0], rotation(d.axis, signed))
-    elif pose == "still":  # one frame: a wobble of at most 10°
-        assert angle.max() <= 10 + 1e-9 and angle.max() > 9.5
-    else:  # Haar: a turned vector is uniform on the sphere
-        assert abs(np.mean(turned[:, 2])) < 0.02 and abs(np.mean(turned[:, 2] ** 2) - 1 / 3) < 0.01
 
 
 def test_sampling_is_deterministic_and_chunked(monkeypatch):
