@@ -81,7 +81,13 @@ def random_poses(domain, count, rng):
 
 
 def _directions(rng, count):
-    return _unit(rng.standard_normal((count, 3)))
+    """(count, 3) uniform unit vectors (z uniform in [-1, 1]: Archimedes' hat-box theorem)."""
+    z = rng.uniform(-1.0, 1.0, count)
+    phi = rng.uniform(0.0, 2 * np.pi, count)
+    rho = np.sqrt(1 - z * z)
+    out = np.empty((count, 3))
+    out[:, 0], out[:, 1], out[:, 2] = rho * np.cos(phi), rho * np.sin(phi), z
+    return out
 
 
 def cap(centre, degrees, rng):
@@ -210,13 +216,17 @@ def span_end(domain, x0, rng):
     ``d`` uniform in [-max_span_length, max_span_length] cut to stay in the ball."""
     count = len(x0)
     psi = rng.uniform(0, 2 * np.pi, count)
-    u = np.stack([np.cos(psi), np.zeros(count), np.sin(psi)], -1)
+    cos, sin = np.cos(psi), np.sin(psi)
     rel = x0 - np.asarray(domain.ball[0])
-    b = _dot(rel, u)
+    b = rel[:, 0] * cos + rel[:, 2] * sin
     root = np.sqrt(np.maximum(b * b - (_dot(rel, rel) - domain.ball[1] ** 2), 0.0))
     lo = np.maximum(-domain.max_span_length, np.minimum(-b - root, 0.0))
     hi = np.minimum(domain.max_span_length, np.maximum(-b + root, 0.0))
-    return x0 + (lo + (hi - lo) * rng.random(count))[:, None] * u
+    d = lo + (hi - lo) * rng.random(count)
+    x1 = x0.copy()
+    x1[:, 0] += d * cos
+    x1[:, 2] += d * sin
+    return x1
 
 
 def _toward(kind, vector, points):
@@ -275,7 +285,9 @@ def sample_chunk(domain, count, rng):
             values = np.asarray(domain.materials[m][1], dtype=np.float64)
             n[mine] = values[rng.integers(len(values), size=int(mine.sum()))]
         n0, surface = _mesh_points(domain, material, rng)
-    x0 = np.where((rng.random(count) < 0.5)[:, None], surface, _in_ball(domain, rng, count))
+    x0 = surface
+    inside = np.flatnonzero(rng.random(count) < 0.5)
+    x0[inside] = _in_ball(domain, rng, len(inside))
     x1 = span_end(domain, x0, rng)
     draw = rng.random(count)
     a = np.where(draw < ENDS, 0.0, np.where(draw >= 1 - ENDS, 1.0, rng.random(count)))
