@@ -169,10 +169,8 @@ class Domain:
         """:class:`~phongfx.scene.geometry.FrameGeometry` pieces of :data:`CHUNK` points (the
         last shorter) whose concatenation is ``sample(count, seed)``: the same points in
         bounded memory."""
-        count = _count(count)
-        for index, start in enumerate(range(0, count, CHUNK)):
-            rng = np.random.default_rng((int(seed), index))
-            yield self._geometry(sample_chunk(self, min(CHUNK, count - start), rng))
+        for _, part in self._parts(_count(count), seed):
+            yield self._geometry(part)
 
     def sample(self, count, seed):
         """A :class:`~phongfx.scene.geometry.FrameGeometry` of ``count`` domain points (one
@@ -180,8 +178,7 @@ class Domain:
         docstring says; deterministic for (self, count, seed)."""
         count = _count(count)
         out = None
-        for index, start in enumerate(range(0, max(count, 1), CHUNK)):
-            part = sample_chunk(self, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
+        for start, part in self._parts(count, seed, at_least_one=True):
             if out is None:  # filled chunk by chunk: no second copy of every array
                 out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
             for key, value in part.items():
@@ -189,6 +186,12 @@ class Domain:
                 if out[key].strides[axis] != 0:
                     np.moveaxis(out[key], axis, 0)[start:start + CHUNK] = np.moveaxis(value, axis, 0)
         return self._geometry(out)
+
+    def _parts(self, count, seed, at_least_one=False):
+        """``(start, arrays)`` of each chunk: chunk ``index`` drawn from its own generator,
+        seeded by ``(seed, index)``."""
+        for index, start in enumerate(range(0, max(count, 1) if at_least_one else count, CHUNK)):
+            yield start, sample_chunk(self, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
 
     def _geometry(self, g):
         count = len(g["a"])
@@ -200,7 +203,9 @@ class Domain:
                              g["material"], None, -1, self.bits)
 
     def as_dict(self):
-        """JSON-able: every field but the sampler's surface, and where the span angle came from."""
+        """JSON-able, for the manifest: what the domain holds and why (the sampler's surface and
+        the materials' coefficients, which the scene gives, left out), where the span angle
+        came from, and :meth:`describe`."""
         out = {"pose": self.pose, "axis": list(self.axis), "degrees": list(self.degrees),
                "wobble_degrees": self.wobble_degrees, "still_degrees": list(self.still_degrees),
                "view_cos_min": self.view_cos_min, "face_cap_deg": self.face_cap_deg,
