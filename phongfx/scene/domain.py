@@ -67,10 +67,10 @@ import numpy as np
 from .geometry import FrameGeometry, scene_mesh
 from .lyon import Scene, pixels
 from .mesh import unit
-from .sampling import face_table, sample_chunk
+from .sampling import Surface, face_table, sample_chunk
 
 __all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "CHUNK",
-           "Options", "Surface", "Domain", "domain", "parse_options"]
+           "Options", "Domain", "domain", "parse_options"]
 
 POSES = ("motion", "any", "still")
 WOBBLE_DEFAULT = 5.0
@@ -112,24 +112,6 @@ def parse_options(reader, data, frame_count):
               for key, default in (("samples", SAMPLES_DEFAULT), ("final_samples", FINAL_SAMPLES_DEFAULT))}
     seed = reader.integer(data.get("seed", SEED_DEFAULT), "domain.seed", 0, 2 ** 63 - 1)
     return Options(pose, wobble, angle, counts["samples"], counts["final_samples"], seed)
-
-
-@dataclass(frozen=True)
-class Surface:
-    """What :meth:`Domain.sample` draws surface points from (module docstring).
-
-    Meshes: placed ``vertices`` (V, 3), unit vertex ``normals`` (V, 3), drawable ``faces``
-    (F, 3), their unit winding normals ``face_normals`` (F, 3), ``areas`` (F,) and
-    ``material`` (F,) index.  Lyon's spheres (``lyon`` True): ``shininess`` per sphere."""
-    lyon: bool
-    vertices: np.ndarray = None
-    normals: np.ndarray = None
-    faces: np.ndarray = None
-    face_normals: np.ndarray = None
-    areas: np.ndarray = None
-    material: np.ndarray = None
-    shininess: tuple = ()
-    tables: tuple = ()  # per material index, its faces ready to draw (sampling.FaceTable), or None
 
 
 @dataclass(frozen=True)
@@ -297,6 +279,7 @@ def _angle(u, w):
 
 
 def _mesh_surface(spec, names):
+    """(Surface, β, span-angle bound, ball, longest edge) of the placed meshes (module docstring)."""
     mesh, owner = scene_mesh(spec)
     tri = mesh.vertices[mesh.faces]
     cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -313,12 +296,13 @@ def _mesh_surface(spec, names):
     tables = tuple(face_table(mesh.vertices, normals, faces[material == m], f[material == m],
                               area[keep][material == m]) if np.any(material == m) else None
                    for m in range(len(names)))
-    surface = Surface(False, mesh.vertices, normals, faces, f, area[keep] / 2, material, tables=tables)
+    surface = Surface(False, tables=tables)
     radius = float(np.max(np.linalg.norm(mesh.vertices, axis=-1)))
     return surface, cap, pair if pair <= 90.0 else 180.0, ((0.0, 0.0, 0.0), radius), longest
 
 
 def _lyon_surface(spec, geometries):
+    """(Surface, β = 0, widest span angle, ball, widest span chord) of Lyon's fixed image."""
     params = spec.objects[0].params
     if geometries:
         n0, n1 = geometries[0].n0, geometries[0].n1

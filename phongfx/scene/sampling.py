@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["ENDS", "FaceTable", "face_table", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
+__all__ = ["ENDS", "Surface", "FaceTable", "face_table", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
 
 #: fraction of points with ``a`` exactly 0, and again exactly 1 (the span's end pixels)
 ENDS = 0.02
@@ -122,6 +122,16 @@ def _matrices(q):
     return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
                      np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
                      np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
+
+
+@dataclass(frozen=True)
+class Surface:
+    """What :func:`sample_chunk` draws surface points from (:mod:`phongfx.scene.domain`):
+    meshes, per material index their :class:`FaceTable` (None: no face); Lyon's spheres
+    (``lyon`` True), the ``shininess`` of each sphere."""
+    lyon: bool
+    tables: tuple = ()
+    shininess: tuple = ()
 
 
 @dataclass(frozen=True)
