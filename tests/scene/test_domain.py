@@ -247,3 +247,13 @@ def test_domain_table_is_read():
 def test_domain_table_errors(table, frames_table, message):
     with pytest.raises(SceneError, match=message):
         _parse(table, frames_table)
+
+
+def test_the_scene_page_gives_the_derived_values():
+    with open(os.path.join(SCENES, "..", "docs", "scenes.rst"), encoding="utf-8") as file:
+        page = file.read()
+    rows = {name: page[page.index(f"| {name} "):].split("\n+")[0] for name in ("torus", "local-mesh", "lyon-balls")}
+    for name, row in rows.items():
+        d = domain(_scene(name))
+        cos = "0" if d.view_cos_min == 0 else f"−{-d.view_cos_min:.3f}"
+        assert cos in row and f"{d.max_span_angle_deg:.1f}°" in row and f"{d.ball[1]:.3g}" in row, name
