@@ -41,6 +41,9 @@ over-approximation, for these reasons:
   surface point under every pose; ``|x1 - x0|`` is at most the longest triangle edge, and
   spans are horizontal on the screen (``x1 - x0`` has no eye-space ``y``).  Lyon's spheres:
   unit spheres at ``(k, 0, 0)``, span chords from the image.
+* **Light and viewer directions.**  Directional lights and a camera at infinity: their one
+  vector.  A point light or a local camera at ``P``: ``unit(P - x)`` for ``x`` in the ball,
+  within ``asin(radius/|P - centre|)`` of ``unit(P - centre)`` (:meth:`Domain.cone`).
 * **n**: every integer of a material's range ``[lo, hi]``, its single ``n``, or the
   ``shininess`` list of ``lyon_spheres``; materials no object uses admit none (``()``).
 
@@ -64,21 +67,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .geometry import FrameGeometry, scene_mesh
+from .geometry import scene_mesh
 from .lyon import Scene, pixels
 from .mesh import unit
-from .sampling import Surface, face_table, sample_chunk
+from .sampling import Surface, draw, draw_chunks, face_table
 
-__all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "CHUNK",
-           "Options", "Domain", "domain", "parse_options"]
+__all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "Options", "Domain", "domain", "parse_options"]
 
 POSES = ("motion", "any", "still")
 WOBBLE_DEFAULT = 5.0
 SAMPLES_DEFAULT = 1_000_000
 FINAL_SAMPLES_DEFAULT = 10_000_000
 SEED_DEFAULT = 1
-#: points drawn per generator: ``sample(count, seed)`` is its chunks of this size, concatenated
-CHUNK = 1 << 16
 _KEYS = ("pose", "wobble_degrees", "max_span_angle_deg", "samples", "final_samples", "seed")
 _MAX_SAMPLES = 10 ** 10
 
@@ -147,42 +147,39 @@ class Domain:
         """Whether ``max_span_angle_deg`` is the ``[domain]`` table's claim, not derived."""
         return self.derived_span_angle_deg is not None
 
+    def cone(self, position):
+        """``(axis, half_angle_deg)``: every direction toward ``position`` (a point light, a
+        local camera) from a point of the ball lies within ``half_angle_deg`` of the unit
+        ``axis``, ``asin(radius/distance)``; 180° (any direction) when the point is in the ball."""
+        d = np.asarray(position, dtype=np.float64) - np.asarray(self.ball[0])
+        distance = float(np.linalg.norm(d))
+        if distance <= self.ball[1]:
+            return (0.0, 0.0, 1.0), 180.0
+        return tuple(float(x) for x in d / distance), math.degrees(math.asin(self.ball[1] / distance))
+
+    @property
+    def light_cones(self):
+        """Per light, its :meth:`cone` (a point light) or None (a directional one: one vector)."""
+        return tuple(self.cone(vector) if kind == "point" else None for kind, vector, _ in self.lights)
+
+    @property
+    def viewer_cones(self):
+        """Per camera position (the path's, or the one), its :meth:`cone`; () at infinity."""
+        if self.camera[0] != "point":
+            return ()
+        return tuple(self.cone(p) for p in self.camera_path or (self.camera[1],))
+
     def chunks(self, count, seed):
-        """:class:`~phongfx.scene.geometry.FrameGeometry` pieces of :data:`CHUNK` points (the
-        last shorter) whose concatenation is ``sample(count, seed)``: the same points in
-        bounded memory."""
-        for _, part in self._parts(_count(count), seed):
-            yield self._geometry(part)
+        """:class:`~phongfx.scene.geometry.FrameGeometry` pieces of
+        :data:`~phongfx.scene.sampling.CHUNK` points (the last shorter) whose concatenation is
+        ``sample(count, seed)``: the same points in bounded memory."""
+        return draw_chunks(self, count, seed)
 
     def sample(self, count, seed):
         """A :class:`~phongfx.scene.geometry.FrameGeometry` of ``count`` domain points (one
         pixel per span, ``span = arange(count)``, ``frame = -1``), drawn as the module
         docstring says; deterministic for (self, count, seed)."""
-        count = _count(count)
-        out = None
-        for start, part in self._parts(count, seed, at_least_one=True):
-            if out is None:  # filled chunk by chunk: no second copy of every array
-                out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
-            for key, value in part.items():
-                axis = 1 if key in _PER_LIGHT else 0
-                if out[key].strides[axis] != 0:
-                    np.moveaxis(out[key], axis, 0)[start:start + CHUNK] = np.moveaxis(value, axis, 0)
-        return self._geometry(out)
-
-    def _parts(self, count, seed, at_least_one=False):
-        """``(start, arrays)`` of each chunk: chunk ``index`` drawn from its own generator,
-        seeded by ``(seed, index)``."""
-        for index, start in enumerate(range(0, max(count, 1) if at_least_one else count, CHUNK)):
-            yield start, sample_chunk(self, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
-
-    def _geometry(self, g):
-        count = len(g["a"])
-        zeros = np.zeros(count, dtype=np.int64)
-        rgb = np.array([light[2] for light in self.lights], dtype=np.float64).reshape(-1, 3)
-        return FrameGeometry(0, 0, zeros, zeros.copy(), np.arange(count), g["a"], g["n0"], g["n1"],
-                             g["normal"], g["position"], g["l0"], g["l1"], g["light"], g["v0"],
-                             g["v1"], g["viewer"], rgb, g["n"], g["kd"], g["ks"], g["ka"], g["colour"],
-                             g["material"], None, -1, self.bits)
+        return draw(self, count, seed)
 
     def as_dict(self):
         """JSON-able, for the manifest: what the domain holds and why (the sampler's surface and
@@ -199,9 +196,11 @@ class Domain:
                "min_normal_length": self.min_normal_length,
                "ball": {"centre": list(self.ball[0]), "radius": self.ball[1]},
                "max_span_length": self.max_span_length,
-               "lights": [{"kind": k, "vector": list(v), "rgb": list(c)} for k, v, c in self.lights],
+               "lights": [{"kind": k, "vector": list(v), "rgb": list(c), "cone": _cone(cone)}
+                          for (k, v, c), cone in zip(self.lights, self.light_cones)],
                "camera": {"kind": self.camera[0], "vector": list(self.camera[1]),
-                          "path": [list(p) for p in self.camera_path]},
+                          "path": [list(p) for p in self.camera_path],
+                          "cones": [_cone(cone) for cone in self.viewer_cones]},
                "materials": [{"name": name, "n": _n_summary(values)} for name, values in self.materials],
                "samples": self.samples, "final_samples": self.final_samples, "seed": self.seed,
                "description": self.describe()}
@@ -236,18 +235,8 @@ class Domain:
                 f"{self.final_samples:,} for the chosen one (seed {self.seed}).")
 
 
-_PER_LIGHT = ("l0", "l1", "light")
-
-
-def _empty(value, count, axis):
-    """An array like ``value`` with ``count`` along ``axis``: a broadcast of its one vector
-    when ``value`` is one (stride 0 along ``axis``: a directional light, a camera at
-    infinity), which stays a broadcast rather than gigabytes of copies."""
-    shape = list(value.shape)
-    shape[axis] = count
-    if value.shape[axis] and value.strides[axis] == 0:
-        return np.broadcast_to(np.take(value, [0], axis=axis), shape)
-    return np.empty(shape, dtype=value.dtype)
+def _cone(cone):
+    return None if cone is None else {"axis": list(cone[0]), "half_angle_deg": cone[1]}
 
 
 def _vec(v):
@@ -265,12 +254,6 @@ def _n_summary(values):
 def _n_text(values):
     summary = _n_summary(values)
     return "{}..{}".format(*summary["range"]) if isinstance(summary, dict) else "{" + ", ".join(map(str, summary)) + "}"
-
-
-def _count(count):
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
-        raise ValueError(f"count must be a non-negative integer, not {count!r}")
-    return int(count)
 
 
 def _angle(u, w):

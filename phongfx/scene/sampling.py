@@ -1,10 +1,10 @@
 """Random points of a scene's input domain (:class:`phongfx.scene.domain.Domain`).
 
 :func:`sample_chunk` draws one chunk of points with the distribution that
-:mod:`phongfx.scene.domain`'s docstring states, as plain arrays; ``Domain.sample`` and
-``Domain.chunks`` seed it per chunk and wrap the arrays in a
-:class:`~phongfx.scene.geometry.FrameGeometry`.  Everything is vectorized numpy; a point
-that breaks a bound of the domain (a back-facing pose, an ``n1`` or ``N`` below
+:mod:`phongfx.scene.domain`'s docstring states, as plain arrays; :func:`draw` and
+:func:`draw_chunks` (``Domain.sample``, ``Domain.chunks``) seed it per chunk and wrap the
+arrays in a :class:`~phongfx.scene.geometry.FrameGeometry`.  Everything is vectorized numpy;
+a point that breaks a bound of the domain (a back-facing face, an ``n1`` or ``N`` below
 ``view_cos_min``) is redrawn, so every point drawn lies in the domain.
 """
 
@@ -12,8 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["ENDS", "Surface", "FaceTable", "face_table", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
+from .geometry import FrameGeometry
 
+__all__ = ["CHUNK", "ENDS", "draw", "draw_chunks", "Surface", "FaceTable", "face_table", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
+
+#: points drawn per generator: ``draw(domain, count, seed)`` is its chunks of this size, concatenated
+CHUNK = 1 << 16
 #: fraction of points with ``a`` exactly 0, and again exactly 1 (the span's end pixels)
 ENDS = 0.02
 _ROUNDS = 200  # redraws before a bound is declared unreachable (each keeps about half or more)
@@ -321,3 +325,64 @@ def sample_chunk(domain, count, rng):
     return {"a": a, "n0": n0, "n1": n1, "normal": normal, "position": position, "l0": l0, "l1": l1,
             "light": light, "v0": views[0], "v1": views[1], "viewer": views[2], "n": n, "kd": kd,
             "ks": ks, "ka": ka, "colour": colour.reshape(-1, 3), "material": material}
+
+
+def draw_chunks(domain, count, seed):
+    """:class:`~phongfx.scene.geometry.FrameGeometry` pieces of :data:`CHUNK` domain points
+    (the last shorter) whose concatenation is ``draw(domain, count, seed)``."""
+    for _, part in _parts(domain, _count(count), seed):
+        yield _geometry(domain, part)
+
+
+def draw(domain, count, seed):
+    """A :class:`~phongfx.scene.geometry.FrameGeometry` of ``count`` points of ``domain``
+    (one pixel per span, ``span = arange(count)``, ``frame = -1``), deterministic for
+    (domain, count, seed): the chunks of :func:`draw_chunks`, filled into arrays made once
+    (no second copy of every array)."""
+    count = _count(count)
+    out = None
+    for start, part in _parts(domain, count, seed, at_least_one=True):
+        if out is None:
+            out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
+        for key, value in part.items():
+            axis = 1 if key in _PER_LIGHT else 0
+            if out[key].strides[axis] != 0:
+                np.moveaxis(out[key], axis, 0)[start:start + CHUNK] = np.moveaxis(value, axis, 0)
+    return _geometry(domain, out)
+
+
+_PER_LIGHT = ("l0", "l1", "light")
+
+
+def _parts(domain, count, seed, at_least_one=False):
+    """``(start, arrays)`` of each chunk: chunk ``index`` drawn from its own generator,
+    seeded by ``(seed, index)``."""
+    for index, start in enumerate(range(0, max(count, 1) if at_least_one else count, CHUNK)):
+        yield start, sample_chunk(domain, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
+
+
+def _empty(value, count, axis):
+    """An array like ``value`` with ``count`` along ``axis``: a broadcast of its one vector
+    when ``value`` is one (stride 0 along ``axis``: a directional light, a camera at
+    infinity), which stays a broadcast rather than gigabytes of copies."""
+    shape = list(value.shape)
+    shape[axis] = count
+    if value.shape[axis] and value.strides[axis] == 0:
+        return np.broadcast_to(np.take(value, [0], axis=axis), shape)
+    return np.empty(shape, dtype=value.dtype)
+
+
+def _geometry(domain, g):
+    count = len(g["a"])
+    zeros = np.zeros(count, dtype=np.int64)
+    rgb = np.array([light[2] for light in domain.lights], dtype=np.float64).reshape(-1, 3)
+    return FrameGeometry(0, 0, zeros, zeros.copy(), np.arange(count), g["a"], g["n0"], g["n1"],
+                         g["normal"], g["position"], g["l0"], g["l1"], g["light"], g["v0"],
+                         g["v1"], g["viewer"], rgb, g["n"], g["kd"], g["ks"], g["ka"], g["colour"],
+                         g["material"], None, -1, domain.bits)
+
+
+def _count(count):
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
+        raise ValueError(f"count must be a non-negative integer, not {count!r}")
+    return int(count)

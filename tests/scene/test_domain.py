@@ -10,7 +10,7 @@ import os
 import numpy as np
 import pytest
 
-from phongfx.scene import domain as domain_module
+from phongfx.scene import sampling
 from phongfx.scene.domain import Options, domain
 from phongfx.scene.file import Frames, SceneError, load_scene, parse_scene
 from phongfx.scene.geometry import frames
@@ -51,6 +51,13 @@ def assert_inside(d, g, ends=None):
     for x in (g.position, x0, x1):
         assert np.max(np.linalg.norm(x - centre, axis=-1)) <= radius * (1 + TOL)
     assert np.max(np.linalg.norm(x1 - x0, axis=-1), initial=0) <= d.max_span_length * (1 + TOL)
+    for i, cone in enumerate(d.light_cones):  # toward a point light: within its cone
+        if cone is not None:
+            for vectors in (g.l0[i], g.l1[i], g.light[i]):
+                assert np.min(vectors @ np.asarray(cone[0])) >= math.cos(math.radians(cone[1])) - TOL
+    for vectors in (g.v0, g.v1, g.viewer) if d.viewer_cones else ():  # within a camera position's cone
+        inside = [vectors @ np.asarray(axis) >= math.cos(math.radians(half)) - TOL for axis, half in d.viewer_cones]
+        assert np.all(np.any(inside, axis=0))
     for m, (name, values) in enumerate(d.materials):
         mine = g.material == m
         assert np.all(np.isin(g.n[mine], values)), name
@@ -162,7 +169,7 @@ def test_sampling_is_deterministic_and_chunked(monkeypatch):
     one, again, other = d.sample(3000, 7), d.sample(3000, 7), d.sample(3000, 8)
     assert np.array_equal(one.n0, again.n0) and np.array_equal(one.light, again.light)
     assert not np.array_equal(one.n0, other.n0)
-    monkeypatch.setattr(domain_module, "CHUNK", 1000)
+    monkeypatch.setattr(sampling, "CHUNK", 1000)
     whole = d.sample(2500, 3)
     parts = list(d.chunks(2500, 3))
     assert [len(p) for p in parts] == [1000, 1000, 500]
@@ -194,6 +201,11 @@ def test_user_span_angle_is_a_claim():
 def test_as_dict_and_describe():
     d = domain(_scene("local-mesh"))
     out = json.loads(json.dumps(d.as_dict()))
+    light = np.array([2.0, 2.0, 3.0])
+    assert out["lights"][0]["cone"]["axis"] == pytest.approx(list(light / np.linalg.norm(light)))
+    assert out["lights"][0]["cone"]["half_angle_deg"] == pytest.approx(math.degrees(math.asin(d.ball[1] / 17 ** 0.5)))
+    assert out["camera"]["cones"] == [{"axis": [0.0, 0.0, 1.0], "half_angle_deg": pytest.approx(d.view_tilt_deg)}]
+    assert domain(_scene("torus")).as_dict()["lights"][0]["cone"] is None
     assert out["pose"] == "motion" and out["materials"] == [{"name": "clay", "n": {"range": [16, 32]}}]
     assert out["ball"]["radius"] == d.ball[1] and out["samples"] == 1_000_000 and out["final_samples"] == 10_000_000
     assert out["description"] == d.describe()
