@@ -151,11 +151,7 @@ class Domain:
         """``(axis, half_angle_deg)``: every direction toward ``position`` (a point light, a
         local camera) from a point of the ball lies within ``half_angle_deg`` of the unit
         ``axis``, ``asin(radius/distance)``; 180° (any direction) when the point is in the ball."""
-        d = np.asarray(position, dtype=np.float64) - np.asarray(self.ball[0])
-        distance = float(np.linalg.norm(d))
-        if distance <= self.ball[1]:
-            return (0.0, 0.0, 1.0), 180.0
-        return tuple(float(x) for x in d / distance), math.degrees(math.asin(self.ball[1] / distance))
+        return _cone_of(self.ball, position)
 
     @property
     def light_cones(self):
@@ -298,21 +294,23 @@ def _lyon_surface(spec, geometries):
     return Surface(True, shininess=tuple(params["shininess"])), 0.0, angle, ((half, 0.0, 0.0), half + 1.0), chord
 
 
+def _cone_of(ball, position):
+    """:meth:`Domain.cone` of ``position`` seen from ``ball``."""
+    d = np.asarray(position, dtype=np.float64) - np.asarray(ball[0])
+    distance = float(np.linalg.norm(d))
+    if distance <= ball[1]:
+        return (0.0, 0.0, 1.0), 180.0
+    return tuple(float(x) for x in d / distance), math.degrees(math.asin(ball[1] / distance))
+
+
 def _view_tilt(spec, ball):
     """γ (degrees): the largest angle between the view axis z and a direction toward the
     viewer from a point of ``ball`` (module docstring)."""
     z = np.array([0.0, 0.0, 1.0])
     if spec.camera.kind == "infinity":
         return float(_angle(np.asarray(spec.camera.vector), z))
-    centre, radius = np.asarray(ball[0]), ball[1]
-    worst = 0.0
-    for position in spec.frames.camera_path or (spec.camera.vector,):
-        d = np.asarray(position) - centre
-        distance = float(np.linalg.norm(d))
-        if distance <= radius:
-            return 180.0
-        worst = max(worst, float(_angle(d / distance, z)) + math.degrees(math.asin(radius / distance)))
-    return min(worst, 180.0)
+    cones = [_cone_of(ball, position) for position in spec.frames.camera_path or (spec.camera.vector,)]
+    return min(180.0, max(float(_angle(np.asarray(axis), z)) + half for axis, half in cones))
 
 
 def _admissible(spec, names):
