@@ -72,7 +72,8 @@ from .lyon import Scene, pixels
 from .mesh import unit
 from .sampling import Surface, draw, draw_chunks, face_table
 
-__all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "Options", "Domain", "domain", "parse_options"]
+__all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "Options",
+           "Domain", "domain", "parse_options"]
 
 POSES = ("motion", "any", "still")
 WOBBLE_DEFAULT = 5.0

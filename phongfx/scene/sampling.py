@@ -14,7 +14,8 @@ import numpy as np
 
 from .geometry import FrameGeometry
 
-__all__ = ["CHUNK", "ENDS", "draw", "draw_chunks", "Surface", "FaceTable", "face_table", "GROUP", "sample_chunk", "random_poses", "random_rotations", "rotate", "cap", "span_end"]
+__all__ = ["CHUNK", "ENDS", "GROUP", "draw", "draw_chunks", "sample_chunk", "Surface", "FaceTable", "face_table",
+           "random_poses", "random_rotations", "cap", "span_end"]
 
 #: points drawn per generator: ``draw(domain, count, seed)`` is its chunks of this size, concatenated
 CHUNK = 1 << 16
@@ -56,12 +57,6 @@ def _product(p, q):
     """Quaternion products ``p·q`` (rotation ``q`` first, then ``p``)."""
     w1, v1, w2, v2 = p[:, :1], p[:, 1:], q[:, :1], q[:, 1:]
     return np.concatenate([w1 * w2 - _dot(v1, v2)[:, None], w1 * v2 + w2 * v1 + _cross(v1, v2)], axis=1)
-
-
-def rotate(q, v):
-    """(P, 3) the rows of ``v`` turned by the unit quaternions ``q`` (P, 4)."""
-    t = 2 * _cross(q[:, 1:], v)
-    return v + q[:, :1] * t + _cross(q[:, 1:], t)
 
 
 def random_poses(domain, count, rng):
