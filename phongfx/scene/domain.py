@@ -55,10 +55,11 @@ rotation, ``"still"`` a uniform frame and a wobble about a uniform axis with the
 normal at a uniform point of a face of the material drawn by area among those facing the viewer
 under the pose, turned by it (Lyon: uniform on the front hemisphere); ``n1`` uniform in the cap of
 ``max_span_angle_deg`` about ``n0``, redrawn until ``n1`` and ``N`` meet ``view_cos_min``; ``a``
-uniform in [0, 1] with 2 % exactly 0 and 2 % exactly 1; span start ``x0`` the surface point (half
-the points) or uniform in the ball, ``x1 = x0 + d·u`` with ``u`` uniform in the eye-space xz plane
-and ``d`` uniform in ``[-max_span_length, max_span_length]`` clipped to the ball; the pixel at
-``(1-a)x0 + a·x1``; light and viewer vectors from these points as
+uniform in [0, 1] with 2 % exactly 0 and 2 % exactly 1; with a point light or a local camera, span
+start ``x0`` the surface point (half the points) or uniform in the ball, ``x1 = x0 + d·u`` with
+``u`` uniform in the eye-space xz plane and ``d`` uniform in ``[-max_span_length,
+max_span_length]`` clipped to the ball, the pixel at ``(1-a)x0 + a·x1`` (else all three the
+surface point, as no vector depends on it); light and viewer vectors from these points as
 :func:`phongfx.scene.geometry.frames` makes them.
 """
 

@@ -294,14 +294,17 @@ def sample_chunk(domain, count, rng):
             values = np.asarray(domain.materials[m][1], dtype=np.float64)
             n[mine] = values[rng.integers(len(values), size=int(mine.sum()))]
         n0, surface = _mesh_points(domain, material, rng)
-    x0 = surface
-    inside = np.flatnonzero(rng.random(count) < 0.5)
-    x0[inside] = _in_ball(domain, rng, len(inside))
-    x1 = span_end(domain, x0, rng)
-    draw = rng.random(count)
-    a = np.where(draw < ENDS, 0.0, np.where(draw >= 1 - ENDS, 1.0, rng.random(count)))
-    position = (1 - a)[:, None] * x0 + a[:, None] * x1
-    points = (x0, x1, position)
+    end = rng.random(count)
+    a = np.where(end < ENDS, 0.0, np.where(end >= 1 - ENDS, 1.0, rng.random(count)))
+    if domain.camera[0] == "point" or any(kind == "point" for kind, _, _ in domain.lights):
+        x0 = surface
+        inside = np.flatnonzero(rng.random(count) < 0.5)
+        x0[inside] = _in_ball(domain, rng, len(inside))
+        x1 = span_end(domain, x0, rng)
+        points = (x0, x1, (1 - a)[:, None] * x0 + a[:, None] * x1)
+    else:  # no vector depends on where the surface is: the pixel is the surface point
+        points = (surface, surface, surface)
+    position = points[2]
     if domain.camera_path:
         path = np.asarray(domain.camera_path)
         views = _toward("point", path[rng.integers(len(path), size=count)], points)
