@@ -70,6 +70,17 @@ def test_every_pixel_of_every_frame_lies_in_the_domain(name):
     d = domain(spec, geometries)
     for g in geometries:
         assert_inside(d, g, _ends(spec, g))
+    # the bounds are not vacuous: the frames themselves come close to them
+    assert max(np.max(_angle(g.n0, g.n1)) for g in geometries) >= 0.75 * d.max_span_angle_deg
+    if d.view_cos_min < 0:
+        assert min(np.min(np.sum(g.normal * g.viewer, -1)) for g in geometries) <= 0.6 * d.view_cos_min
+
+
+def test_a_narrower_claim_than_the_rasterizer_is_caught():
+    spec = dataclasses.replace(_scene("torus"), domain=Options(max_span_angle_deg=10.0))
+    g = frames(spec)[0]
+    with pytest.raises(AssertionError):
+        assert_inside(domain(spec), g, _ends(spec, g))
 
 
 def test_derived_values_of_the_example_scenes():
