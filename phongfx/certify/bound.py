@@ -30,6 +30,7 @@ from .sphere import Boxes, cover, frame
 __all__ = ["BOUNDED", "certify", "shader_config", "bound_boxes"]
 
 #: The methods :func:`certify` bounds (others get a certificate without a bound).
+_TRACE = False
 BOUNDED = ("fig7",)
 
 
@@ -79,6 +80,7 @@ def bound_boxes(shader, against, domain, *, tolerance=0.02, max_boxes=300_000, s
         near = total >= top - tolerance
         whole = np.count_nonzero(near) <= max_batch
         history.append((top, whole))
+        if _TRACE: print(len(history), top, np.count_nonzero(near), evaluated)
         settled = (len(history) > 4 and all(w for _, w in history[-4:])
                    and history[-5][0] - top <= 0.002 * max(top, 1.0))
         if settled or time.perf_counter() - start > seconds or evaluated > max_boxes:
@@ -86,7 +88,7 @@ def bound_boxes(shader, against, domain, *, tolerance=0.02, max_boxes=300_000, s
         count = min(max(np.count_nonzero(near), batch), max_batch, len(total))
         pick = np.zeros(len(total), dtype=bool)
         pick[np.argpartition(-total, count - 1)[:count]] = True
-        children = evaluate(boxes.take(pick).split())
+        children = _inherit(evaluate(boxes.take(pick).split()), [part[pick] for part in pool[1:]])
         evaluated += len(children[0])
         rest = [boxes.take(~pick)] + [part[~pick] for part in pool[1:]]
         pool = (_concat(rest[0], children[0]),) + tuple(np.concatenate([a, b]) for a, b in zip(rest[1:], children[1:]))
@@ -95,6 +97,19 @@ def bound_boxes(shader, against, domain, *, tolerance=0.02, max_boxes=300_000, s
     if faults:
         parts["faults"] = sorted(faults)
     return bound, parts
+
+
+def _inherit(children, parents):
+    """A child keeps its parent's bound where its own is larger: the parent's holds on it too
+    (interval bounds need not shrink with the box, only hold on it)."""
+    boxes, total, *rest = children
+    half = len(total) // 2  # Boxes.split puts the low halves first, then the high ones
+    worse = total > np.concatenate([parents[0], parents[0]])
+    for mine, theirs in zip([total, *rest], parents):
+        both = np.concatenate([theirs, theirs])
+        mine[worse] = both[worse]
+    assert half * 2 == len(total)
+    return (boxes, total, *rest)
 
 
 def _concat(a, b):
