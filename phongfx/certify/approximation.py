@@ -18,13 +18,21 @@ lights and the viewer at infinity everything the ideal and the reference compute
   Figure 8, whose ideal is Figure 7's with that ``n'``: its comparator zeroes only where
   ``x >= 2^k`` already).  :func:`form_table` bounds it on each of ``2^20`` cells of ``c`` by
   monotonicity (both terms rise with ``c``), and a box takes the largest cell its ``c`` meets.
+
+The halfway unit (Figure 5, the appendix's rows 7–8: ``D = Q - (Q·N)N`` with ``Q`` the halfway
+vector ``H`` or its ``g``-normalized ``H*``, constant when ``L`` and ``V`` are) has
+``|D|² = |Q|² - (2s² - s⁴)·w²``, ``w = Q·N̂``, so ``x`` moves by ``(n'/2)·w²·(s² - 1)²`` from
+``s = 1`` (``n' = n·2^halfway_shift``); its form at ``s = 1`` is a function of ``w`` and
+Phong's of ``c``, which :func:`halfway_distance` bounds by the ranges of both (loose where
+both vary, as ``f_k`` and ``c^n`` are different functions of the normal there).
 """
 
 import functools
 
 import numpy as np
 
-__all__ = ["scale_range", "shape_shift", "diffuse_shift", "form_table", "form_distance"]
+__all__ = ["scale_range", "shape_shift", "diffuse_shift", "form_table", "form_distance", "halfway_vectors",
+           "halfway_distance"]
 
 #: Cells of ``c ∈ [-1, 1]`` in :func:`form_table`.
 CELLS = 1 << 20
@@ -112,3 +120,46 @@ def form_distance(n_eff, n, k, c, against="phong"):
     # float log2 may land one low at an exact power: one level up is still sound
     level = np.minimum(level + ((last >> level) - (first >> level) > 1), len(offsets) - 1)
     return np.maximum(flat[offsets[level] + (first >> level)], flat[offsets[level] + (last >> level)])
+
+
+def halfway_vectors(unit, view, light):
+    """``(Q, Q_ref)``: the ideal unit's constant ``Q`` (None for a variant not bounded here) and
+    that of the float form ``halfway-g2proj`` (``H = (L + V)/2``, ``g2``-normalized)."""
+    cfg = unit.halfway
+    h = view + light
+    mean = h / 2
+    if cfg.h == "mean":
+        h = mean
+    if cfg.variant == "g2proj":
+        y = 1 - h @ h
+        q = _g(max(y, -1.0), cfg.normalize.order) * h
+    elif cfg.variant == "d3":
+        q = h
+    else:
+        q = None
+    y = 1 - mean @ mean
+    return q, _g(y, 2) * mean
+
+
+def _square(r):
+    low = np.where((r[0] <= 0) & (r[1] >= 0), 0.0, np.minimum(r[0] ** 2, r[1] ** 2))
+    return low, np.maximum(r[0] ** 2, r[1] ** 2)
+
+
+def halfway_distance(against, s, w, w_ref, c, q2, q2_ref, n_hw, n, k):
+    """Bound on ``|spec_ideal - spec_ref|`` of the halfway unit per box (module docstring):
+    ``w``, ``w_ref`` the ranges of ``Q·N̂`` and ``Q_ref·N̂``, ``q2`` and ``q2_ref`` the
+    constants ``|Q|²``, ``|Q_ref|²``, ``n_hw`` the hardware's ``n'`` per box."""
+    w2, s2 = _square(w), (s[0] ** 2, s[1] ** 2)
+    dx = n_hw / 2 * w2[1] * np.maximum((s2[0] - 1) ** 2, (s2[1] - 1) ** 2)
+    f_lo = _shape(n_hw / 2 * (q2 - w2[0]), k)
+    f_hi = _shape(n_hw / 2 * np.maximum(q2 - w2[1], 0.0), k)
+    if against == "self":
+        if np.all(n_hw == 4 * n) and abs(q2 - q2_ref) == 0:
+            return dx * (1 + 1e-12)
+        r2 = _square(w_ref)
+        g_lo, g_hi = _shape(2 * n * (q2_ref - r2[0]), k), _shape(2 * n * np.maximum(q2_ref - r2[1], 0.0), k)
+    else:
+        g_lo, g_hi = np.maximum(c[0], 0.0) ** n, np.maximum(c[1], 0.0) ** n
+    form = np.maximum(np.maximum(f_hi - g_lo, g_hi - f_lo), 0.0)
+    return (dx + form) * (1 + 1e-12) + 1e-15

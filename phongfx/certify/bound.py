@@ -10,7 +10,8 @@ the largest stops falling (or the time or box budget is spent).  Every box's bou
 every point in it, and the boxes cover the domain, so the largest bound over the boxes at any
 round is sound; splitting only makes it tighter.
 
-Covered: Lyon's Figure 7 datapath (``fig7``) with lights and viewer at infinity.  Point
+Covered: Lyon's Figure 7 and 8 datapaths (``fig7``, ``fig8``) and the halfway unit of Figure 5
+(``halfway``, its ``g2proj`` and ``d3`` variants) with lights and viewer at infinity.  Point
 lights and a local viewer (whose L and V normalizers add their own ``s_L``, ``s_V`` over the
 cones the domain's ball gives) and the other units are not bounded yet: the certificate says so.
 """
@@ -31,7 +32,7 @@ __all__ = ["BOUNDED", "certify", "shader_config", "bound_boxes"]
 
 #: The methods :func:`certify` bounds (others get a certificate without a bound).
 _TRACE = False
-BOUNDED = ("fig7",)
+BOUNDED = ("fig7", "fig8", "halfway")
 
 
 def shader_config(method, params, spec, analysis=None):
@@ -146,6 +147,9 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
         return done(False, None, why=why)
     if shader is None:
         shader = shader_config(method, params, spec, analysis)
+    halfway = shader.units[0].halfway
+    if method == "halfway" and halfway.variant not in ("g2proj", "d3"):
+        return done(False, None, why=f"the halfway unit's {halfway.variant} variant is not bounded yet")
     against = spec.requirement.against
     bound, parts = bound_boxes(shader, against, domain, max_boxes=max_boxes)
     if not np.isfinite(bound):

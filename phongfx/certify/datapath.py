@@ -19,6 +19,12 @@ unchanged on intervals; two steps are written here instead:
   multiplexer's error is bounded by continuity: ``f_k(v) = (1 - v)^(2^k)`` is 0 at ``v = 1``,
   so where hardware and ideal fall on opposite sides (``|v_hw - v| <= e_v``) the side that
   gives 0 is within ``e_v^(2^k)`` of the other's formula, and where both are past 1 both give 0.
+* **The root-shininess unit** (Figure 8, :func:`phongfx.golden.root.root`), whose augmented
+  comparator (``any(u_i >= 1)``, a reduction over the lanes) zeroes the output, and whose
+  squarers see only the fractions of ``u_i = m|D_i|/2^s``: as for the shape function, where the
+  hardware's ``u_i`` are all below 1 the fractions are the ``u_i``, and where one reaches 1 the
+  ideal's ``x/2^k >= (1 - e_u)^2``, whose ``f_k`` is at most ``(2e_u)^(2^k)``.  Its ideal is
+  Figure 7's with ``n = m²`` (the comparator only zeroes where ``f_k`` is 0 already).
 """
 
 import numpy as np
@@ -34,10 +40,10 @@ from phongfx.golden.reflect import reflect
 from .interval import Interval, rounding_error
 from .sphere import product, projection
 
-__all__ = ["UNITS", "encoding_error", "front", "constant", "shape", "unit_terms"]
+__all__ = ["UNITS", "encoding_error", "front", "constant", "shape", "magnitude", "root", "unit_terms"]
 
-#: The specular units bounded here (Lyon's Figure 7 and the halfway unit of Figure 5).
-UNITS = ("fig7", "halfway")
+#: The specular units bounded here (Lyon's Figures 7 and 8 and the halfway unit of Figure 5).
+UNITS = ("fig7", "fig8", "halfway")
 
 
 def encoding_error(fmt):
@@ -95,6 +101,43 @@ def shape(config, x2):
     return Interval(lo, hi, err * (1 + 1e-12), config.t, t.faults if np.any(used) else v.faults)
 
 
+def magnitude(x):
+    """``|x|`` of an Interval: 1-Lipschitz, so its deviation stays (its terms where the sign is
+    known, as a remainder where the range holds 0)."""
+    pos, neg = x.lo >= 0, x.hi <= 0
+    lo = np.where(pos, x.lo, np.where(neg, -x.hi, 0.0))
+    hi = np.maximum(np.abs(x.lo), np.abs(x.hi))
+    err = np.where(pos | neg, x.err, x.dev)
+    terms = None
+    if x.terms is not None:
+        sign = np.where(pos, 1.0, np.where(neg, -1.0, 0.0))
+        terms = x.terms * sign[..., None]
+    return Interval(lo, hi, err, x.fmt.neg(), x.faults, terms)
+
+
+def root(config, r, l, m):
+    """Figure 8 on Intervals (module docstring): the ``spec`` Interval; ``m`` the shininess
+    codes (a Fixed per box)."""
+    d = (r - l).quantize(config.d, config.rounding, "saturate", op="root D")
+    mag = magnitude(d).quantize(Format(d.fmt.int_bits, d.fmt.frac_bits), config.rounding, "saturate",
+                                op="root |D|")
+    u = (mag * m[:, None]) >> config.shift
+    frac = Format.parse(config.frac)
+    top = 1.0 - 2.0 ** -u.fmt.frac_bits
+    small = np.all(u.lo < 1, axis=-1)  # the hardware may pass every lane to the squarers
+    big = np.any(u.hi >= 1, axis=-1)   # ... or zero the output
+    kept = Interval(np.minimum(u.lo, top), np.minimum(u.hi, top), u.err, u.fmt, u.faults, u.terms)
+    x2 = kept.quantize(frac, "truncate", "wrap", op="root u")
+    x2 = x2.dot(x2) << 2 * config.shift
+    spec = shape(config.shape, x2)
+    e_u = np.max(u.dev, axis=-1)
+    past = np.minimum(1.0, 2 * e_u) ** (2 ** config.k)
+    err = np.maximum(np.where(small, spec.dev, 0.0), np.where(big, past, 0.0))
+    lo = np.where(small & ~big, spec.lo, 0.0)
+    hi = np.where(small, spec.hi, 0.0)
+    return Interval(lo, hi, err * (1 + 1e-12), config.t, spec.faults if np.any(small) else u.faults)
+
+
 def _shininess(config, n):
     """The shininess port's codes for ``n`` per box (None when the hardware fixes it)."""
     if config.shininess is None:
@@ -119,7 +162,14 @@ def _fig7_specular(config, normal, view, lights, shininess):
     return [shape(config.shape, difference(config.difference, r, light, shininess)["x2"]) for light in lights]
 
 
-_SPECULAR = {"fig7": _fig7_specular, "halfway": _halfway_specular}
+def _fig8_specular(config, normal, view, lights, shininess):
+    # as phongfx.golden.datapath.fig8: R once, then per light the root-shininess unit
+    r = reflect(config.reflect, normal, view)["r"]
+    m = shininess if shininess is not None else Fixed(np.full(len(r), config.root.m_const), config.root.m)
+    return [root(config.root, r, light, m) for light in lights]
+
+
+_SPECULAR = {"fig7": _fig7_specular, "fig8": _fig8_specular, "halfway": _halfway_specular}
 
 
 def unit_terms(config, boxes, basis, lights, min_normal_length):

@@ -24,7 +24,8 @@ code range moves neither side apart) ``+ rounding + approximation``, with
 
 import numpy as np
 
-from .approximation import diffuse_shift, form_distance, scale_range, shape_shift
+from .approximation import (diffuse_shift, form_distance, halfway_distance, halfway_vectors, scale_range,
+                            shape_shift)
 from .datapath import unit_terms
 from .sphere import projection
 
@@ -59,6 +60,13 @@ def _form(against, unit, n_hw, n, k, c):
     return out
 
 
+def _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k):
+    target, target_ref = halfway_vectors(unit, basis[0], light)
+    w, w_ref = projection(boxes, basis, target), projection(boxes, basis, target_ref)
+    return halfway_distance(against, s, w, w_ref, c, float(target @ target), float(target_ref @ target_ref),
+                            n_hw * 2.0 ** unit.halfway_shift, n, k)
+
+
 def box_errors(shader, against, boxes, basis, lights, min_normal_length):
     """Per box and channel ``(rounding, approximation)`` arrays (B, 3), in levels, and the unit's
     ``faults`` (quantizes that may overflow: :class:`~phongfx.certify.interval.Interval`)."""
@@ -70,6 +78,7 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length):
     p = projection(boxes, basis, basis[0])
     n = boxes.n.astype(np.float64)
     n_hw = _applied_n(unit, n)
+    k = unit.root.k if unit.specular == "fig8" else unit.shape.k
     rounding = np.abs(ac - ae)[m].copy()
     approximation = np.zeros_like(rounding)
     faults = set()
@@ -85,6 +94,9 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length):
         agree = ((margin < 1.0 / blend.levels) | (q[0] > margin) | (q[1] < -margin))[:, None]
         mismatch = np.maximum(sc[m, i] * t.hi[:, None], se[m, i] * (t.hi[:, None] + e_s))
         rounding += np.where(agree, both, np.maximum(both, mismatch))
-        shift = shape_shift(s, p, q, c, n_hw, unit.shape.k) + _form(against, unit, n_hw, n, unit.shape.k, c)
+        if unit.specular == "halfway":
+            shift = _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k)
+        else:
+            shift = shape_shift(s, p, q, c, n_hw, k) + _form(against, unit, n_hw, n, k, c)
         approximation += de[m, i] * diffuse_shift(s, q)[:, None] + se[m, i] * shift[:, None]
     return rounding, approximation, faults

@@ -15,6 +15,9 @@ from phongfx.scene.file import load_scene
 #: The widths ``phongfx compile`` chooses for fig7 (its manifests' "widths").
 TORUS = {"vec_frac": 10, "x2_frac": 5, "shape_t_frac": 10, "coef": 0, "order": 1, "k": 4}
 LYON = {"vec_frac": 10, "x2_frac": 5, "shape_t_frac": 8, "coef": 0, "order": 2}
+#: ... and for fig8, the runner-up on both scenes.
+TORUS_FIG8 = {"vec_frac": 10, "root_frac": 10, "t_frac": 11, "coef": 0, "order": 1, "k": 4}
+LYON_FIG8 = {"vec_frac": 10, "root_frac": 8, "t_frac": 8, "coef": 2, "order": 1}
 
 
 def _scene(name):
@@ -22,20 +25,21 @@ def _scene(name):
     return spec, domain(spec)
 
 
-def _measured(spec, shader, params, geometries=None):
+def _measured(spec, shader, params, geometries=None, method="fig7"):
     """Largest ``|out - (2^bits - 1)·I_ref|`` of the whole shader's golden model over the scene's
     frames (``geometries`` None) or over the given geometries, as the compiler measures it."""
     scene = SceneEval(spec, geometries)
     scale = (1 << spec.output.bits) - 1
     worst = 0.0
     for index in range(len(scene.renders)):
-        codes, ref = scene.render("fig7", shader, params, index)[:2]
+        codes, ref = scene.render(method, shader, params, index)[:2]
         worst = max(worst, float(np.max(np.abs(codes - ref * scale), initial=0.0)))
     return worst
 
 
-def _sampled(spec, dom, shader, params, count, seed=11):
-    return max(_measured(spec, shader, params), _measured(spec, shader, params, [dom.sample(count, seed)]))
+def _sampled(spec, dom, shader, params, count, seed=11, method="fig7"):
+    return max(_measured(spec, shader, params, method=method),
+               _measured(spec, shader, params, [dom.sample(count, seed)], method))
 
 
 def test_methods_without_a_bounding_method_say_so():
@@ -65,17 +69,28 @@ def test_the_bound_holds_on_the_torus_smoke():
     assert not got.certified and "over the required 1" in got.why
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name, params", [
-    ("torus", TORUS), ("torus", {}),
-    ("torus", {"vec_frac": 8, "x2_frac": 4, "shape_t_frac": 8, "coef": 2, "order": 1, "k": 4}),
-    ("lyon-balls", LYON), ("lyon-balls", {}), ("lyon-balls", {**LYON, "vec_frac": 11}),
-])
-def test_the_bound_holds_on_frames_and_domain(name, params):
+@pytest.mark.parametrize("method, name, params", [("fig8", "torus", TORUS_FIG8), ("halfway", "lyon-balls", {})])
+def test_the_bound_holds_for_the_other_units_smoke(method, name, params):
     spec, dom = _scene(name)
-    shader = shader_config("fig7", params, spec)
-    got = certify("fig7", params, spec, dom, shader=shader)
-    measured = _sampled(spec, dom, shader, params, 100_000)
+    shader = shader_config(method, params, spec)
+    got = certify(method, params, spec, dom, shader=shader, max_boxes=20_000)
+    measured = _sampled(spec, dom, shader, params, 20_000, method=method)
+    assert got.bound_levels is not None and measured <= got.bound_levels
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("method, name, params", [
+    ("fig7", "torus", TORUS), ("fig7", "torus", {}),
+    ("fig7", "torus", {"vec_frac": 8, "x2_frac": 4, "shape_t_frac": 8, "coef": 2, "order": 1, "k": 4}),
+    ("fig7", "lyon-balls", LYON), ("fig7", "lyon-balls", {}), ("fig7", "lyon-balls", {**LYON, "vec_frac": 11}),
+    ("fig8", "torus", TORUS_FIG8), ("fig8", "torus", {}), ("fig8", "lyon-balls", LYON_FIG8),
+    ("halfway", "torus", {}), ("halfway", "lyon-balls", {}),
+])
+def test_the_bound_holds_on_frames_and_domain(method, name, params):
+    spec, dom = _scene(name)
+    shader = shader_config(method, params, spec)
+    got = certify(method, params, spec, dom, shader=shader)
+    measured = _sampled(spec, dom, shader, params, 100_000, method=method)
     assert got.bound_levels is not None and measured <= got.bound_levels
 
 
