@@ -50,6 +50,9 @@ def _not_bounded(domain):
         return "a local viewer is not bounded yet"
     if not any(values for _, values in domain.materials):
         return "the domain admits no shininess n"
+    vectors = [vector for _, vector, _ in domain.lights] + [domain.camera[1]]
+    if any(abs(float(np.linalg.norm(v)) - 1.0) > 1e-9 for v in vectors):
+        return "the light and camera directions must be unit vectors, as the bound's geometry takes them"
     return None
 
 
@@ -117,17 +120,28 @@ def _concat(a, b):
     return Boxes(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in ("theta", "phi", "z", "n", "material")))
 
 
+def _box(boxes, i, domain, channel=None):
+    """Where box ``i`` is: its ``n``, material, channel and ranges of θ, φ (degrees) and z."""
+    out = {"n": int(boxes.n[i]), "material": domain.materials[int(boxes.material[i])][0]}
+    if channel is not None:
+        out["channel"] = "rgb"[channel]
+    out.update(theta_deg=[round(float(np.degrees(x)), 4) for x in boxes.theta[i]],
+               phi_deg=[round(float(np.degrees(x)), 4) for x in boxes.phi[i]],
+               z=[round(float(x), 6) for x in boxes.z[i]])
+    return out
+
+
 def _worst(boxes, total, rounding, approximation, domain):
-    """``(bound, parts)`` of the box with the largest total."""
+    """``(bound, parts)``: the box with the largest total, its parts (they sum to the bound), and
+    the largest of each part alone with its box."""
     i = int(np.argmax(total))
     c = int(np.argmax(rounding[i] + approximation[i]))
-    name = domain.materials[int(boxes.material[i])][0]
-    where = {"n": int(boxes.n[i]), "material": name, "channel": "rgb"[c],
-             "theta_deg": [round(float(np.degrees(x)), 4) for x in boxes.theta[i]],
-             "phi_deg": [round(float(np.degrees(x)), 4) for x in boxes.phi[i]],
-             "z": [round(float(x), 6) for x in boxes.z[i]]}
-    return float(total[i]), {"rounding": float(rounding[i, c]), "approximation": float(approximation[i, c]),
-                             "output": 0.5, "where": where}
+    parts = {"rounding": float(rounding[i, c]), "approximation": float(approximation[i, c]), "output": 0.5,
+             "where": _box(boxes, i, domain, c)}
+    for name, part in (("rounding", rounding), ("approximation", approximation)):
+        j = int(np.argmax(part.max(axis=-1)))
+        parts[f"largest_{name}"] = {"levels": float(part[j].max()), "where": _box(boxes, j, domain)}
+    return float(total[i]), parts
 
 
 def certify(method, params, spec, domain, *, shader=None, analysis=None, max_boxes=300_000):

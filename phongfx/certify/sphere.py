@@ -62,9 +62,11 @@ class Boxes:
 
 
 def frame(view):
-    """``(V, e1, e2)``: the unit viewer direction and two unit vectors completing the frame."""
+    """``(V, e1, e2)``: the unit viewer direction (``view`` itself when it is unit to 1e-12, so
+    that the hardware's code of it is the host's) and two unit vectors completing the frame."""
     v = np.asarray(view, dtype=np.float64)
-    v = v / np.linalg.norm(v)
+    if abs(np.linalg.norm(v) - 1.0) > 1e-12:
+        v = v / np.linalg.norm(v)
     helper = np.eye(3)[int(np.argmin(np.abs(v)))]
     e1 = np.cross(v, helper)
     e1 /= np.linalg.norm(e1)
