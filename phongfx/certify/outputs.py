@@ -52,11 +52,11 @@ def _applied_n(unit, n):
 def _form(against, unit, n_hw, n, k, c):
     """Per box the distance of the ideal form at ``s = 1`` from the reference's (grouped by n)."""
     out = np.zeros(len(n))
-    for pair in {(int(a), int(b)) for a, b in zip(n_hw, n)}:
+    for pair in np.unique(np.stack([n_hw, n], -1), axis=0).astype(np.int64).tolist():
         if against == "self" and pair[0] == pair[1]:
             continue
         pick = (n_hw == pair[0]) & (n == pair[1])
-        out[pick] = form_distance(*pair, k, (c[0][pick], c[1][pick]), against)
+        out[pick] = form_distance(pair[0], pair[1], k, (c[0][pick], c[1][pick]), against)
     return out
 
 
