@@ -42,12 +42,21 @@ def _g(y, order):
     return 1 + y / 2 if order == 1 else 1 + (y + y * y) / 2
 
 
+def _scale(z, order):
+    return _g(1 - z, order) * np.sqrt(z)
+
+
 def scale_range(z, order):
-    """``(lo, hi)`` of ``s = g(z)·√z`` over boxes ``z`` (B, 2), ``g`` of ``order`` 1 or 2
-    (``g`` falls and ``√z`` rises with ``z``, for ``0 <= 1 - z <= 1``)."""
+    """``(lo, hi)`` of ``s = g(z)·√z`` over boxes ``z`` (B, 2), ``g`` of ``order`` 1 or 2, exact:
+    ``s`` is monotone in ``z`` on ``[0, 1]`` for ``g1`` (``ds/dz = 3(1 - z)/(4√z)``), and for
+    ``g2`` rises with ``y = 1 - z`` up to ``y = 1/5`` and falls after (``ds/dy ∝ y(1 - 5y)``):
+    Lyon's over-correction, largest at length ``√0.8 ≈ 0.894``."""
     z = np.clip(z, 0.0, 1.0)
-    lo = _g(1 - z[:, 1], order) * np.sqrt(z[:, 0])
-    hi = _g(1 - z[:, 0], order) * np.sqrt(z[:, 1])
+    ends = [_scale(z[:, 0], order), _scale(z[:, 1], order)]
+    lo, hi = np.minimum(*ends), np.maximum(*ends)
+    if order == 2:
+        peak = (z[:, 0] <= 0.8) & (0.8 <= z[:, 1])
+        hi = np.where(peak, np.maximum(hi, _scale(0.8, 2)), hi)
     return lo * (1 - 1e-15), hi * (1 + 1e-15)
 
 

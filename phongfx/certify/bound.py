@@ -57,14 +57,15 @@ def _not_bounded(domain):
 
 
 def bound_boxes(shader, against, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60.0, batch=2048,
-                max_batch=65536):
+                max_batch=65536, enough=None):
     """Branch and bound (module docstring): ``(bound, parts)``, ``bound`` inf when some box
     cannot be bounded (``parts["faults"]`` then names the quantizes that may overflow).
 
     Each round halves the boxes within ``tolerance`` of the largest bound (at least the
     ``batch`` largest, at most ``max_batch``); it stops when the largest has fallen by under
     0.2 % over four rounds that split every box near it, or once ``max_boxes`` boxes have been
-    bounded (the budget that makes the result the same on every machine), or at ``seconds``."""
+    bounded (the budget that makes the result the same on every machine), or at ``seconds``, or
+    as soon as the largest is below ``enough`` (a width search needs no tighter bound)."""
     basis = frame(domain.camera[1])
     lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
     cases = [(n, m) for m, (_, values) in enumerate(domain.materials) for n in values]
@@ -87,7 +88,8 @@ def bound_boxes(shader, against, domain, *, tolerance=0.02, max_boxes=300_000, s
         if _TRACE: print(len(history), top, np.count_nonzero(near), evaluated)
         settled = (len(history) > 4 and all(w for _, w in history[-4:])
                    and history[-5][0] - top <= 0.002 * max(top, 1.0))
-        if settled or time.perf_counter() - start > seconds or evaluated > max_boxes:
+        met = enough is not None and top < enough
+        if met or settled or time.perf_counter() - start > seconds or evaluated > max_boxes:
             break
         count = min(max(np.count_nonzero(near), batch), max_batch, len(total))
         pick = np.zeros(len(total), dtype=bool)
@@ -144,11 +146,12 @@ def _worst(boxes, total, rounding, approximation, domain):
     return float(total[i]), parts
 
 
-def certify(method, params, spec, domain, *, shader=None, analysis=None, max_boxes=300_000):
+def certify(method, params, spec, domain, *, shader=None, analysis=None, max_boxes=300_000, early=False):
     """A :class:`~phongfx.certify.certificate.Certificate` for ``method`` at ``params`` (the
     compiler's, :func:`shader_config`) on the scene ``spec`` over ``domain``
     (:class:`phongfx.scene.domain.Domain`); ``shader``: the ShaderConfig when already built;
-    ``max_boxes``: the branch and bound's budget (:func:`bound_boxes`)."""
+    ``max_boxes``: the branch and bound's budget (:func:`bound_boxes`); ``early``: stop refining
+    as soon as the bound meets the requirement (for a width search, which asks only that)."""
     start = time.perf_counter()
 
     def done(certified, bound, parts=None, why=""):
@@ -165,11 +168,13 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
     if method == "halfway" and halfway.variant not in ("g2proj", "d3"):
         return done(False, None, why=f"the halfway unit's {halfway.variant} variant is not bounded yet")
     against = spec.requirement.against
-    bound, parts = bound_boxes(shader, against, domain, max_boxes=max_boxes)
+    need = spec.requirement.max_error_levels
+    # floor(B + 1/2) <= need exactly when B < floor(need) + 1/2
+    bound, parts = bound_boxes(shader, against, domain, max_boxes=max_boxes,
+                               enough=np.floor(need) + 0.5 if early else None)
     if not np.isfinite(bound):
         faults = ", ".join(parts.get("faults", [])) or "a quantize"
         return done(False, None, parts, f"{faults} may overflow or wrap somewhere in the domain")
-    need = spec.requirement.max_error_levels
     ok = meets(bound, need)
     return done(ok, bound, parts, "" if ok else
                 f"the bound {bound:.3f} levels rounds to {int(np.floor(bound + 0.5))}, over the "
