@@ -115,3 +115,16 @@ def test_a_worse_quantize_breaks_the_old_bound_and_raises_the_new_one():
     measured = _sampled(spec, dom, worse, TORUS, 20_000)
     after = certify("fig7", TORUS, spec, dom, shader=worse, max_boxes=20_000).bound_levels
     assert before + 5 < measured <= after
+
+
+def test_a_wide_design_is_certified_and_early_stops_once_it_is():
+    """At wide widths and g2 the torus's bound meets 1 level; ``early`` stops refining there
+    (a bound that meets the requirement, from a fraction of the boxes)."""
+    spec, dom = _scene("torus")
+    wide = {"vec_frac": 14, "x2_frac": 14, "shape_t_frac": 18, "coef": 8, "order": 2, "k": 4}
+    shader = shader_config("fig7", wide, spec)
+    quick = certify("fig7", wide, spec, dom, shader=shader, early=True)
+    assert quick.certified and quick.why == ""
+    assert 0.5 < quick.bound_levels < 1.5 and quick.parts["boxes"] < 100_000
+    assert quick.as_dict()["method"] == "interval"
+    assert _sampled(spec, dom, shader, wide, 20_000) <= quick.bound_levels
