@@ -31,7 +31,6 @@ from .sphere import Boxes, cover, frame
 __all__ = ["BOUNDED", "certify", "shader_config", "bound_boxes"]
 
 #: The methods :func:`certify` bounds (others get a certificate without a bound).
-_TRACE = False
 BOUNDED = ("fig7", "fig8", "halfway")
 
 
@@ -85,7 +84,6 @@ def bound_boxes(shader, against, domain, *, tolerance=0.02, max_boxes=300_000, s
         near = total >= top - tolerance
         whole = np.count_nonzero(near) <= max_batch
         history.append((top, whole))
-        if _TRACE: print(len(history), top, np.count_nonzero(near), evaluated)
         settled = (len(history) > 4 and all(w for _, w in history[-4:])
                    and history[-5][0] - top <= 0.002 * max(top, 1.0))
         met = enough is not None and top < enough
