@@ -68,8 +68,9 @@ def _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k):
 
 
 def box_errors(shader, against, boxes, basis, lights, min_normal_length):
-    """Per box and channel ``(rounding, approximation)`` arrays (B, 3), in levels, and the unit's
-    ``faults`` (quantizes that may overflow: :class:`~phongfx.certify.interval.Interval`)."""
+    """Per box and channel ``(rounding, approximation)`` arrays (B, 3), in levels, the unit's
+    ``faults`` (quantizes that may overflow: :class:`~phongfx.certify.interval.Interval`) and per
+    box ``gate``: 0 where the backside tests agree, else the ``|N·L|`` below which they may not."""
     unit, blend = shader.units[0], shader.blend
     spec, diff = unit_terms(unit, boxes, basis, lights, min_normal_length)
     (ac, dc, sc), (ae, de, se) = coefficient_tables(blend)
@@ -81,7 +82,7 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length):
     k = unit.root.k if unit.specular == "fig8" else unit.shape.k
     rounding = np.abs(ac - ae)[m].copy()
     approximation = np.zeros_like(rounding)
-    faults = set()
+    faults, gate = set(), np.zeros(len(boxes))
     for i, light in enumerate(lights):
         q = projection(boxes, basis, light)
         c = projection(boxes, basis, light, reflected=True)
@@ -94,9 +95,10 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length):
         agree = ((margin < 1.0 / blend.levels) | (q[0] > margin) | (q[1] < -margin))[:, None]
         mismatch = np.maximum(sc[m, i] * t.hi[:, None], se[m, i] * (t.hi[:, None] + e_s))
         rounding += np.where(agree, both, np.maximum(both, mismatch))
+        gate = np.where(agree[:, 0], gate, np.maximum(gate, margin))
         if unit.specular == "halfway":
             shift = _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k)
         else:
             shift = shape_shift(s, p, q, c, n_hw, k) + _form(against, unit, n_hw, n, k, c)
         approximation += de[m, i] * diffuse_shift(s, q)[:, None] + se[m, i] * shift[:, None]
-    return rounding, approximation, faults
+    return rounding, approximation, faults, gate

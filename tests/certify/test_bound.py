@@ -128,3 +128,15 @@ def test_a_wide_design_is_certified_and_early_stops_once_it_is():
     assert 0.5 < quick.bound_levels < 1.5 and quick.parts["boxes"] < 100_000
     assert quick.as_dict()["method"] == "interval"
     assert _sampled(spec, dom, shader, wide, 20_000) <= quick.bound_levels
+
+
+def test_a_backside_test_that_may_differ_is_named():
+    """Lyon's balls at vec_frac 10: the diffuse unit's N·L error bound (about 4.3e-3) is wider
+    than the terminator band 1/255, so where n = 1's highlight crosses the terminator the
+    hardware may gate off what the reference shows: the bound pays the whole specular term."""
+    spec, dom = _scene("lyon-balls")
+    got = certify("fig7", LYON, spec, dom, max_boxes=60_000)
+    assert got.parts["where"]["n"] == 1 and got.parts["backside"] > 1 / 255
+    assert got.bound_levels > 30 and "backside test may differ" in got.why
+    wider = certify("fig7", {**LYON, "vec_frac": 11}, spec, dom, max_boxes=60_000)
+    assert "backside" not in wider.parts and wider.bound_levels < 20
