@@ -31,7 +31,7 @@ import functools
 
 import numpy as np
 
-__all__ = ["scale_range", "shape_shift", "diffuse_shift", "form_table", "form_distance", "halfway_vectors",
+__all__ = ["CELLS", "scale_range", "shape_shift", "diffuse_shift", "form_table", "form_distance", "halfway_vectors",
            "halfway_distance"]
 
 #: Cells of ``c ∈ [-1, 1]`` in :func:`form_table`.

@@ -108,12 +108,11 @@ def _inherit(children, parents):
     """A child keeps its parent's bound where its own is larger: the parent's holds on it too
     (interval bounds need not shrink with the box, only hold on it)."""
     boxes, total, *rest = children
-    half = len(total) // 2  # Boxes.split puts the low halves first, then the high ones
+    # Boxes.split puts the low halves first, then the high ones: parents twice over
     worse = total > np.concatenate([parents[0], parents[0]])
     for mine, theirs in zip([total, *rest], parents):
         both = np.concatenate([theirs, theirs])
         mine[worse] = both[worse]
-    assert half * 2 == len(total)
     return (boxes, total, *rest)
 
 
