@@ -55,7 +55,10 @@ CHUNK = 1 << 20
 def applicable(method, spec, domain):
     """Why the exhaustive method cannot enumerate ``domain`` for ``method`` (one sentence),
     or None when it can."""
-    if domain.max_span_angle_deg > 0:
+    # Lyon's spheres with span 0 feed n0 = n1 exactly; the domain's angle of such spans,
+    # an arccos of a float dot product, can read a few 1e-7 degrees instead of 0
+    exact = all(obj.kind == "lyon_spheres" and obj.params["span"] == 0 for obj in spec.objects)
+    if domain.max_span_angle_deg > 0 and not exact:
         return (f"the domain has spans (span-end normals up to {domain.max_span_angle_deg:g}° apart), "
                 f"too many inputs to enumerate; only exact per-pixel normals are")
     if any(light.kind != "directional" for light in spec.lights):

@@ -1,7 +1,5 @@
 """The exhaustive certificate: the normal codes it lists and the bound it measures."""
 
-import types
-
 import numpy as np
 import pytest
 
@@ -12,6 +10,7 @@ from phongfx.explore.compile import run as runs
 from phongfx.explore.compile.analysis import analyse
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.shader import shader
+from phongfx.scene.domain import domain
 from phongfx.scene.file import parse_scene
 from phongfx.scene.geometry import frames
 from phongfx.sim.stimulus import codes as encode_codes
@@ -44,9 +43,9 @@ def ball(span=0):
     return parse_scene(BALL.replace("SPAN", str(span)))
 
 
-def per_pixel(view_cos_min=0.0, spans=0.0):
+def per_pixel(spec=None):
     """The domain of exact per-pixel normals facing the viewer, one material of n = 16."""
-    return types.SimpleNamespace(max_span_angle_deg=spans, view_cos_min=view_cos_min, materials=(("ball", (16,)),))
+    return domain(spec or ball())
 
 
 def listed(fmt, view=(0, 0, 1), cos_min=0.0):
@@ -124,11 +123,11 @@ def test_a_worse_quantize_raises_the_bound():
 
 def test_not_enumerable():
     spec = ball(span=4)
-    cert = exhaustive("fig7", {"vec_frac": 7}, spec, per_pixel(spans=30.0))
+    cert = exhaustive("fig7", {"vec_frac": 7}, spec, per_pixel(spec))
     assert not cert.certified and cert.bound_levels is None
     assert "spans" in cert.why
     point = parse_scene(BALL.replace("SPAN", "0").replace("direction = [1, 1, 1]", "position = [3, 3, 3]"))
-    assert "point light" in applicable("fig7", point, per_pixel())
+    assert "point light" in applicable("fig7", point, per_pixel(point))
     assert "spherical" in applicable("spherical", ball(), per_pixel())
 
 
