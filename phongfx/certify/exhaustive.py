@@ -38,7 +38,7 @@ import numpy as np
 from phongfx.core.format import Format
 from phongfx.explore.compile import run as runs
 from phongfx.explore.compile.analysis import analyse
-from phongfx.explore.compile.compiler import render_geometry
+from phongfx.explore.compile.measure import shade_points
 from phongfx.scene.geometry import FrameGeometry, frames
 
 from .certificate import Certificate, meets
@@ -190,7 +190,7 @@ def exhaustive(method, params, spec, domain, *, analysis=None, chunk=CHUNK, max_
         for codes in normal_codes(fmt, spec.camera.vector, domain.view_cos_min, chunk):
             g = _geometry(spec, codes, fmt, material, n, spec.output.bits)
             shininess = np.full(len(codes), n, dtype=np.int64)
-            out, ref = render_geometry(method, config, params, against, g, shininess)[:2]
+            out, ref = shade_points(method, config, params, against, g, shininess)[:2]
             error = np.abs(out - ref * scale)
             pixel = int(np.argmax(error.max(axis=-1)))
             if worst is None or error[pixel].max() > worst["unrounded"]:

@@ -59,8 +59,8 @@ from .costing import COST_UNITS, TIE_MARGIN, costed, tie
 from .infeasible import hint, summary
 from .journal import Journal, scene_key
 
-__all__ = ["Compiled", "SceneEval", "render_geometry", "phong_specular", "compile_scene", "check_methods",
-           "width_params", "widest", "search_widths"]
+__all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "widest",
+           "search_widths"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -107,37 +107,6 @@ def _diffuse(g):
     return np.maximum(_cosines(g), 0.0)
 
 
-def render_geometry(method, config, params, against, g, n, reference=None):
-    """``(codes, I_ref, raw inputs, raw outputs)`` of the pixels of ``g`` (a
-    :class:`~phongfx.scene.geometry.FrameGeometry`, shininess ``n`` per pixel) through the
-    golden model of the whole shader ``config``: the ``r``, ``g``, ``b`` codes (P, 3) and the
-    float reference intensities (P, 3), whose backside test follows the shader's within the
-    terminator band (:func:`~phongfx.scene.geometry.terminator_lit`).  ``against``: the
-    requirement's ``"phong"`` (``reference``, (lights, P), when already computed) or
-    ``"self"``."""
-    raw = runs.frame_inputs(method, config, g, n)
-    fixed = {name: Fixed(np.asarray(raw[name], dtype=np.int64), fmt)
-             for name, (fmt, _) in config.inputs.items()}
-    terms = shader_terms(config, **fixed)
-    out = {name: value.raw for name, value in blend(config.blend, **terms).items()}
-    codes = runs.frame_codes(method, out, g)
-    lit = None
-    if config.blend.diff:  # the shader's own backside test, per light, at the visible pixels
-        lit = np.stack([runs.visible(method, terms[f"diff{i}"].raw > 0, g) for i in range(config.blend.lights)])
-    if against == "self":
-        spec = runs.own_specular(method, config, params, g, n)
-    else:
-        spec = phong_specular(g, n) if reference is None else reference
-    diff = _diffuse(g)
-    return codes, shade(g, diff, spec, lit=terminator_lit(_cosines(g), lit, g.bits)), raw, out
-
-
-def phong_specular(g, n):
-    """(lights, P) true Phong's ``(R·L)^n`` at the pixels of ``g`` (Phong's normal, the exact
-    light and viewer of each pixel)."""
-    return np.stack([specular("phong", g.normal, light, g.viewer, n) for light in g.light])
-
-
 class SceneEval:
     """The scene's renders (frames × shininess variants) and their Phong references."""
 
@@ -155,7 +124,7 @@ class SceneEval:
         #: per render, the index of its shininess variant (0 when every n is single)
         self.variant_of = [i for g in self.geometries for i, _ in enumerate(variants(g))]
         #: per render, true Phong's (lights, P) specular terms (the diffuse is the same for all)
-        self.reference = [phong_specular(g, n) for g, n in self.renders]
+        self.reference = [self._phong(g, n) for g, n in self.renders]
         #: ``journal``: a folder where measured points are kept for a rerun (:mod:`.journal`)
         self.journal = None if journal is None else Journal(journal, scene_key(spec, self.geometries))
         self.cache = {} if self.journal is None else self.journal.load()
@@ -182,12 +151,31 @@ class SceneEval:
             return out
         return variants
 
+    def _phong(self, g, n):
+        return np.stack([specular("phong", g.normal, light, g.viewer, n) for light in g.light])
+
     def render(self, method, config, params, index):
-        """``(codes, I_ref, raw inputs, raw outputs)`` of render ``index``
-        (:func:`render_geometry` with the render's Phong reference)."""
+        """``(codes, I_ref, raw inputs, raw outputs)`` of render ``index``: the shader's
+        ``r``, ``g``, ``b`` codes (P, 3) and the float reference intensities (P, 3), whose
+        backside test follows the shader's within the terminator band
+        (:func:`~phongfx.scene.geometry.terminator_lit`)."""
         g, n = self.renders[index]
-        return render_geometry(method, config, params, self.spec.requirement.against, g, n,
-                               reference=self.reference[index])
+        raw = runs.frame_inputs(method, config, g, n)
+        fixed = {name: Fixed(np.asarray(raw[name], dtype=np.int64), fmt)
+                 for name, (fmt, _) in config.inputs.items()}
+        terms = shader_terms(config, **fixed)
+        out = {name: value.raw for name, value in blend(config.blend, **terms).items()}
+        codes = runs.frame_codes(method, out, g)
+        lit = None
+        if config.blend.diff:  # the shader's own backside test, per light, at the visible pixels
+            lit = np.stack([runs.visible(method, terms[f"diff{i}"].raw > 0, g)
+                            for i in range(config.blend.lights)])
+        if self.spec.requirement.against == "self":
+            spec = runs.own_specular(method, config, params, g, n)
+        else:
+            spec = self.reference[index]
+        diff = _diffuse(g)
+        return codes, shade(g, diff, spec, lit=terminator_lit(_cosines(g), lit, self.bits)), raw, out
 
     def error(self, method, params):
         """``{"max", "mean", "max_unrounded"}`` error in levels of ``method`` at ``params``
