@@ -39,7 +39,7 @@ from phongfx.core.format import Format
 from phongfx.explore.compile import run as runs
 from phongfx.explore.compile.analysis import analyse
 from phongfx.explore.compile.measure import shade_points
-from phongfx.scene.geometry import FrameGeometry, frames
+from phongfx.scene.geometry import FrameGeometry, frames, levels, pixel_error
 
 from .certificate import Certificate, meets
 
@@ -166,9 +166,12 @@ def exhaustive(method, params, spec, domain, *, analysis=None, chunk=CHUNK, max_
     enumeration (module docstring); ``certified: false`` with why when the domain is not
     enumerable (:func:`applicable`) or too large (``max_codes`` cases).
 
-    ``parts`` holds ``codes`` (normal codes × shininess values evaluated), ``worst`` (the
-    normal code, material and ``n`` of the largest error, with the outputs and the reference
-    there) and ``reference`` (what the error is measured against).
+    ``parts`` holds ``codes`` (normal codes × shininess values evaluated),
+    ``max_error_levels`` (the largest displayed error, ``|out - level(I_ref)|``), ``witness``
+    (the input with the largest displayed error, ties by the unrounded one, in the witness
+    format of :mod:`phongfx.explore.compile.witness`: its normal code, material index and
+    ``n``, the port codes, outputs and displayed reference) and ``reference`` (what the error
+    is measured against).
     """
     started = time.monotonic()
     why = applicable(method, spec, domain)
@@ -185,25 +188,30 @@ def exhaustive(method, params, spec, domain, *, analysis=None, chunk=CHUNK, max_
     if why is not None:
         return Certificate(False, None, "exhaustive", {}, why, time.monotonic() - started)
     against = spec.requirement.against
-    scale, worst, done = (1 << spec.output.bits) - 1, None, 0
+    scale, bound, worst, done = (1 << spec.output.bits) - 1, 0.0, None, 0
     for material, n in cases:
         for codes in normal_codes(fmt, spec.camera.vector, domain.view_cos_min, chunk):
             g = _geometry(spec, codes, fmt, material, n, spec.output.bits)
             shininess = np.full(len(codes), n, dtype=np.int64)
-            out, ref = shade_points(method, config, params, against, g, shininess)[:2]
-            error = np.abs(out - ref * scale)
-            pixel = int(np.argmax(error.max(axis=-1)))
-            if worst is None or error[pixel].max() > worst["unrounded"]:
-                worst = {"unrounded": float(error[pixel].max()), "normal_code": codes[pixel].tolist(),
-                         "normal": g.normal[pixel].tolist(), "material": domain.materials[material][0],
-                         "n": n, "outputs": out[pixel].tolist(),
-                         "reference_levels": (ref[pixel] * scale).tolist()}
+            out, ref, raw, _ = shade_points(method, config, params, against, g, shininess)
+            unrounded = np.abs(out - ref * scale).max(axis=-1)
+            shown = pixel_error(out, ref, spec.output.bits).max(axis=-1)
+            bound = max(bound, float(unrounded.max()))
+            pixel = int(np.lexsort((unrounded, shown))[-1])
+            if worst is None or (shown[pixel], unrounded[pixel]) > (worst["error_levels"], worst["unrounded"]):
+                worst = {"error_levels": int(shown[pixel]), "unrounded": float(unrounded[pixel]),
+                         "point": {"normal_code": codes[pixel].tolist(), "normal": g.normal[pixel].tolist(),
+                                   "material": material, "n": n},
+                         "codes": {port: np.asarray(value)[pixel].tolist() for port, value in raw.items()},
+                         "outputs": dict(zip("rgb", out[pixel].tolist())),
+                         "reference_levels": levels(ref[pixel], spec.output.bits).tolist()}
             done += len(codes)
             if progress:
-                progress(f"exhaustive {method}: {done:,} codes, max {worst['unrounded']:.3f} levels")
-    bound = worst["unrounded"] if worst else 0.0
+                progress(f"exhaustive {method}: {done:,} codes, max {bound:.3f} levels")
+    if worst is not None:
+        worst["found_by"] = f"exhaustive enumeration ({done:,} normal codes × shininess values)"
     certified = meets(bound, spec.requirement.max_error_levels)
-    parts = {"codes": done, "worst": worst,
+    parts = {"codes": done, "max_error_levels": worst["error_levels"] if worst else 0, "witness": worst,
              "reference": f"{'Phong' if against == 'phong' else 'own float form'} at each code's unit direction"}
     why = "" if certified else (f"some input code misses the requirement by enumeration: "
                                 f"{bound:.3f} levels rounds to more than {spec.requirement.max_error_levels:g}")

@@ -99,17 +99,19 @@ def test_bound_is_the_worst_code_replayed():
     assert cert.method == "exhaustive" and cert.certified
     assert 4.0 < cert.bound_levels < 5.0
     assert cert.parts["codes"] == len(listed(Format.parse("S1.7")))
-    # the worst code, through the whole shader's golden model on its own
-    worst = cert.parts["worst"]
+    # the witness, through the whole shader's golden model on its own
+    worst = cert.parts["witness"]
+    assert worst["unrounded"] <= cert.bound_levels
+    assert worst["error_levels"] == cert.parts["max_error_levels"] == 5
     config = runs.build("fig7", params, analyse(spec, frames(spec)))
-    code = np.array([worst["normal_code"]])
+    code = np.array([worst["point"]["normal_code"]])
+    assert worst["codes"]["n0"] == worst["codes"]["n1"] == code[0].tolist()
     light = encode_codes(np.array([[1, 1, 1]]) / np.sqrt(3), config.units[0].normalize.fmt("out"))
     view = encode_codes(np.array([[0.0, 0, 1]]), config.units[0].normalize.fmt("out"))
     ports = {"n0": code, "n1": code, "a": np.zeros(1, dtype=np.int64), "v": view, "l0": light}
     out = shader(config, **{name: Fixed(ports[name], fmt) for name, (fmt, _) in config.inputs.items()})
-    assert [int(out[c].raw[0]) for c in "rgb"] == worst["outputs"]
-    assert max(abs(o - r) for o, r in zip(worst["outputs"], worst["reference_levels"])) == pytest.approx(
-        cert.bound_levels)
+    assert {c: int(out[c].raw[0]) for c in "rgb"} == worst["outputs"]
+    assert max(abs(worst["outputs"][c] - r) for c, r in zip("rgb", worst["reference_levels"])) == 5
 
 
 def test_a_worse_quantize_raises_the_bound():
