@@ -35,7 +35,7 @@ import tempfile
 from fractions import Fraction
 from pathlib import Path
 
-__all__ = ["GAPPA_MODES", "GappaError", "gappa_script", "run_gappa", "edge_bound", "gappa_bound"]
+__all__ = ["GAPPA_MODES", "GappaError", "gappa_script", "run_gappa", "edge_bound", "gappa_bound", "specular_levels"]
 
 #: The golden model's rounding modes as Gappa's (module docstring: the same functions).
 GAPPA_MODES = {"round_half_up": "nu", "round_half_even": "ne", "truncate": "dn"}
@@ -201,3 +201,14 @@ def gappa_bound(config, ranges, *, part="chain", timeout=TIMEOUT, coq=None):
     script = gappa_script(config, ranges, part)
     bound = max(run_gappa(script, timeout=timeout, coq=coq), edge_bound(config, ranges, part))
     return _up(bound), script
+
+
+def specular_levels(bound, blend):
+    """What an error of ``bound`` in every light's specular amount can move an output, in
+    display levels: the blend (:class:`~phongfx.config.BlendConfig`) multiplies each amount
+    by its coefficient code, so at most ``bound`` times the largest sum over the lights of a
+    material's specular codes of one channel."""
+    lsb = Fraction(1, blend.coef_format.one)
+    worst = max(sum(Fraction(int(light[c])) for light in blend.coefficients(m)[2]) * lsb
+                for m in range(blend.materials) for c in range(3))
+    return _up(Fraction(bound) * worst)

@@ -65,6 +65,10 @@ def add_arguments(p):
     p.add_argument("--samples", type=int, metavar="N",
                    help="domain points of the witness search (default the domain's final_samples)")
     p.add_argument("--seed", type=int, help="seed of the witness search (default the domain's, offset)")
+    p.add_argument("--gappa", action="store_true",
+                   help="Figure 7: also prove the rounding error of its chain from D·D to the specular amount "
+                        "with Gappa (Debian's gappa), over the domain's n")
+    p.add_argument("--coq", metavar="FILE", help="with --gappa: write Gappa's proof as a Coq script to FILE")
     p.add_argument("--replay", action="store_true",
                    help="DIR: re-evaluate the manifest's witness through the golden model and print it")
     p.add_argument("--json", action="store_true", help="the result as JSON on stdout")
@@ -126,6 +130,8 @@ def _check(args):
         if value is not None and value < lo:
             kind = "a positive" if lo else "a non-negative"
             raise ValueError(f"--{name} must be {kind} integer, not {value}")
+    if args.coq and not args.gappa:
+        raise ValueError("--coq writes Gappa's proof: add --gappa")
     if args.max_error is not None and not (args.max_error > 0 and math.isfinite(args.max_error)):
         raise ValueError(f"--max-error must be a positive number of display levels, not {args.max_error:g}")
 
@@ -189,9 +195,24 @@ def _bound(kind, method, params, spec, domain, analysis, progress):
             kind = "interval"  # too many codes: bound by intervals instead
     if kind == "exhaustive":
         return exhaustive.exhaustive(method, params, spec, domain, analysis=analysis, progress=progress)
-    from phongfx.certify.interval import certify
+    from phongfx.certify.bound import certify
 
-    return certify(method, params, spec, domain)
+    return certify(method, params, spec, domain, analysis=analysis)
+
+
+def _gappa(args, method, params, domain, analysis):
+    """``{"amount", "levels", "n", "coq"}``: Gappa's bound on Figure 7's chain (--gappa)."""
+    from phongfx.certify.gappa import GappaError, gappa_bound, specular_levels
+    from phongfx.explore.compile.run import build
+
+    values = [n for _, ns in domain.materials for n in ns]
+    config = build(method, params, analysis)
+    try:
+        amount, _ = gappa_bound(config, {"n": (min(values), max(values))}, coq=args.coq)
+    except GappaError as error:
+        raise ValueError(f"--gappa: {error}") from None
+    return {"amount": amount, "levels": specular_levels(amount, config.blend), "n": [min(values), max(values)],
+            "coq": args.coq}
 
 
 def _report(result, out=None):
@@ -205,6 +226,11 @@ def _report(result, out=None):
               f"{[witness['outputs'][c] for c in 'rgb']} against {witness['reference_levels']}, "
               f"found by {witness['found_by']}", file=out)
         print(f"  point: {json.dumps(witness['point'])}", file=out)
+    if result["gappa"]:
+        g = result["gappa"]
+        print(f"gappa: Figure 7c-d's rounding moves the specular amount by at most {g['amount']:.3g} for n in "
+              f"{g['n'][0]}..{g['n'][1]}: {g['levels']:.3f} levels at the outputs"
+              + (f" (Coq proof: {g['coq']})" if g["coq"] else ""), file=out)
     verdict = "certified" if cert["certified"] else "not certified"
     bound = "none" if cert["bound_levels"] is None else f"{cert['bound_levels']:.3f} levels"
     print(f"bound: {bound} ({cert['method']}, {cert['seconds']:.1f} s): {verdict}"
@@ -240,6 +266,8 @@ def cmd_certify(args):
 
     _check(args)
     method, params, spec, data = _target(args)
+    if args.gappa and method != "fig7":
+        raise ValueError(f"--gappa proves Figure 7's chain (fig7), not {method}'s")
     if args.max_error is not None:
         spec = with_requirement(spec, args.max_error)
     if args.replay:
@@ -258,7 +286,8 @@ def cmd_certify(args):
     result = {"method": method, "params": params, "scene": spec.path or spec.name,
               "requirement": {"max_error_levels": spec.requirement.max_error_levels,
                               "against": spec.requirement.against},
-              "domain": domain.as_dict(), "witness": witness, "certificate": certificate.as_dict()}
+              "domain": domain.as_dict(), "witness": witness, "certificate": certificate.as_dict(),
+              "gappa": _gappa(args, method, params, domain, analysis) if args.gappa else None}
     code = exit_code(witness, certificate, spec.requirement.max_error_levels)
     if args.json:
         print(json.dumps({**result, "exit": code}, indent=2, default=float))

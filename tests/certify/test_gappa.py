@@ -110,3 +110,12 @@ def test_refused():
         gappa_script(config(2), {"n": (0, 9000)})
     with pytest.raises(ValueError, match="part must be chain or shape"):
         gappa_script(config(2), {}, part="lirp")
+
+
+def test_specular_levels():
+    from phongfx.certify.gappa import specular_levels
+    from phongfx.config import BlendConfig
+
+    # two lights of specular 0.25 and 0.5 in one channel, scaled to 255 levels: codes 63.75, 127.5
+    blend = BlendConfig(lights=2, specular=(((0.25, 0.0, 0.0), (0.5, 0.0, 0.0)),), coef_frac=2)
+    assert specular_levels(2 ** -10, blend) == (63.75 + 127.5) / 1024

@@ -107,3 +107,31 @@ def test_replay(capsys, compiled):
 def test_not_a_compiled_folder(capsys, tmp_path):
     code, _, err = run(capsys, "certify", str(tmp_path))
     assert code == 2 and "has no manifest.json: not a compiled output folder" in err
+
+
+@pytest.mark.needs_gappa
+def test_gappa(capsys, tmp_path):
+    proof = tmp_path / "chain.v"
+    code, out, _ = run(capsys, *SMALL, "--max-error", "5", "--gappa", "--coq", str(proof), "--json")
+    gappa = json.loads(out)["gappa"]
+    assert code == 0 and gappa["n"] == [16, 16]
+    # the chain's rounding is a small part of the 4.53 levels: Lyon's shape against cos^n is the rest
+    assert 0 < gappa["levels"] < 0.05 and 0 < gappa["amount"] < 2 ** -11
+    assert "rndNU" in proof.read_text()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["fig7", "--coq", "x.v"], "--coq writes Gappa's proof: add --gappa"),
+    (["conventional", "--gappa"], "--gappa proves Figure 7's chain (fig7), not conventional's"),
+])
+def test_gappa_refused(capsys, argv, message):
+    code, _, err = run(capsys, "certify", *argv)
+    assert code == 2 and message in err
+
+
+def test_gappa_missing(capsys, monkeypatch):
+    import phongfx.certify.gappa as gappa
+
+    monkeypatch.setattr(gappa.shutil, "which", lambda name: None)
+    code, _, err = run(capsys, *SMALL, "--gappa")
+    assert code == 2 and "--gappa: gappa is not installed; as root: apt-get install gappa" in err
