@@ -1,6 +1,7 @@
 """``phongfx certify``: every exit code, on a method and on a compiled folder, and its errors."""
 
 import json
+import math
 
 import pytest
 
@@ -46,6 +47,19 @@ def test_only_the_bound_misses(capsys):
     assert code == 3
     assert "bound: none (exhaustive" in out and "the domain has spans" in out
     assert "certify: witness fig7: 3,000 of 3,000 domain points" in err
+
+
+def test_interval(capsys):
+    # the interval bound counts the host's rounding of the float normal too: it is loose here,
+    # but never under the witness, which is measured against the exact normal
+    code, out, _ = run(capsys, *SMALL, "--max-error", "5", "--bound", "interval", "--samples", "2000", "--json")
+    result = json.loads(out)
+    assert code == 3
+    cert, witness = result["certificate"], result["witness"]
+    assert cert["method"] == "interval" and not cert["certified"]
+    assert witness["error_levels"] <= 5 < math.floor(cert["bound_levels"] + 0.5)
+    assert cert["bound_levels"] >= witness["unrounded"]
+    assert "local search (2,000 domain points" in witness["found_by"]
 
 
 @pytest.mark.parametrize("argv, message", [
