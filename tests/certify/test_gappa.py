@@ -119,3 +119,18 @@ def test_specular_levels():
     # two lights of specular 0.25 and 0.5 in one channel, scaled to 255 levels: codes 63.75, 127.5
     blend = BlendConfig(lights=2, specular=(((0.25, 0.0, 0.0), (0.5, 0.0, 0.0)),), coef_frac=2)
     assert specular_levels(2 ** -10, blend) == (63.75 + 127.5) / 1024
+
+
+@pytest.mark.parametrize("k, t, rounding", [(2, "1.15", "round_half_up"), (4, "1.10", "round_half_up"),
+                                            (4, "1.15", "truncate")])
+def test_gappa_cross_checks_the_interval_shape(k, t, rounding):
+    # two sound methods on the same block: the interval arithmetic of the interval certificate,
+    # over the whole x2 range, and Gappa's proof agree to the interval's float widening
+    from phongfx.certify.datapath import shape as interval_shape
+    from phongfx.certify.interval import Interval
+
+    c = config(k, t=t, rounding=rounding)
+    x2 = Interval(np.array([0.0]), np.array([2.0 ** (k + 1)]), np.zeros(1), c.shape.fmt("x2"))
+    interval = float(interval_shape(c.shape, x2).dev.max())
+    gappa, _ = gappa_bound(c, {}, part="shape")
+    assert shape_errors(c).max() <= gappa <= interval <= gappa * 1.01
