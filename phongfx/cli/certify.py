@@ -279,10 +279,15 @@ def cmd_certify(args):
     geometries = frames(spec)
     analysis, domain = analyse(spec, geometries), scene_domain(spec, geometries)
     certificate = _bound(args.bound, method, params, spec, domain, analysis, progress)
+    # enumeration's worst input is the witness; a search (asked for, or without enumeration)
+    # measures against the exact normal instead of the code's direction: the worse one is kept
     witness = certificate.parts.get("witness") if certificate.method == "exhaustive" else None
     if witness is None or args.samples is not None:
-        witness = search(method, params, spec, domain, samples=args.samples, seed=args.seed, progress=progress,
-                         analysis=analysis)
+        found = search(method, params, spec, domain, samples=args.samples, seed=args.seed, progress=progress,
+                       analysis=analysis)
+        if witness is None or (found["error_levels"], found["unrounded"]) > (witness["error_levels"],
+                                                                            witness["unrounded"]):
+            witness = found
     result = {"method": method, "params": params, "scene": spec.path or spec.name,
               "requirement": {"max_error_levels": spec.requirement.max_error_levels,
                               "against": spec.requirement.against},
