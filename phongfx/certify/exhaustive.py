@@ -142,8 +142,10 @@ def _geometry(spec, codes, fmt, material, n, bits):
     value = codes.astype(np.float64) / fmt.one
     length = np.linalg.norm(value, axis=-1, keepdims=True)
     normal = value / np.where(length > 0, length, 1.0)
-    lights = np.stack([np.broadcast_to(_unit(light.vector), (count, 3)) for light in spec.lights])
-    viewer = np.broadcast_to(_unit(spec.camera.vector), (count, 3))
+    # the scene file's unit vectors as they are, as phongfx.scene.geometry.frames feeds them
+    lights = np.stack([np.broadcast_to(np.asarray(light.vector, dtype=np.float64), (count, 3))
+                       for light in spec.lights])
+    viewer = np.broadcast_to(np.asarray(spec.camera.vector, dtype=np.float64), (count, 3))
     m = list(spec.materials.values())[material]
     zeros = np.zeros(count, dtype=np.int64)
     return FrameGeometry(
@@ -153,11 +155,6 @@ def _geometry(spec, codes, fmt, material, n, bits):
         np.full(count, float(n)), np.full(count, m.kd), np.full(count, m.ks), np.full(count, m.ka),
         np.broadcast_to(np.asarray(m.colour, dtype=np.float64), (count, 3)), np.full(count, material),
         None, -1, bits)
-
-
-def _unit(vector):
-    vector = np.asarray(vector, dtype=np.float64)
-    return vector / np.linalg.norm(vector)
 
 
 def exhaustive(method, params, spec, domain, *, analysis=None, chunk=CHUNK, max_codes=MAX_CODES,
