@@ -46,8 +46,8 @@ from .certificate import Certificate, meets
 __all__ = ["MAX_CODES", "CHUNK", "applicable", "normal_format", "normal_codes", "count_codes", "exhaustive"]
 
 #: Largest number of (normal code, shininess) cases :func:`exhaustive` evaluates: about a
-#: minute of the golden model (``vec_frac = 10`` with a handful of ``n`` values fits).
-MAX_CODES = 40_000_000
+#: minute and a half of the golden model (``vec_frac = 10`` with five ``n`` values fits).
+MAX_CODES = 60_000_000
 #: Normal codes per golden-model call: a few hundred MB of intermediate arrays at most.
 CHUNK = 1 << 20
 
@@ -178,7 +178,9 @@ def exhaustive(method, params, spec, domain, *, analysis=None, chunk=CHUNK, max_
     fmt = normal_format(method, config)
     cases = [(index, int(n)) for index, (_, values) in enumerate(domain.materials) for n in values]
     if why is None:
-        total = count_codes(fmt, chunk) * len(cases)
+        # the share of the sphere facing the viewer, (1 - view_cos_min)/2, of every code
+        share = (1 - min(1.0, max(-1.0, domain.view_cos_min))) / 2
+        total = round(count_codes(fmt, chunk) * share) * len(cases)
         if total > max_codes:
             why = (f"{total:,} normal codes × shininess values at {fmt.frac_bits} fraction bits exceed "
                    f"the {max_codes:,} enumeration affords")
