@@ -12,6 +12,7 @@ import tomllib
 import dataclasses
 from dataclasses import dataclass
 
+from .domain import parse_options
 from .lyon import Scene
 from .mesh import torus, uv_sphere
 from .obj import ObjError, load_obj
@@ -20,7 +21,8 @@ __all__ = ["SceneError", "SceneSpec", "with_requirement", "Camera", "Light", "Ma
            "Output", "Requirement", "load_scene", "parse_scene", "OBJECT_TYPES"]
 
 N_MAX = 8000
-_TOP = ("name", "camera", "lights", "materials", "objects", "frames", "output", "requirement")
+_TOP = ("name", "camera", "lights", "materials", "objects", "frames", "output", "requirement",
+        "domain")
 #: Keys of each object type besides type, material, scale, offset; and their defaults.
 OBJECT_TYPES = {
     "lyon_spheres": {"radius": 32, "shininess": [1, 4, 16, 64, 256], "span": 0},
@@ -103,6 +105,8 @@ class SceneSpec:
     frames: Frames
     output: Output
     requirement: Requirement
+    #: the checked ``[domain]`` table (:class:`phongfx.scene.domain.Options`; None: every default)
+    domain: object = None
 
     @property
     def local_lights(self):
@@ -331,6 +335,7 @@ def parse_scene(source, name=None, base_dir=".", path=None):
                     r.number(frames.get("degrees", 0.0), "frames.degrees", -3600, 3600),
                     tuple(r.vector(v, f"frames.camera_path[{i}]", nonzero=False)
                           for i, v in enumerate(camera_path)))
+    options = parse_options(r, data.get("domain", {}), count)
     output = r.table(data.get("output", {}), "output", ("width", "height", "bits"))
     size = {}
     if any(obj.kind == "lyon_spheres" for obj in objects):
@@ -354,7 +359,7 @@ def parse_scene(source, name=None, base_dir=".", path=None):
     requirement = Requirement(_max_error(r, req.get("max_error_levels", 1.0), "requirement.max_error_levels"),
                               against)
     return SceneSpec(scene_name, None if path is None else os.fspath(path), camera, lights,
-                     materials, objects, frames, output, requirement)
+                     materials, objects, frames, output, requirement, options)
 
 
 def _max_error(r, value, field):

@@ -104,7 +104,7 @@ def _drop(path):
 
 BAD = [
     (_set(("colour",), 1), r"^t: scene: unknown key 'colour'; allowed: name, camera, lights, "
-                           r"materials, objects, frames, output, requirement$"),
+                           r"materials, objects, frames, output, requirement, domain$"),
     (_drop(("lights",)), r"^t: scene\.lights is missing$"),
     (_set(("lights",), []), r"^t: lights must be an array of 1\.\.8 tables \(\[\[lights\]\]\), not \[\]$"),
     (_set(("lights", 0, "position"), [1, 2]),

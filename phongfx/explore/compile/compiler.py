@@ -9,9 +9,11 @@ scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
    misses too the method is infeasible, and
    :func:`~phongfx.explore.compile.infeasible.summary` reports its best measured point
    and why;
-2. greedily lower each width (binary search, then verified) while every frame, rendered
-   through the golden model and shaded (:func:`phongfx.scene.geometry.shade`), stays
-   within ``requirement.max_error_levels``; passes repeat until no single width can drop;
+2. greedily lower each width (binary search, then verified) while the error stays within
+   ``requirement.max_error_levels`` on every frame and on a seeded sample of the scene's
+   input domain (:class:`~phongfx.explore.compile.measure.SceneEval`: the golden model of
+   the whole shader, measured at its ``r``, ``g``, ``b`` outputs against the reference);
+   passes repeat until no single width can drop;
 3. the **proof** of local minimality: for each width, the config with that width one
    lower and its measured max error (above the requirement), or "at range minimum".
 
@@ -20,18 +22,14 @@ Widths are the method's :class:`~phongfx.explore.methods.MethodSpec` parameters 
 1 = g1: g1 vs g2 is measured like a width) and, against true Phong, the shape
 function's ``k`` (fewer squarings is cheaper; ``2^k = n`` makes ``f_k`` Phong's power).
 
-Evaluation: each frame once per shininess *variant*: one when every material has a
-single ``n``, else three, with each range material at its ``n_lo``, its rounded
-geometric mean and its ``n_hi``.  Every render goes through the golden model of the whole
-shader (unit and hardware blend, :mod:`phongfx.golden.shader`), so the error is measured
-at its ``r``, ``g``, ``b`` outputs: per pixel and channel ``|out - level(I_ref)|`` in
-display levels (:func:`~phongfx.scene.geometry.pixel_error`, an integer: how far the
-displayed pixel is from the displayed reference), ``I_ref``
-(:func:`phongfx.scene.geometry.shade`, the backside test included) from true Phong (``"phong"``: ``(R·L)^n`` and ``N·L`` at Phong's normal
-(``FrameGeometry.normal``), and the exact light and viewer of the pixel) or from the
-method's own float form (``"self"``); max and mean over all visible pixels and channels of
-all renders, and ``max_unrounded`` against the reference before its rounding
-(``|out - I_ref·(2^bits - 1)|``, which the outputs' own rounding puts at 0.5 at best).
+The choice: the feasible designs by cost; the cheapest is searched for its worst input over
+the domain, ``final_samples`` fresh points and a local search from the worst
+(:func:`phongfx.explore.compile.witness.search`): its **witness**.  A witness over the
+requirement makes the design unfit as it is: the witness and its neighbourhood join the
+domain sample as hard points (:meth:`~phongfx.explore.compile.measure.SceneEval.add_hard`),
+that method's widths are searched again, and the designs re-ranked, for at most
+:data:`ROUNDS` such rounds (each recorded in :attr:`Compiled.rounds`); a design whose
+witness still misses is not chosen.
 
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
@@ -40,25 +38,27 @@ proxies :func:`phongfx.explore.synth.proxy.proxy_cost` (LUT-eq) and
 :func:`phongfx.explore.synth.proxy.proxy_area` (µm², fitted to the standard-cell flow).
 """
 
+import dataclasses
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from phongfx.core.registry import get_block
 from phongfx.explore.methods import METHODS
 from phongfx.explore.progress import Candidates
-from phongfx.golden.reference import specular
-from phongfx.golden.shader import shader_raw
-from phongfx.scene.geometry import frames, pixel_error, shade, terminator_lit
 
 from . import run as runs
-from .analysis import analyse
+from . import witness as witnesses
 from .costing import COST_UNITS, TIE_MARGIN, costed, tie
 from .infeasible import hint, summary
-from .journal import Journal, scene_key
+from .measure import SceneEval
+from .points import DomainPoints
 
-__all__ = ["Compiled", "SceneEval", "compile_scene", "check_methods", "width_params", "widest",
-           "search_widths"]
+__all__ = ["ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params", "widest",
+           "search_widths", "scene_domain"]
+
+#: At most this many rounds of hard points (a witness over the requirement) per compile.
+ROUNDS = 4
+#: Points a failed witness adds to the domain sample: itself and its neighbourhood.
+HARD_POINTS = 2048
 
 _FIXED = ("n", "k", "lights")
 
@@ -76,6 +76,10 @@ class Compiled:
     rejected: dict = field(default_factory=dict)  # method -> reason
     hint: dict = None                   # nothing feasible: infeasible.hint's way forward
     tie: dict = None                    # the runner-up within TIE_MARGIN of the chosen cost
+    domain: object = None               # phongfx.scene.domain.Domain the search measured on
+    witness: dict = None                # the chosen design's worst input found (witness.search)
+    certificate: object = None          # phongfx.certify's bound of the chosen design, when computed
+    rounds: list = field(default_factory=list)  # each witness over the requirement and what it did
 
     @property
     def best(self):
@@ -93,130 +97,6 @@ def width_params(method, against="phong"):
     if against == "phong" and runs.is_datapath(method) and "k" in spec.params:
         out["k"] = (spec.params["k"], spec.ranges["k"])
     return out
-
-
-def _cosines(g):
-    """(lights, P) exact ``N·L`` at Phong's normal (the X, Y, Z products added in turn, as
-    ``np.sum`` adds them, without its reduction's cost per row)."""
-    products = g.normal * g.light
-    return (products[..., 0] + products[..., 1]) + products[..., 2]
-
-
-def _diffuse(g):
-    """(lights, P) exact ``max(N·L, 0)`` at Phong's normal: every method's diffuse reference."""
-    return np.maximum(_cosines(g), 0.0)
-
-
-class SceneEval:
-    """The scene's renders (frames × shininess variants) and their Phong references."""
-
-    def __init__(self, spec, geometries=None, journal=None):
-        self.spec = spec
-        self.geometries = frames(spec) if geometries is None else geometries
-        if not any(len(g) for g in self.geometries):
-            raise ValueError(f"{spec.name}: no object covers a pixel in any frame; nothing to compile")
-        self.analysis = analyse(spec, self.geometries)
-        self.bits = spec.output.bits
-        #: per render of a frame, the n of each range material (empty: every n single)
-        self.shininess_variants = []
-        variants = self._variants()
-        self.renders = [(g, n) for g in self.geometries for n in variants(g)]
-        #: per render, the index of its shininess variant (0 when every n is single)
-        self.variant_of = [i for g in self.geometries for i, _ in enumerate(variants(g))]
-        #: per render, true Phong's (lights, P) specular terms (the diffuse is the same for all)
-        self.reference = [self._phong(g, n) for g, n in self.renders]
-        #: ``journal``: a folder where measured points are kept for a rerun (:mod:`.journal`)
-        self.journal = None if journal is None else Journal(journal, scene_key(spec, self.geometries))
-        self.cache = {} if self.journal is None else self.journal.load()
-        self.resumed = len(self.cache)
-
-    def _variants(self):
-        """Per frame, the per-pixel n arrays of the shininess variants (module docstring)."""
-        materials = list(self.spec.materials.values())
-        ranged = [i for i, m in enumerate(materials) if m.n_lo is not None and m.n_lo != m.n_hi]
-
-        names = list(self.spec.materials)
-        picks = (lambda m: m.n_lo, lambda m: round(np.sqrt(m.n_lo * m.n_hi)), lambda m: m.n_hi)
-
-        def variants(g):
-            if not ranged:
-                return [np.round(g.n).astype(np.int64)]
-            out = []
-            self.shininess_variants = [{names[i]: pick(materials[i]) for i in ranged} for pick in picks]
-            for pick in picks:
-                n = np.round(g.n).astype(np.int64)
-                for i in ranged:
-                    n[g.material == i] = pick(materials[i])
-                out.append(n)
-            return out
-        return variants
-
-    def _phong(self, g, n):
-        return np.stack([specular("phong", g.normal, light, g.viewer, n) for light in g.light])
-
-    def render(self, method, config, params, index):
-        """``(codes, I_ref, raw inputs, raw outputs)`` of render ``index``: the shader's
-        ``r``, ``g``, ``b`` codes (P, 3) and the float reference intensities (P, 3), whose
-        backside test follows the shader's within the terminator band
-        (:func:`~phongfx.scene.geometry.terminator_lit`)."""
-        g, n = self.renders[index]
-        raw = runs.frame_inputs(method, config, g, n)
-        shaded = shader_raw(config, raw)
-        out = {name: shaded[name] for name in "rgb"}
-        codes = runs.frame_codes(method, out, g)
-        lit = None
-        if config.blend.diff:  # the shader's own backside test, per light, at the visible pixels
-            lit = np.stack([runs.visible(method, shaded[f"diff{i}"] > 0, g)
-                            for i in range(config.blend.lights)])
-        if self.spec.requirement.against == "self":
-            spec = runs.own_specular(method, config, params, g, n)
-        else:
-            spec = self.reference[index]
-        cosine = _cosines(g)
-        return codes, shade(g, np.maximum(cosine, 0.0), spec, lit=terminator_lit(cosine, lit, self.bits)), raw, out
-
-    def error(self, method, params):
-        """``{"max", "mean", "max_unrounded"}`` error in levels of ``method`` at ``params``
-        (cached; :func:`~phongfx.scene.geometry.pixel_error`); a config that cannot be built or overflows has
-        ``max = inf`` and says why in ``"why"``."""
-        key = (method, tuple(sorted(params.items())))
-        if key not in self.cache:
-            self.cache[key] = self._error(method, params)
-            if self.journal is not None:
-                self.journal.add(key, self.cache[key])
-        return self.cache[key]
-
-    def _error(self, method, params):
-        try:
-            config = runs.build(method, params, self.analysis)
-            renders = [self.render(method, config, params, i)[:2] for i in range(len(self.renders))]
-        except (ValueError, OverflowError) as error:
-            inf = float("inf")
-            return {"max": inf, "mean": inf, "max_unrounded": inf, "why": str(error)}
-        each = [pixel_error(codes, ref, self.bits).ravel() for codes, ref in renders]
-        e = np.concatenate(each)
-        scale = (1 << self.bits) - 1
-        raw = np.concatenate([np.abs(codes - ref * scale).ravel() for codes, ref in renders])
-        return {"max": float(e.max(initial=0.0)), "mean": float(e.mean()) if e.size else 0.0,
-                "max_unrounded": float(raw.max(initial=0.0)),
-                "per_render": [float(r.max(initial=0.0)) for r in each]}
-
-    def measured(self, method, params):
-        """:meth:`error` without its per-render list: what a result and the manifest keep."""
-        return {k: v for k, v in self.error(method, params).items() if k != "per_render"}
-
-    def form_error(self, method, params):
-        """Max over every render of ``|I_form - I_ref|·(2^bits - 1)``: how far the method's
-        own float form (at ``params``' ``k``) is from true Phong, before any rounding."""
-        config = runs.build(method, params, self.analysis)
-        scale, worst = (1 << self.bits) - 1, 0.0
-        for (g, n), ref in zip(self.renders, self.reference):
-            lit = terminator_lit(_cosines(g), None, self.bits)
-            own = runs.own_specular(method, config, params, g, n)
-            diff = _diffuse(g)
-            worst = max(worst, float(np.max(np.abs(shade(g, diff, own, lit) - shade(g, diff, ref, lit)),
-                                            initial=0.0)) * scale)
-        return worst
 
 
 def _passes(scene, method, params):
@@ -292,23 +172,83 @@ def check_methods(methods):
     return names
 
 
-def _proven(scene, ranked, timeout, progress):
-    """``ranked`` from the first design without a counterexample to its overflow claims
-    on: each proven in turn (``result["overflow_proof"]``) until one has none."""
+def _proven(scene, result, timeout, progress):
+    """Whether ``result``'s design has no counterexample to its overflow claims (proven in
+    turn, ``result["overflow_proof"]``)."""
     from phongfx.sim.prove import prove
 
-    for index, result in enumerate(ranked):
-        name = result["method"]
-        block = get_block(runs.block_name(name), config=runs.build(name, result["params"], scene.analysis))
-        proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
-        result["overflow_proof"] = proof.as_dict()
-        if not proof.counts.get("counterexample"):
-            return ranked[index:]
-    return []
+    name = result["method"]
+    block = get_block(runs.block_name(name), config=runs.build(name, result["params"], scene.analysis))
+    proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
+    result["overflow_proof"] = proof.as_dict()
+    return not proof.counts.get("counterexample")
+
+
+def scene_domain(spec, geometries, samples=None, final_samples=None):
+    """The :class:`~phongfx.scene.domain.Domain` of ``spec`` with its ``samples`` and
+    ``final_samples`` replaced when given (positive integers, checked)."""
+    from phongfx.scene.domain import domain
+
+    for name, value in (("samples", samples), ("final_samples", final_samples)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < 1):
+            raise ValueError(f"{name} must be a positive integer, not {value!r}")
+    found = domain(spec, geometries)
+    changes = {k: v for k, v in (("samples", samples), ("final_samples", final_samples)) if v is not None}
+    return dataclasses.replace(found, **changes) if changes else found
+
+
+def _ranked(results):
+    """The feasible results by cost; an uncosted design (its synthesis failed) last."""
+    feasible = [r for r in results.values() if r["feasible"]]
+    return sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
+
+
+def _choose(out, scene, cost, prove, prove_timeout, progress):
+    """The cheapest feasible design whose witness meets the requirement (module docstring)
+    and, with ``prove``, without a counterexample to its overflow claims."""
+    spec, domain = out.spec, out.domain
+    required = spec.requirement.max_error_levels
+    ranked = _ranked(out.results)
+    while ranked:
+        r = ranked[0]
+        name = r["method"]
+        found = witnesses.search(name, r["params"], spec, domain, progress=progress, analysis=scene.analysis)
+        r["witness"] = found
+        if found["error_levels"] <= required:
+            if prove and not _proven(scene, r, prove_timeout, progress):
+                r["why_not_chosen"] = "a counterexample to its overflow claims"
+                ranked.pop(0)
+                continue
+            out.chosen, out.witness, out.tie = name, found, tie(ranked, TIE_MARGIN)
+            return
+        ranked.pop(0)
+        step = {"method": name, "params": r["params"], "witness_levels": found["error_levels"],
+                "witness_unrounded": found["unrounded"]}
+        if not runs.per_pixel(name) or len(out.rounds) >= ROUNDS:
+            r["why_not_chosen"] = (f"its witness is {found['error_levels']} levels over the domain "
+                                   f"(requirement {required:g}); "
+                                   + ("a unit fed per span takes no hard points" if not runs.per_pixel(name)
+                                      else f"no round of hard points left ({ROUNDS} used)"))
+            out.rounds.append({**step, "action": "not chosen"})
+            continue
+        scene.add_hard(witnesses.hard_points(found, spec, domain, HARD_POINTS, seed=len(out.rounds)))
+        if progress:
+            progress(f"{name}: witness {found['error_levels']} levels; searched again with "
+                     f"{scene.points.hard_points} hard points")
+        again = search_widths(scene, name, progress)
+        for where in ((again["default"], again) if again["feasible"] else (again["default"],)):
+            where["cost"] = cost(name, where["params"], again["feasible"])
+        again["superseded"] = {k: r.get(k) for k in ("params", "max", "cost", "witness")}
+        out.results[name] = again
+        out.rounds.append({**step, "action": "searched again", "hard_points": scene.points.hard_points,
+                           "params_after": again.get("params"), "feasible_after": again["feasible"],
+                           "max_after": again["max"]})
+        ranked = [x for x in _ranked(out.results) if x is again or any(x is y for y in ranked)]
 
 
 def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, seed=1,
-                  progress=None, geometries=None, journal=None, prove=False, prove_timeout=600):
+                  progress=None, geometries=None, journal=None, prove=False, prove_timeout=600,
+                  samples=None, final_samples=None):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
     :param methods: keys of :data:`~phongfx.explore.methods.METHODS` to consider (default
@@ -325,13 +265,19 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     :param prove: prove the chosen design's ``overflow="error"`` claims
         (:mod:`phongfx.sim.prove`, ``prove_timeout`` seconds per claim); a design with a
         counterexample is not chosen and the next cheapest is proven instead.
+    :param samples: domain points per measured width point, instead of the scene's
+        (``[domain] samples``); ``final_samples``: those of the witness search.
     :returns: a :class:`Compiled`.
     """
     names = check_methods(methods)
     if target not in COST_UNITS:
         raise ValueError(f"target must be one of {', '.join(COST_UNITS)}, not {target!r}")
     scene = SceneEval(spec, geometries, journal=journal)
-    out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy")
+    domain = scene_domain(spec, scene.geometries, samples, final_samples)
+    if progress:
+        progress(f"drawing {domain.samples:,} domain points")
+    scene.measure_domain(DomainPoints(spec, domain))
+    out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy", domain=domain)
     for name in names:
         reason = runs.rejection(name, spec, scene.analysis, scene.geometries)
         if reason:
@@ -346,17 +292,13 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     designs = [(name, where, synth and r["feasible"]) for name, r in out.results.items()
                for where in ((r["default"], r) if r["feasible"] else (r["default"],))]
     steps = Candidates(sum(by_synth for *_, by_synth in designs), progress or (lambda text: None))
+
+    def cost(name, params, by_synth, stage=None):
+        return costed(name, runs.build(name, params, scene.analysis), by_synth and synth,
+                      target=target, device=device, freq=freq, seed=seed, progress=stage)
+
     for name, where, by_synth in designs:
-        stage = steps.next(name, where["params"]) if by_synth else None
-        where["cost"] = costed(name, runs.build(name, where["params"], scene.analysis), by_synth,
-                               target=target, device=device, freq=freq, seed=seed, progress=stage)
-    feasible = [r for r in out.results.values() if r["feasible"]]
-    if feasible:  # an uncosted design (its synthesis failed) is chosen only if nothing else meets it
-        ranked = sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
-        if prove:
-            ranked = _proven(scene, ranked, prove_timeout, progress)
-        if ranked:
-            out.chosen = ranked[0]["method"]
-            out.tie = tie(ranked, TIE_MARGIN)
+        where["cost"] = cost(name, where["params"], by_synth, steps.next(name, where["params"]) if by_synth else None)
+    _choose(out, scene, cost, prove, prove_timeout, progress)
     out.hint = hint(out)
     return out

@@ -5,9 +5,10 @@ model; an interrupted compile of a large scene would otherwise measure them all 
 (the synthesis results are cached on their own, :mod:`phongfx.explore.synth.toolrun`).  A
 :class:`Journal` appends one JSON line per measured point, flushed at once, to
 ``<folder>/<key>.jsonl``; the key covers the scene's frames (every array of every
-:class:`~phongfx.scene.geometry.FrameGeometry`), its output bits and requirement, and the
-source of the package, so a changed scene or a changed model never reuses a line.  A line
-torn by an interrupt is ignored.
+:class:`~phongfx.scene.geometry.FrameGeometry`), its output bits and requirement, the source
+of the package, and the domain sample the points are measured on (the domain, the sample's
+size and seed, and every hard point added to it), so a changed scene, a changed domain or a
+changed model never reuses a line.  A line torn by an interrupt is ignored.
 """
 
 import dataclasses
@@ -53,9 +54,12 @@ def _update(h, value):
         h.update(repr(value).encode())
 
 
-def scene_key(spec, geometries):
-    """The journal key of a scene's evaluation (module docstring)."""
+def scene_key(spec, geometries, domain=None):
+    """The journal key of a scene's evaluation (module docstring); ``domain``: the key of
+    the domain sample the points are measured on as well
+    (:meth:`phongfx.explore.compile.points.DomainPoints.key`), None for none."""
     h = hashlib.sha256(source_digest().encode())
+    h.update(repr(domain).encode())
     h.update(repr((spec.output, spec.requirement, spec.materials)).encode())
     for geometry in geometries:
         _update(h, geometry)

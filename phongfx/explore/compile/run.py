@@ -18,7 +18,7 @@ from phongfx.config.shader import unit_terms
 from phongfx.core.methods import get_method
 from phongfx.explore.methods import METHODS
 
-__all__ = ["EXTRA", "COEF_DEFAULT", "hooks", "is_datapath", "rejection", "unit_config", "build",
+__all__ = ["EXTRA", "COEF_DEFAULT", "hooks", "is_datapath", "per_pixel", "rejection", "unit_config", "build",
            "frame_inputs", "visible", "frame_codes", "own_specular", "block_name", "copies"]
 
 #: Fraction bits of the blend's constants (``coef``) at a method's defaults: their rounding
@@ -38,6 +38,12 @@ def hooks(method):
 def is_datapath(method):
     """Whether ``method`` is a specular unit of Lyon's datapath (one copy holds every light)."""
     return hooks(method).datapath
+
+
+def per_pixel(method):
+    """Whether ``method``'s stream is one value per visible pixel (a domain point can be fed
+    alone), not one per span pixel."""
+    return hooks(method).per_pixel
 
 
 def extra(method):

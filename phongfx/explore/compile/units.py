@@ -50,10 +50,13 @@ class Hooks:
 
     ``datapath``: one copy holds every light (Lyon's datapaths); ``n_scale``: the unit is fed
     ``n' = n_scale·n`` (4 for the ``(N·H)^n'`` units standing for ``(R·L)^n``);
-    ``extra``: parameters the compiler adds to the method's own (name -> (default, range)).
+    ``extra``: parameters the compiler adds to the method's own (name -> (default, range));
+    ``per_pixel``: the stream is one value per visible pixel, so a pixel can be fed alone
+    (a domain point, :mod:`phongfx.explore.compile.points`).
     """
 
     datapath = False
+    per_pixel = True
     n_scale = 1
     extra = {}
 
@@ -132,6 +135,7 @@ class _Spherical(Hooks):
     """Szirmay-Kalos's unit: one copy per light fed every span pixel, one ``n`` per span."""
 
     n_scale = 4
+    per_pixel = False  # its setup is per span: fed every span pixel, hidden ones too
 
     def rejection(self, method, spec, analysis, geometries, kd, ks):
         if any(g.spans is None for g in geometries):

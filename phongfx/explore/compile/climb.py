@@ -1,0 +1,194 @@
+"""Local search for a design's worst input: hill-climbing within the scene's domain.
+
+A random sample finds a design's bad region; its worst point is rarely the worst of that
+region, because the error is a staircase of roundings over a few continuous inputs.  From
+each of the worst sampled points, :func:`climb` perturbs the inputs a design is fed per
+pixel, all in one batch: the span-end normals ``n0``, ``n1``, the span position ``a``, the
+surface point and the span's extent (which move a point light's and a local viewer's
+unit vectors), and ``n`` among its material's admissible values; it keeps a move that
+raises the continuous error ``|out - (2^bits - 1)·I_ref|`` (worst channel), whose steps the
+integer error follows, and adapts each start's step (larger after a success, smaller after
+a failure, the 1/5th-rule's spirit).  Every candidate stays inside the domain
+(:class:`phongfx.scene.domain.Domain`): span-end normals at most ``max_span_angle_deg``
+apart and facing the viewer (``N·V >= view_cos_min`` at both ends), surface points and span
+ends inside its ``ball``, spans at most ``max_span_length`` long; a candidate outside is
+discarded.
+
+A point is a :class:`State` (arrays, one row per point): the span's ends are ``x0 = p -
+a·d`` and ``x1 = p + (1 - a)·d`` about the surface point ``p``; :func:`points` turns a
+state into the :class:`~phongfx.scene.geometry.FrameGeometry` the shader is fed.
+"""
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from phongfx.scene.geometry import FrameGeometry
+from phongfx.scene.mesh import unit
+
+__all__ = ["State", "state_of", "points", "inside", "perturb", "climb", "neighbourhood"]
+
+
+@dataclass
+class State:
+    """Domain points as the local search moves them (module docstring), one row each."""
+    n0: np.ndarray        # (K, 3) unit
+    n1: np.ndarray        # (K, 3) unit
+    a: np.ndarray         # (K,)
+    p: np.ndarray         # (K, 3) surface point
+    d: np.ndarray         # (K, 3) span end minus span start
+    n_index: np.ndarray   # (K,) index into the material's admissible n values
+    material: np.ndarray  # (K,) int64
+    kd: np.ndarray
+    ks: np.ndarray
+    ka: np.ndarray
+    colour: np.ndarray    # (K, 3)
+
+    def rows(self, index):
+        return State(*(np.asarray(getattr(self, f))[index] for f in self.__dataclass_fields__))
+
+    def __len__(self):
+        return len(self.a)
+
+
+def _local(domain):
+    """The positions of the domain's point lights and of a local viewer (where the span's
+    ends move the unit vectors)."""
+    out = [np.asarray(vector, dtype=np.float64) for kind, vector, *_ in domain.lights if kind == "point"]
+    if domain.camera[0] == "point":
+        out.append(np.asarray(domain.camera[1], dtype=np.float64))
+    return out
+
+
+def _values(domain):
+    return [np.asarray(values, dtype=np.int64) for _, values in domain.materials]
+
+
+def state_of(g, domain):
+    """The :class:`State` of the domain points ``g``: the span's extent from the first
+    point light or local viewer (the span start on its ray nearest the surface point)."""
+    a = np.asarray(g.a, dtype=np.float64)
+    p = np.asarray(g.position, dtype=np.float64)
+    d = np.zeros_like(p)
+    sources = _local(domain)
+    if sources:
+        toward = np.asarray(g.l0[[k for k, (kind, *_) in enumerate(domain.lights) if kind == "point"][0]]
+                            if any(kind == "point" for kind, *_ in domain.lights) else g.v0)
+        x0 = sources[0] - np.sum((sources[0] - p) * toward, -1, keepdims=True) * toward
+        d = np.where(a[:, None] > 1e-3, (p - x0) / np.maximum(a, 1e-3)[:, None], 0.0)
+        length = np.linalg.norm(d, axis=-1, keepdims=True)
+        d = np.where(length > domain.max_span_length, d * domain.max_span_length / np.maximum(length, 1e-300), d)
+    values = _values(domain)
+    material = np.asarray(g.material, dtype=np.int64)
+    n = np.round(g.n).astype(np.int64)
+    n_index = np.array([int(np.searchsorted(values[m], v)) for m, v in zip(material, n)], dtype=np.int64)
+    return State(np.asarray(g.n0, float), np.asarray(g.n1, float), a, p, d, n_index, material,
+                 np.asarray(g.kd, float), np.asarray(g.ks, float), np.asarray(g.ka, float),
+                 np.asarray(g.colour, float))
+
+
+def _toward(kind, vector, x):
+    if kind in ("directional", "infinity"):
+        v = np.asarray(vector, dtype=np.float64)
+        return np.broadcast_to(v / np.linalg.norm(v), x.shape).copy()
+    return unit(np.asarray(vector, dtype=np.float64) - x)
+
+
+def points(s, domain, rgb, bits):
+    """The :class:`FrameGeometry` (one pixel per span) the shader is fed at the state ``s``."""
+    a = s.a[:, None]
+    x0, x1 = s.p - a * s.d, s.p + (1 - a) * s.d
+    ends = (x0, x1, s.p)
+    lights = [[_toward(kind, vector, x) for x in ends] for kind, vector, *_ in domain.lights]
+    l0, l1, light = (np.stack([v[k] for v in lights]) for k in range(3))
+    v0, v1, viewer = (_toward(domain.camera[0], domain.camera[1], x) for x in ends)
+    values = _values(domain)
+    n = np.array([values[m][i] for m, i in zip(s.material, s.n_index)], dtype=np.float64)
+    count = len(s)
+    zeros = np.zeros(count, dtype=np.int64)
+    return FrameGeometry(0, 0, zeros, zeros, np.arange(count), s.a, s.n0, s.n1, unit((1 - a) * s.n0 + a * s.n1),
+                         s.p, l0, l1, light, v0, v1, viewer, np.asarray(rgb, dtype=np.float64), n, s.kd, s.ks,
+                         s.ka, s.colour, s.material, None, -1, bits)
+
+
+def inside(s, g, domain):
+    """(K,) bool: the points of state ``s`` (fed as ``g = points(s, ...)``) lie in the domain."""
+    ok = np.sum(s.n0 * s.n1, -1) >= np.cos(np.radians(domain.max_span_angle_deg)) - 1e-12
+    ok &= np.sum(s.n0 * g.v0, -1) >= domain.view_cos_min
+    ok &= np.sum(s.n1 * g.v1, -1) >= domain.view_cos_min
+    centre, radius = np.asarray(domain.ball[0], dtype=np.float64), domain.ball[1]
+    a = s.a[:, None]
+    for x in (s.p, s.p - a * s.d, s.p + (1 - a) * s.d):
+        ok &= np.linalg.norm(x - centre, axis=-1) <= radius
+    return ok & (np.linalg.norm(s.d, axis=-1) <= domain.max_span_length)
+
+
+def perturb(s, sigma, rng, domain):
+    """A random neighbour of each row of ``s``, at relative step ``sigma`` (K,)."""
+    k, step = len(s), sigma[:, None]
+    n0 = unit(s.n0 + step * rng.normal(size=(k, 3)))
+    n1 = unit(s.n1 + step * rng.normal(size=(k, 3)))
+    a = np.clip(s.a + sigma * rng.normal(size=k), 0.0, 1.0)
+    p, d = s.p, s.d
+    if _local(domain):  # positions matter only toward a point light or a local viewer
+        p = p + step * domain.ball[1] * rng.normal(size=(k, 3))
+        d = d + step * domain.max_span_length * rng.normal(size=(k, 3))
+    top = np.array([len(v) - 1 for v in _values(domain)])[s.material]
+    jump = np.where(rng.random(k) < 0.25, rng.integers(-1, 2, size=k), 0)
+    return replace(s, n0=n0, n1=n1, a=a, p=p, d=d, n_index=np.clip(s.n_index + jump, 0, top))
+
+
+def climb(evaluate, start, domain, rgb, bits, rng, *, rounds=40, batch=32, sigma=0.05):
+    """Hill-climb from every row of ``start`` (module docstring).
+
+    :param evaluate: ``g -> (levels, unrounded)``, each (P,): the error of the points ``g``.
+    :returns: ``(state, levels, unrounded, evaluated)``: the worst point found (one row; by
+        integer error, ties by the continuous one) and how many points were evaluated.
+    """
+    g = points(start, domain, rgb, bits)
+    cur_e, cur_u = evaluate(g)
+    ok = inside(start, g, domain)
+    cur_u = np.where(ok, cur_u, -np.inf)
+    best = _best(start, cur_e, cur_u, ok)
+    steps, evaluated = np.full(len(start), float(sigma)), len(start)
+    current = start
+    for _ in range(rounds):
+        rows = np.repeat(np.arange(len(current)), batch)
+        candidates = perturb(current.rows(rows), steps[rows], rng, domain)
+        g = points(candidates, domain, rgb, bits)
+        e, u = evaluate(g)
+        ok = inside(candidates, g, domain)
+        evaluated += len(rows)
+        best = max(best, _best(candidates, e, u, ok), key=lambda b: b[:2])
+        u = np.where(ok, u, -np.inf).reshape(len(current), batch)
+        pick = np.argmax(u, axis=1)
+        gain = u[np.arange(len(current)), pick] > cur_u
+        chosen = np.arange(len(current)) * batch + pick
+        moved = current.rows(np.arange(len(current)))
+        for name in moved.__dataclass_fields__:
+            getattr(moved, name)[gain] = getattr(candidates, name)[chosen[gain]]
+        cur_u = np.where(gain, u[np.arange(len(current)), pick], cur_u)
+        steps = np.clip(np.where(gain, steps * 1.5, steps * 0.6), 1e-7, 0.5)
+        current = moved
+    return best[2], best[0], best[1], evaluated
+
+
+def _best(s, levels, unrounded, ok):
+    """``(levels, unrounded, state row)`` of the worst point of ``s`` in the domain."""
+    if not np.any(ok):
+        return (-1, -np.inf, None)
+    index = np.flatnonzero(ok)
+    worst = index[np.lexsort((unrounded[index], levels[index]))[-1]]
+    return (int(levels[worst]), float(unrounded[worst]), s.rows([worst]))
+
+
+def neighbourhood(s, domain, rgb, bits, count, rng, sigma=0.02):
+    """The points of ``s`` (one row) and ``count - 1`` random neighbours of it in the domain,
+    at steps up to ``sigma``: the hard points a failed witness adds to the search."""
+    rows = np.zeros(4 * count, dtype=np.int64)
+    candidates = perturb(s.rows(rows), sigma * rng.random(len(rows)), rng, domain)
+    ok = np.flatnonzero(inside(candidates, points(candidates, domain, rgb, bits), domain))[:count - 1]
+    both = s.rows(np.r_[0, np.zeros(len(ok), dtype=np.int64)])
+    for name in both.__dataclass_fields__:
+        getattr(both, name)[1:] = getattr(candidates, name)[ok]
+    return points(both, domain, rgb, bits)

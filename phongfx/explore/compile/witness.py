@@ -1,0 +1,219 @@
+"""A design's worst input over the scene's domain: the **witness**, and how to replay it.
+
+:func:`search` measures a design (``method`` at ``params``) on ``samples`` fresh points of
+the domain (:meth:`phongfx.scene.domain.Domain.sample`, default ``final_samples``, with a
+seed of its own, never the width search's), in chunks, keeping the :data:`STARTS` worst;
+from those, :func:`phongfx.explore.compile.climb.climb` hill-climbs the continuous error.
+The witness is the worst integer error found by either, ties broken by the continuous
+one, as a JSON-able dict::
+
+    {"error_levels": int, "unrounded": float, "point": {the float inputs}, "codes": {port: raw},
+     "outputs": {"r", "g", "b"}, "reference_levels": [r, g, b], "found_by": ..., "replay": ...}
+
+``codes`` are what the core is fed (its input ports' raw integers), ``outputs`` what it
+gives, ``reference_levels`` the displayed reference; :func:`replay` re-evaluates the point
+through the golden model and says whether it gives the same.
+
+A unit fed per span (the spherical unit) cannot take one point alone: its witness is the
+worst visible pixel of frames of random poses (:func:`phongfx.explore.compile.points.pose_frames`),
+without a local search; its ``point`` holds the pose and the pixel.
+"""
+
+import time
+
+import numpy as np
+
+from phongfx.golden.blend import blend
+from phongfx.golden.fixed import Fixed
+from phongfx.golden.shader import shader_terms
+from phongfx.scene.geometry import FrameGeometry, frames, levels
+
+from . import run as runs
+from .analysis import analyse
+from .climb import climb, neighbourhood, points, state_of
+from .measure import point_errors, shade_points, worst_per_point
+from .points import chunk_seeds, concat, pose_frames, posed_frame, take
+
+__all__ = ["STARTS", "REPLAY", "search", "replay", "geometry", "hard_points"]
+
+#: How many of the worst sampled points the local search starts from.
+STARTS = 32
+#: How a compiled design's witness is replayed.
+REPLAY = "phongfx certify DIR --replay"
+#: The witness search's seed, when not given: the domain's, offset so that its points are
+#: never the width search's.
+SEED_OFFSET = 1_000_003
+
+
+def _analysis(spec, analysis):
+    return analyse(spec, frames(spec)) if analysis is None else analysis
+
+
+def search(method, params, spec, domain, *, samples=None, seed=None, progress=None, analysis=None,
+           rounds=40):
+    """The witness dict of ``method`` at ``params`` over ``domain`` (module docstring).
+
+    :param samples: fresh domain points (default ``domain.final_samples``).
+    :param seed: their seed (default the domain's plus :data:`SEED_OFFSET`).
+    :param progress: called with a line per chunk (points done, points per second).
+    :param analysis: the scene's :class:`~phongfx.explore.compile.analysis.Analysis`
+        (computed from its frames when None).
+    :param rounds: rounds of the local search.
+    """
+    samples = domain.final_samples if samples is None else samples
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
+        raise ValueError(f"samples must be a positive integer, not {samples!r}")
+    seed = domain.seed + SEED_OFFSET if seed is None else seed
+    analysis = _analysis(spec, analysis)
+    config = runs.build(method, params, analysis)
+    against, start = spec.requirement.against, time.perf_counter()
+    if not runs.per_pixel(method):
+        return _pose_search(method, config, params, spec, domain, samples, seed, start)
+    kept, done = [], 0
+    for size, chunk_seed in chunk_seeds(seed, samples):
+        g = domain.sample(size, chunk_seed)
+        e, u = worst_per_point(method, config, params, against, g, np.round(g.n).astype(np.int64))
+        worst = np.lexsort((u, e))[-STARTS:]
+        kept.append(take(g, worst))
+        done += size
+        if progress:
+            rate = done / max(time.perf_counter() - start, 1e-9)
+            progress(f"witness {method}: {done:,} of {samples:,} domain points, {rate:,.0f} points/s")
+    pool = concat(kept)
+    e, u = worst_per_point(method, config, params, against, pool, np.round(pool.n).astype(np.int64))
+    top = np.lexsort((u, e))[-STARTS:]
+    sampled = (int(e[top[-1]]), float(u[top[-1]]))
+    rgb = pool.rgb
+
+    def evaluate(g):
+        return worst_per_point(method, config, params, against, g, np.round(g.n).astype(np.int64))
+
+    rng = np.random.default_rng([seed, 2])
+    state, found_e, found_u, evaluated = climb(evaluate, state_of(take(pool, top), domain), domain, rgb,
+                                               spec.output.bits, rng, rounds=rounds)
+    if progress:
+        progress(f"witness {method}: local search, {evaluated:,} points")
+    if state is not None and (found_e, found_u) > sampled:
+        g, found_by = points(state, domain, rgb, spec.output.bits), "local search"
+    else:
+        g, found_by = take(pool, top[-1:]), "sample"
+    out = _witness(method, config, params, against, g, 0)
+    out.update(found_by=f"{found_by} ({samples:,} domain points, seed {seed}; hill-climbing from the "
+                        f"{len(top)} worst, {evaluated:,} points)",
+               sampled={"error_levels": sampled[0], "unrounded": sampled[1]},
+               samples=samples, seed=seed, local_points=evaluated, seconds=time.perf_counter() - start)
+    return out
+
+
+def _witness(method, config, params, against, g, index, point=None):
+    """The witness dict of point ``index`` of ``g`` (module docstring)."""
+    codes, reference, raw, out = shade_points(method, config, params, against, g,
+                                              np.round(g.n).astype(np.int64))
+    e, u = point_errors(codes, reference, g.bits)
+    feed = index if runs.per_pixel(method) else _stream_index(g, index)
+    return {"error_levels": int(e[index].max()), "unrounded": float(u[index].max()),
+            "point": point or _point(g, index),
+            "codes": {port: np.asarray(value)[feed].tolist() for port, value in raw.items()},
+            "outputs": {name: int(np.asarray(out[name])[feed]) for name in "rgb"},
+            "reference_levels": levels(reference[index], g.bits).tolist(), "replay": REPLAY}
+
+
+def _stream_index(g, index):
+    """The stream position of visible pixel ``index`` of a frame fed per span pixel."""
+    return int(np.flatnonzero(g.spans.visible)[index])
+
+
+def _point(g, index):
+    """The float inputs of point ``index`` of ``g``."""
+    def vec(x):
+        return [float(v) for v in np.asarray(x)[index]]
+    return {"n0": vec(g.n0), "n1": vec(g.n1), "a": float(g.a[index]), "n": float(g.n[index]),
+            "material": int(g.material[index]), "position": vec(g.position),
+            "l0": [vec(v) for v in g.l0], "l1": [vec(v) for v in g.l1], "light": [vec(v) for v in g.light],
+            "v0": vec(g.v0), "v1": vec(g.v1), "viewer": vec(g.viewer)}
+
+
+def _pose_search(method, config, params, spec, domain, samples, seed, start):
+    """The witness of a unit fed per span: the worst visible pixel of random poses."""
+    worst = None
+    found = pose_frames(spec, domain, samples, seed)
+    for index, (_, g) in enumerate(found):
+        e, u = worst_per_point(method, config, params, spec.requirement.against, g, np.round(g.n).astype(np.int64))
+        if len(e):
+            pixel = int(np.lexsort((u, e))[-1])
+            if worst is None or (e[pixel], u[pixel]) > worst[:2]:
+                worst = (e[pixel], u[pixel], index, pixel)
+    if worst is None:
+        raise ValueError(f"{spec.name}: no random pose of the domain shows a pixel")
+    (rotation, g), pixel = found[worst[2]], worst[3]
+    out = _witness(method, config, params, spec.requirement.against, g, pixel,
+                   {**_point(g, pixel), "pose": rotation.tolist(), "row": int(g.row[pixel]), "col": int(g.col[pixel])})
+    out.update(found_by=f"random poses ({sum(len(f) for _, f in found):,} visible pixels of {len(found)} poses, "
+                        f"seed {seed}); no local search: the unit is fed per span",
+               samples=samples, seed=seed, local_points=0, seconds=time.perf_counter() - start)
+    return out
+
+
+def geometry(witness, spec):
+    """The witness point as a :class:`~phongfx.scene.geometry.FrameGeometry` of one point."""
+    p = witness["point"]
+    m = list(spec.materials.values())[p["material"]]
+
+    def one(x):
+        return np.asarray([x], dtype=np.float64)
+    a = np.asarray([p["a"]], dtype=np.float64)
+    n0, n1 = one(p["n0"]), one(p["n1"])
+    normal = (1 - a[:, None]) * n0 + a[:, None] * n1
+    zero = np.zeros(1, dtype=np.int64)
+    return FrameGeometry(0, 0, zero, zero, np.arange(1), a, n0, n1, normal / np.linalg.norm(normal),
+                         one(p["position"]), *(np.asarray(p[k], dtype=np.float64)[:, None] for k in ("l0", "l1", "light")),
+                         one(p["v0"]), one(p["v1"]), one(p["viewer"]),
+                         np.array([light.rgb for light in spec.lights], dtype=np.float64).reshape(-1, 3),
+                         np.asarray([p["n"]], dtype=np.float64), one(m.kd), one(m.ks), one(m.ka), one(m.colour),
+                         np.asarray([p["material"]], dtype=np.int64), None, -1, spec.output.bits)
+
+
+def replay(witness, method, params, spec, *, analysis=None):
+    """Re-evaluate ``witness`` (:func:`search`'s dict) of ``method`` at ``params`` through the
+    golden model: from its float inputs (encoded afresh) and from its recorded ``codes``.
+
+    :returns: ``{"error_levels", "unrounded", "codes", "outputs", "reference_levels",
+        "codes_match", "outputs_match", "matches"}``: ``codes_match``, the inputs encode to the
+        recorded codes; ``outputs_match``, the recorded codes give the recorded outputs;
+        ``matches``, both and the same error.
+    """
+    config = runs.build(method, params, _analysis(spec, analysis))
+    against = spec.requirement.against
+    if "pose" in witness["point"]:
+        return _replay_pose(witness, method, config, params, spec)
+    g = geometry(witness, spec)
+    fresh = _witness(method, config, params, against, g, 0, witness["point"])
+    fixed = {name: Fixed(np.asarray(witness["codes"][name], dtype=np.int64).reshape((1,) + np.shape(
+        witness["codes"][name])), fmt) for name, (fmt, _) in config.inputs.items()}
+    given = {name: int(value.raw[0]) for name, value in blend(config.blend, **shader_terms(config, **fixed)).items()
+             if name in "rgb"}
+    return _verdict(witness, fresh, given)
+
+
+def _replay_pose(witness, method, config, params, spec):
+    p = witness["point"]
+    g = posed_frame(spec, np.asarray(p["pose"], dtype=np.float64))
+    pixel = int(np.flatnonzero((g.row == p["row"]) & (g.col == p["col"]))[0])
+    fresh = _witness(method, config, params, spec.requirement.against, g, pixel, p)
+    return _verdict(witness, fresh, fresh["outputs"])
+
+
+def _verdict(witness, fresh, given):
+    codes_match = fresh["codes"] == witness["codes"]
+    outputs_match = given == witness["outputs"] and fresh["outputs"] == witness["outputs"]
+    return {**{k: fresh[k] for k in ("error_levels", "unrounded", "codes", "outputs", "reference_levels")},
+            "codes_match": codes_match, "outputs_match": outputs_match,
+            "matches": codes_match and outputs_match and fresh["error_levels"] == witness["error_levels"]}
+
+
+def hard_points(witness, spec, domain, count=2048, seed=0):
+    """The witness point and ``count - 1`` neighbours of it in the domain
+    (:func:`phongfx.explore.compile.climb.neighbourhood`): a :class:`FrameGeometry`."""
+    g = geometry(witness, spec)
+    return neighbourhood(state_of(g, domain), domain, g.rgb, spec.output.bits, count,
+                         np.random.default_rng([seed, 3]))
