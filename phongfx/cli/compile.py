@@ -42,6 +42,12 @@ def add_arguments(p):
                         "on a datapath); a design with a counterexample is not chosen")
     p.add_argument("--prove-timeout", type=float, default=600, metavar="S",
                    help="with --prove: seconds per claim before it is reported unknown (default 600)")
+    p.add_argument("--samples", type=int, metavar="N",
+                   help="domain points each measured design is measured on, instead of the scene's "
+                        "[domain] samples (default 1,000,000)")
+    p.add_argument("--final-samples", type=int, metavar="N",
+                   help="fresh domain points the chosen design's witness is searched on, instead of the "
+                        "scene's [domain] final_samples (default 10,000,000)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -74,6 +80,15 @@ def _levels(value):
     return f"{value} level" if value == 1 else f"{value} levels"
 
 
+def _where(result):
+    """``frames 1, domain 1`` of a method's result: where its max error was measured."""
+    domain = result.get("domain_max")
+    if domain is None:
+        return f"frames {_levels(result.get('frames_max', result['max'])).split()[0]}, domain not measured"
+    return (f"frames {_levels(result['frames_max']).split()[0]}, domain {_levels(domain).split()[0]} "
+            f"on {result['domain_points']:,} points")
+
+
 def cmd_compile(args):
     from tqdm import tqdm
 
@@ -94,7 +109,8 @@ def cmd_compile(args):
         compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
                                  freq=args.freq, seed=args.seed, progress=progress,
                                  journal=folder("compile"),
-                                 prove=args.prove, prove_timeout=args.prove_timeout)
+                                 prove=args.prove, prove_timeout=args.prove_timeout,
+                                 samples=args.samples, final_samples=args.final_samples)
         data = emit(compiled, args.output, check=not args.no_check, progress=progress,
                     testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
@@ -102,7 +118,9 @@ def cmd_compile(args):
     for name, r in data["methods"].items():
         default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'], args.synth)}"
         if r["feasible"]:
-            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({default})")
+            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({_where(r)}; {default})")
+            if r.get("why_not_chosen"):
+                print(f"  {'':12s}   not chosen: {r['why_not_chosen']}")
         else:
             print(f"  {name:12s} infeasible: best max {_levels(r['max'])} at {r['params']} ({default})")
             for why in r.get("why", []):
@@ -115,10 +133,16 @@ def cmd_compile(args):
         for line in (data["hint"] or {}).get("text", []):
             print(f"phongfx: hint: {line}", file=sys.stderr)
         return 1
-    error = data["error"]
-    print(f"chosen {data['chosen']} ({data['module']}): max {_levels(error['max'])} at out_r/g/b, "
-          f"mean {error['mean']:.4f} ({error['max_unrounded']:.3f} against the unrounded reference), "
+    error, witness = data["error"], data["witness"]
+    print(f"chosen {data['chosen']} ({data['module']}): max {_levels(float(witness['error_levels']))} over the "
+          f"domain (witness; frames {_levels(error['frames_max']).split()[0]}) at out_r/g/b, "
+          f"mean {error['mean']:.4f} ({witness['unrounded']:.3f} against the unrounded reference), "
           f"{_cost(data['cost'])}, latency {data['latency']}")
+    for step in data["witness_rounds"]:
+        print(f"  {step['method']} at {step['params']}: witness {step['witness_levels']} levels, "
+              + (f"searched again with {step['hard_points']} hard points" if step["action"] == "searched again"
+                 else "not chosen"))
+    print(f"  witness: {witness['found_by']}; replay: {witness['replay']}")
     tie = data["tie"]
     if tie:
         runner = _cost({"cost": tie["runner_up_cost"], "unit": data["cost"].get("unit")})

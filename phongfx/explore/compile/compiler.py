@@ -12,8 +12,8 @@ scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
 2. greedily lower each width (binary search, then verified) while the error stays within
    ``requirement.max_error_levels`` on every frame and on a seeded sample of the scene's
    input domain (:class:`~phongfx.explore.compile.measure.SceneEval`: the golden model of
-   the whole shader, measured at its ``r``, ``g``, ``b`` outputs against the reference);
-   passes repeat until no single width can drop;
+   the whole shader, measured at its ``r``, ``g``, ``b`` outputs against the reference),
+   on the domain with a guard (:func:`meets`); passes repeat until no single width can drop;
 3. the **proof** of local minimality: for each width, the config with that width one
    lower and its measured max error (above the requirement), or "at range minimum".
 
@@ -28,8 +28,9 @@ the domain, ``final_samples`` fresh points and a local search from the worst
 requirement makes the design unfit as it is: the witness and its neighbourhood join the
 domain sample as hard points (:meth:`~phongfx.explore.compile.measure.SceneEval.add_hard`),
 that method's widths are searched again, and the designs re-ranked, for at most
-:data:`ROUNDS` such rounds (each recorded in :attr:`Compiled.rounds`); a design whose
-witness still misses is not chosen.
+:data:`ROUNDS` such rounds (:data:`METHOD_ROUNDS` per method; each recorded in
+:attr:`Compiled.rounds`); a design whose witness still misses is not chosen.  A quick local
+search from the width search's own worst points comes before each fresh sample.
 
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
@@ -52,11 +53,15 @@ from .infeasible import hint, summary
 from .measure import SceneEval
 from .points import DomainPoints
 
-__all__ = ["ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params", "widest",
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "GUARD", "HARD_POINTS", "meets", "Compiled", "compile_scene", "check_methods", "width_params", "widest",
            "search_widths", "scene_domain"]
 
-#: At most this many rounds of hard points (a witness over the requirement) per compile.
-ROUNDS = 4
+#: At most this many rounds of hard points (a witness over the requirement) per compile,
+#: and per method.
+ROUNDS = 8
+METHOD_ROUNDS = 3
+#: Levels of continuous error the width search keeps under the requirement on the domain (:func:`meets`).
+GUARD = 0.1
 #: Points a failed witness adds to the domain sample: itself and its neighbourhood.
 HARD_POINTS = 2048
 
@@ -100,7 +105,18 @@ def width_params(method, against="phong"):
 
 
 def _passes(scene, method, params):
-    return scene.error(method, params)["max"] <= scene.spec.requirement.max_error_levels
+    return meets(scene.error(method, params), scene.spec.requirement.max_error_levels)
+
+
+def meets(error, required):
+    """Whether a measured ``error`` (:meth:`SceneEval.error`) meets ``required`` levels: its
+    ``max`` within it, and on the domain its continuous error ``domain_unrounded`` at least
+    :data:`GUARD` under the ``required + 0.5`` the integer error allows.  The width search
+    stops at the edge of what it measured; without the guard, a fresh witness search (more
+    points, a longer local search) finds a point a hair past that edge almost every time,
+    one round of hard points after another."""
+    unrounded = error.get("domain_unrounded")
+    return error["max"] <= required and (unrounded is None or unrounded <= required + 0.5 - GUARD)
 
 
 def _lowest(scene, method, params, name, lo):
@@ -154,7 +170,7 @@ def search_widths(scene, method, progress=None):
                     continue
                 lower = {**params, name: params[name] - 1}
                 measured = scene.error(method, lower)
-                if measured["max"] <= scene.spec.requirement.max_error_levels:
+                if meets(measured, scene.spec.requirement.max_error_levels):
                     params, changed = lower, True
                     break
                 proof[name] = {"value": params[name], "lower": params[name] - 1,
@@ -203,6 +219,20 @@ def _ranked(results):
     return sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
 
 
+def _witness(scene, name, params, domain, progress):
+    """``(witness, hard points)`` of ``name`` at ``params``: first a local search from the
+    width search's own worst domain points, of its own seed (a miss there needs no fresh
+    sample), then the full search (:func:`phongfx.explore.compile.witness.explore`)."""
+    spec, analysis = scene.spec, scene.analysis
+    if runs.per_pixel(name):
+        starts = scene.points.worst(name, runs.build(name, params, analysis), params, witnesses.STARTS)
+        quick, hard = witnesses.explore(name, params, spec, domain, starts=starts, analysis=analysis,
+                                        hard=HARD_POINTS)
+        if quick["error_levels"] > spec.requirement.max_error_levels:
+            return quick, hard
+    return witnesses.explore(name, params, spec, domain, progress=progress, analysis=analysis, hard=HARD_POINTS)
+
+
 def _choose(out, scene, cost, prove, prove_timeout, progress):
     """The cheapest feasible design whose witness meets the requirement (module docstring)
     and, with ``prove``, without a counterexample to its overflow claims."""
@@ -212,7 +242,7 @@ def _choose(out, scene, cost, prove, prove_timeout, progress):
     while ranked:
         r = ranked[0]
         name = r["method"]
-        found = witnesses.search(name, r["params"], spec, domain, progress=progress, analysis=scene.analysis)
+        found, hard = _witness(scene, name, r["params"], domain, progress)
         r["witness"] = found
         if found["error_levels"] <= required:
             if prove and not _proven(scene, r, prove_timeout, progress):
@@ -224,14 +254,15 @@ def _choose(out, scene, cost, prove, prove_timeout, progress):
         ranked.pop(0)
         step = {"method": name, "params": r["params"], "witness_levels": found["error_levels"],
                 "witness_unrounded": found["unrounded"]}
-        if not runs.per_pixel(name) or len(out.rounds) >= ROUNDS:
+        mine = sum(step["method"] == name for step in out.rounds)
+        if not runs.per_pixel(name) or len(out.rounds) >= ROUNDS or mine >= METHOD_ROUNDS:
             r["why_not_chosen"] = (f"its witness is {found['error_levels']} levels over the domain "
                                    f"(requirement {required:g}); "
                                    + ("a unit fed per span takes no hard points" if not runs.per_pixel(name)
-                                      else f"no round of hard points left ({ROUNDS} used)"))
+                                      else f"after {mine} rounds of hard points"))
             out.rounds.append({**step, "action": "not chosen"})
             continue
-        scene.add_hard(witnesses.hard_points(found, spec, domain, HARD_POINTS, seed=len(out.rounds)))
+        scene.add_hard(hard)
         if progress:
             progress(f"{name}: witness {found['error_levels']} levels; searched again with "
                      f"{scene.points.hard_points} hard points")

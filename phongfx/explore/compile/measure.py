@@ -166,8 +166,8 @@ class SceneEval:
         return shade_points(method, config, params, self.spec.requirement.against, g, n, self.reference[index])
 
     def error(self, method, params):
-        """``{"max", "mean", "max_unrounded", "frames_max", "domain_max", "domain_points"}``
-        error in levels of ``method`` at ``params`` (cached; module docstring); a config that
+        """``{"max", "mean", "max_unrounded", "frames_max", "domain_max", "domain_unrounded",
+        "domain_points", "domain_climbed"}`` error in levels of ``method`` at ``params`` (cached; module docstring); a config that
         cannot be built or overflows has ``max = inf`` and says why in ``"why"``."""
         key = (method, tuple(sorted(params.items())))
         if key not in self.cache:
@@ -199,6 +199,7 @@ class SceneEval:
         except (ValueError, OverflowError) as error:
             return {**out, "max": inf, "domain_max": inf, "why": f"on the domain: {error}"}
         out.update(domain_max=measured["max"], domain_mean=measured["mean"], domain_points=measured["points"],
+                   domain_climbed=measured["climbed"], domain_unrounded=measured["max_unrounded"],
                    max=max(out["max"], measured["max"]),
                    max_unrounded=max(out["max_unrounded"], measured["max_unrounded"]))
         return out

@@ -10,7 +10,8 @@ import pytest
 
 from phongfx.cli import main
 from phongfx.core.registry import get_block
-from phongfx.explore.compile.compiler import SceneEval, compile_scene, width_params
+from phongfx.explore.compile.compiler import compile_scene, width_params
+from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.emit import submodules
 from phongfx.explore.compile.run import block_name, build
 from phongfx.explore.compile.run import frame_inputs as run_frame_inputs
@@ -31,13 +32,16 @@ n = 16
 [[objects]]
 type = "torus"
 material = "shiny"
-polygons = 72
+polygons = 288
 [output]
 width = 32
 height = 32
 [requirement]
 max_error_levels = {error}
 against = "{against}"
+[domain]                 # small samples keep the tests fast (the default is 10^6 and 10^7)
+samples = 2000
+final_samples = 10000
 """
 
 LOCAL = """
@@ -57,6 +61,9 @@ width = 24
 height = 24
 [requirement]
 against = "self"
+[domain]
+samples = 2000
+final_samples = 10000
 """
 
 
@@ -65,7 +72,7 @@ def _torus(error=1.0, against="phong"):
 
 
 def _lyon(radius=16):
-    text = open(os.path.join(SCENES, "lyon-balls.toml")).read()
+    text = open(os.path.join(SCENES, "lyon-balls.toml")).read() + "[domain]\nsamples = 2000\nfinal_samples = 10000\n"
     return parse_scene(re.sub(r"radius = \d+", f"radius = {radius}", text), name="lyon-balls")
 
 
@@ -221,7 +228,7 @@ def test_the_shipped_top_has_named_ports_and_its_testbench_passes_under_icarus(t
 
 @pytest.mark.parametrize("change, message", [
     (("direction = [1, 1, 1]", "position = [1, 2]"), r"bad\.toml: lights\[0\]\.position must be 3 numbers"),
-    (("polygons = 72", "polygons = 70"), r"bad\.toml: objects\[0\]\.polygons must be 2·k²"),
+    (("polygons = 288", "polygons = 286"), r"bad\.toml: objects\[0\]\.polygons must be 2·k²"),
     (("[[objects]]", "[[objects]"), r"bad\.toml: invalid TOML"),
 ])
 def test_bad_scenes_exit_2_with_one_line(tmp_path, capsys, change, message):
@@ -234,8 +241,8 @@ def test_bad_scenes_exit_2_with_one_line(tmp_path, capsys, change, message):
 
 def test_a_scene_with_nothing_in_view_exits_2(tmp_path, capsys):
     path = tmp_path / "empty.toml"
-    far = TORUS.format(error=1.0, against="phong").replace("polygons = 72",
-                                                           "polygons = 72\noffset = [100, 0, 0]")
+    far = TORUS.format(error=1.0, against="phong").replace("polygons = 288",
+                                                           "polygons = 288\noffset = [100, 0, 0]")
     path.write_text(far)
     assert main(["compile", str(path), "-o", str(tmp_path / "o"), "--quiet"]) == 2
     assert capsys.readouterr().err == ("phongfx: error: tiny: no object covers a pixel in any frame; "
@@ -361,6 +368,9 @@ width = 24
 height = 24
 [requirement]
 against = "self"
+[domain]
+samples = 2000
+final_samples = 10000
 """
 
 

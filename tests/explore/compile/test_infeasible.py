@@ -25,6 +25,9 @@ width = 24
 height = 24
 [requirement]
 max_error_levels = 1.0
+[domain]
+samples = 2000
+final_samples = 10000
 """
 
 
