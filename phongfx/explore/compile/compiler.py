@@ -13,7 +13,7 @@ scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
    ``requirement.max_error_levels`` on every frame and on a seeded sample of the scene's
    input domain (:class:`~phongfx.explore.compile.measure.SceneEval`: the golden model of
    the whole shader, measured at its ``r``, ``g``, ``b`` outputs against the reference),
-   on the domain with a guard (:func:`meets`); passes repeat until no single width can drop;
+   on the domain with a guard (:func:`~phongfx.explore.compile.measure.meets`); passes repeat until no single width can drop;
 3. the **proof** of local minimality: for each width, the config with that width one
    lower and its measured max error (above the requirement), or "at range minimum".
 
@@ -50,18 +50,16 @@ from . import run as runs
 from . import witness as witnesses
 from .costing import COST_UNITS, TIE_MARGIN, costed, tie
 from .infeasible import hint, summary
-from .measure import SceneEval
+from .measure import SceneEval, meets
 from .points import DomainPoints
 
-__all__ = ["ROUNDS", "METHOD_ROUNDS", "GUARD", "HARD_POINTS", "meets", "Compiled", "compile_scene", "check_methods", "width_params", "widest",
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params", "widest",
            "search_widths", "scene_domain"]
 
 #: At most this many rounds of hard points (a witness over the requirement) per compile,
 #: and per method.
 ROUNDS = 8
 METHOD_ROUNDS = 3
-#: Levels of continuous error the width search keeps under the requirement on the domain (:func:`meets`).
-GUARD = 0.1
 #: Points a failed witness adds to the domain sample: itself and its neighbourhood.
 HARD_POINTS = 2048
 
@@ -106,17 +104,6 @@ def width_params(method, against="phong"):
 
 def _passes(scene, method, params):
     return meets(scene.error(method, params), scene.spec.requirement.max_error_levels)
-
-
-def meets(error, required):
-    """Whether a measured ``error`` (:meth:`SceneEval.error`) meets ``required`` levels: its
-    ``max`` within it, and on the domain its continuous error ``domain_unrounded`` at least
-    :data:`GUARD` under the ``required + 0.5`` the integer error allows.  The width search
-    stops at the edge of what it measured; without the guard, a fresh witness search (more
-    points, a longer local search) finds a point a hair past that edge almost every time,
-    one round of hard points after another."""
-    unrounded = error.get("domain_unrounded")
-    return error["max"] <= required and (unrounded is None or unrounded <= required + 0.5 - GUARD)
 
 
 def _lowest(scene, method, params, name, lo):

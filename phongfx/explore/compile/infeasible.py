@@ -12,6 +12,8 @@ no single ``k`` serves, the split of the range whose parts each meet it.
 
 import math
 
+from .measure import met_at
+
 __all__ = ["summary", "per_variant", "split", "hint"]
 
 
@@ -83,8 +85,10 @@ def summary(scene, method, widest_point, scan):
     ``why`` (sentences) and ``k_scan`` (per ``k``: max error, and per shininess variant)."""
     requirement = scene.spec.requirement.max_error_levels
     best = _best(scene, method) or (widest_point, scene.error(method, widest_point))
+    # on the domain too (the search skips it where the frames already miss): what a hint quotes
+    best = (best[0], scene.error(method, best[0], complete=True))
     out = {"feasible": False, "params": _ordered(best[0], widest_point), **scene.measured(method, best[0]),
-           "widest": {"params": widest_point, "max": scene.error(method, widest_point)["max"]},
+           "widest": {"params": widest_point, "max": scene.error(method, widest_point, complete=True)["max"]},
            "why": _why(scene, method, best, widest_point, scan, requirement)}
     if scan:
         out["k_scan"] = {k: {"max": e["max"], "per_variant": per_variant(scene, e)} for k, e in scan.items()}
@@ -132,8 +136,8 @@ def hint(compiled):
         return None
     spec = compiled.spec
     requirement = spec.requirement.max_error_levels
-    best = min(results, key=lambda r: (r["max"], r["mean"]))
-    levels = math.ceil(best["max"])
+    best = min(results, key=lambda r: (met_at(r), r["max"], r["mean"]))
+    levels = met_at(best)
     command = f"phongfx compile {spec.path or spec.name + '.toml'} -o DIR --max-error {levels}"
     text = [f"the best any method reaches is {_levels(best['max'])} ({best['method']} at {best['params']}); "
             f"a requirement of {_levels(levels)} is met: {command}"]

@@ -20,6 +20,8 @@ n = {n}
 [[objects]]
 type = "sphere"
 material = "clay"
+stacks = 16                # fine enough that Lyon's g2 normalizes every span of the domain
+slices = 32
 [output]
 width = 24
 height = 24
