@@ -254,8 +254,9 @@ def _choose(out, scene, cost, prove, prove_timeout, progress):
             progress(f"{name}: witness {found['error_levels']} levels; searched again with "
                      f"{scene.points.hard_points} hard points")
         again = search_widths(scene, name, progress)
-        for where in ((again["default"], again) if again["feasible"] else (again["default"],)):
-            where["cost"] = cost(name, where["params"], again["feasible"])
+        again["default"]["cost"] = r["default"]["cost"]  # the same widths: the same cost
+        if again["feasible"]:
+            again["cost"] = cost(name, again["params"], True)
         again["superseded"] = {k: r.get(k) for k in ("params", "max", "cost", "witness")}
         out.results[name] = again
         out.rounds.append({**step, "action": "searched again", "hard_points": scene.points.hard_points,

@@ -12,9 +12,9 @@ def _counting(monkeypatch):
     calls = []
     original = SceneEval._error
 
-    def counted(self, method, params):
+    def counted(self, method, params, *args):
         calls.append((method, params))
-        return original(self, method, params)
+        return original(self, method, params, *args)
     monkeypatch.setattr(measure.SceneEval, "_error", counted)
     return calls
 
