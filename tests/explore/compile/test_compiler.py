@@ -408,3 +408,33 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
     assert tried == ["fig7", "conventional"] and compiled.chosen == "conventional"
     assert compiled.results["fig7"]["overflow_proof"]["counterexample"] == 1
     assert compiled.best["overflow_proof"]["proven"] == 1
+
+
+def test_the_report_and_manifest_say_what_held_over_the_domain(tmp_path, capsys):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    out = tmp_path / "out"
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--no-check", "--quiet",
+                 "--samples", "1500", "--final-samples", "4000"]) == 0
+    text = capsys.readouterr().out
+    assert re.search(r"^chosen fig7 \(tiny_fig7\): max 1 level over the domain \(witness; frames 1\) at out_r/g/b",
+                     text, re.M)
+    assert re.search(r"fig7 .* \(frames 1, domain 1 on [\d,]+ points; defaults: ", text)
+    data = json.loads((out / "manifest.json").read_text())
+    assert data["domain"]["samples"] == 1500 and data["domain"]["final_samples"] == 4000
+    assert data["domain"]["description"].startswith("Poses: ") and data["certificate"] is None
+    witness = data["witness"]
+    assert witness["error_levels"] <= 1 and witness["samples"] == 4000 and set(witness["outputs"]) == set("rgb")
+    assert data["error"]["witness"] == witness["error_levels"] and data["error"]["domain_points"] >= 1500
+    method = data["methods"]["fig7"]
+    assert method["frames_max"] <= method["max"] and method["domain_max"] <= method["max"]
+    assert data["evaluation"]["domain_samples"] == 1500 and data["path"] == str(path)
+
+
+@pytest.mark.parametrize("option, value", [("--samples", "0"), ("--final-samples", "-3")])
+def test_bad_sample_counts_exit_2(tmp_path, capsys, option, value):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    assert main(["compile", str(path), "-o", str(tmp_path / "o"), option, value, "--quiet"]) == 2
+    name = option[2:].replace("-", "_")
+    assert capsys.readouterr().err == f"phongfx: error: {name} must be a positive integer, not {value}\n"
