@@ -99,6 +99,7 @@ bench: $(STAMP)
 	$(VENV)/bin/python -m bench.rtl
 	$(VENV)/bin/python -m bench.golden
 	$(VENV)/bin/python -m bench.scaling
+	$(VENV)/bin/python -m bench.domain
 
 # the behaviour identity check: this checkout's outputs against revision REF's (bench/identity.py)
 REF ?= 58cdcc7
