@@ -12,7 +12,7 @@ no single ``k`` serves, the split of the range whose parts each meet it.
 
 import math
 
-from .measure import met_at
+from .measure import GUARD, met_at
 
 __all__ = ["summary", "per_variant", "split", "hint"]
 
@@ -68,6 +68,11 @@ def _why(scene, method, best, widest_point, scan, requirement):
         elif form is not None:
             out.append(f"its own float form is {form:.2f} levels from true Phong at the best point: the rest "
                        f"is the fixed-point rounding, with the widths at their range maxima")
+    unrounded = error.get("domain_unrounded")
+    if error["max"] <= requirement and unrounded is not None and unrounded > requirement + 0.5 - GUARD:
+        out.append(f"on the domain its continuous error reaches {unrounded:.3f} levels, past the "
+                   f"{requirement + 0.5 - GUARD:g} the search allows (the requirement's {requirement + 0.5:g} "
+                   f"less a guard of {GUARD:g}, so that a fresh witness search does not find a point past it)")
     if scan:
         lo, hi = min(scan), max(scan)
         k = min(scan, key=lambda v: (scan[v]["max"], scan[v]["mean"], v))
@@ -125,6 +130,12 @@ def split(scene, k_scan, requirement):
     return None
 
 
+def _met(result):
+    """The whole requirement a method's result meets: its measurement's (:func:`met_at`), or
+    its witness's error when that is more (a design the witness search failed)."""
+    return max(met_at(result), (result.get("witness") or {}).get("error_levels", 0))
+
+
 def hint(compiled):
     """When no method meets the requirement: ``{"best": {method, max, params}, "command",
     "split" (:func:`split` of the best method with a ``k_scan``, or None), "text"}``,
@@ -136,8 +147,8 @@ def hint(compiled):
         return None
     spec = compiled.spec
     requirement = spec.requirement.max_error_levels
-    best = min(results, key=lambda r: (met_at(r), r["max"], r["mean"]))
-    levels = met_at(best)
+    best = min(results, key=lambda r: (_met(r), r["max"], r["mean"]))
+    levels = _met(best)
     command = f"phongfx compile {spec.path or spec.name + '.toml'} -o DIR --max-error {levels}"
     text = [f"the best any method reaches is {_levels(best['max'])} ({best['method']} at {best['params']}); "
             f"a requirement of {_levels(levels)} is met: {command}"]
