@@ -53,7 +53,8 @@ from .infeasible import hint, summary
 from .measure import SceneEval, meets
 from .points import DomainPoints
 
-__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params", "widest",
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params",
+           "widest",
            "search_widths", "scene_domain"]
 
 #: At most this many rounds of hard points (a witness over the requirement) per compile,

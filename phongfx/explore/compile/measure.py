@@ -38,7 +38,8 @@ from . import run as runs
 from .analysis import analyse
 from .journal import Journal, scene_key
 
-__all__ = ["GUARD", "meets", "met_at", "SceneEval", "cosines", "diffuse", "phong_terms", "shade_points", "point_errors", "worst_per_point"]
+__all__ = ["GUARD", "meets", "met_at", "SceneEval", "cosines", "diffuse", "phong_terms", "shade_points", "point_errors",
+           "worst_per_point"]
 
 
 #: Levels of continuous error the width search keeps under the requirement on the domain (:func:`meets`).

@@ -98,8 +98,8 @@ def posed_frame(spec, r):
 
 def pose_frames(spec, domain, count, seed):
     """``[(rotation, frame)]`` of random poses of ``domain``
-    (:func:`phongfx.scene.sampling.random_poses`, :func:`posed_frame`) until they hold ``count`` visible pixels (at most ``count`` frames,
-    as a frame may show nothing)."""
+    (:func:`phongfx.scene.sampling.random_poses`, :func:`posed_frame`) until they hold
+    ``count`` visible pixels (at most ``count`` frames, as a frame may show nothing)."""
     rng = np.random.default_rng([seed, 1])
     out, pixels = [], 0
     while pixels < count and len(out) < count:

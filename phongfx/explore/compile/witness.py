@@ -34,7 +34,8 @@ from .climb import climb, neighbourhood, points, state_of
 from .measure import point_errors, shade_points, worst_per_point
 from .points import concat, pose_frames, posed_frame, take
 
-__all__ = ["STARTS", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore", "climb_rounds", "replay", "geometry"]
+__all__ = ["STARTS", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore", "climb_rounds", "replay",
+           "geometry"]
 
 #: How many of the worst sampled points the local search starts from.
 STARTS = 32
@@ -197,7 +198,8 @@ def geometry(witness, spec):
     normal = (1 - a[:, None]) * n0 + a[:, None] * n1
     zero = np.zeros(1, dtype=np.int64)
     return FrameGeometry(0, 0, zero, zero, np.arange(1), a, n0, n1, normal / np.linalg.norm(normal),
-                         one(p["position"]), *(np.asarray(p[k], dtype=np.float64)[:, None] for k in ("l0", "l1", "light")),
+                         one(p["position"]),
+                         *(np.asarray(p[k], dtype=np.float64)[:, None] for k in ("l0", "l1", "light")),
                          one(p["v0"]), one(p["v1"]), one(p["viewer"]),
                          np.array([light.rgb for light in spec.lights], dtype=np.float64).reshape(-1, 3),
                          np.asarray([p["n"]], dtype=np.float64), one(m.kd), one(m.ks), one(m.ka), one(m.colour),
