@@ -13,7 +13,8 @@ scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
    ``requirement.max_error_levels`` on every frame and on a seeded sample of the scene's
    input domain (:class:`~phongfx.explore.compile.measure.SceneEval`: the golden model of
    the whole shader, measured at its ``r``, ``g``, ``b`` outputs against the reference),
-   on the domain with a guard (:func:`~phongfx.explore.compile.measure.meets`); passes repeat until no single width can drop;
+   on the domain with a guard (:func:`~phongfx.explore.compile.measure.meets`); passes repeat
+   until no single width can drop;
 3. the **proof** of local minimality: for each width, the config with that width one
    lower and its measured max error (above the requirement), or "at range minimum".
 
