@@ -7,10 +7,11 @@ VENV ?= .venv
 BACKEND ?= verilator-fast
 STAMP := $(VENV)/.installed-stamp
 # Standard-cell synthesis (phongfx synth --target asic) needs OpenSTA and the OSU Liberty
-# files from Debian, and the exported testbenches (phongfx testbench) run under Icarus Verilog.
+# files from Debian, the exported testbenches (phongfx testbench) run under Icarus Verilog,
+# and phongfx certify proves Figure 7's rounding error with Gappa.
 # make installs them where it can (as root with apt-get, as in CI); elsewhere it says how,
 # and the tests that need them are skipped.
-DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035 iverilog
+DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035 iverilog gappa
 DEBIAN_STAMP := $(VENV)/.debian-stamp
 
 DOCS_OUT ?= build/docs
@@ -25,7 +26,7 @@ $(STAMP): pyproject.toml
 
 # the Makefile too: a package added to DEBIAN_PACKAGES is installed where the stamp exists
 $(DEBIAN_STAMP): $(STAMP) Makefile
-	@if command -v sta >/dev/null && command -v iverilog >/dev/null \
+	@if command -v sta >/dev/null && command -v iverilog >/dev/null && command -v gappa >/dev/null \
 	    && [ -f /usr/share/qflow/tech/osu018/osu018_stdcells.lib ] \
 	    && [ -f /usr/share/qflow/tech/osu035/osu035_stdcells.lib ]; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
@@ -33,7 +34,7 @@ $(DEBIAN_STAMP): $(STAMP) Makefile
 	    DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null \
 	    || { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null; }; \
 	else \
-	    echo "note: standard-cell tools or Icarus Verilog missing; as root: apt-get install $(DEBIAN_PACKAGES)"; \
+	    echo "note: standard-cell tools, Icarus Verilog or Gappa missing; as root: apt-get install $(DEBIAN_PACKAGES)"; \
 	fi
 	touch $@
 
@@ -56,7 +57,7 @@ sim: $(STAMP)
 JOBS ?= auto
 PYTEST := $(VENV)/bin/python -m pytest -q -n $(JOBS) --dist worksteal --durations=10
 TOOLS_FREE := not slow and not needs_verilator and not needs_yosys and not needs_sta and not needs_sby \
-	and not needs_iverilog
+	and not needs_iverilog and not needs_gappa
 
 # the in-process tier: the folders of the golden models, configs, scenes, the core, the HDL
 # (Amaranth simulation of every block) and the checkers, and the import rules

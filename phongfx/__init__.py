@@ -12,6 +12,7 @@ The package is a house of layers; each may import only the layers before it:
 ``phongfx.render``        pictures: shading scenes and meshes through the blocks
 ``phongfx.papers``        the seed papers' claims and tables, measured
 ``phongfx.explore``       synthesis, cost models, sweeps, reports and the scene compiler
+``phongfx.certify``       sound bounds on a design's error over a scene's input domain
 ``phongfx.cli``           the ``phongfx`` command line
 ========================  ===============================================================
 

@@ -5,8 +5,9 @@
   ``"verilator-fast"``, or the mark set in the test file);
 * ``needs_yosys`` (Yosys and nextpnr from PyPI: synthesis), ``needs_sta`` (OpenSTA and the
   OSU cells, through the :func:`asic_tools` fixture), ``needs_sby`` (SymbiYosys proofs),
-  ``needs_iverilog`` (Icarus Verilog): set in the test files, or by a fixture that stands
-  for the tool (:data:`FIXTURE_NEEDS`: :func:`asic_tools`, ``verilator_exe``);
+  ``needs_iverilog`` (Icarus Verilog), ``needs_gappa`` (Gappa): set in the test files, or
+  by a fixture that stands for the tool (:data:`FIXTURE_NEEDS`: :func:`asic_tools`,
+  ``verilator_exe``);
 * the cocotb back end (``backend="verilator"``) checks the same Verilog as
   ``verilator-fast`` at about twice the cost, so it runs by default only in
   :data:`COCOTB_TESTS`, the proof that back end works; elsewhere a cocotb run whose
@@ -27,7 +28,7 @@ from phongfx.explore.synth.asic import LIBRARIES
 from phongfx.sim.harness import BACKENDS
 
 #: Marks by what a test needs (registered in ``pyproject.toml``).
-NEEDS = ("needs_verilator", "needs_yosys", "needs_sta", "needs_sby", "needs_iverilog")
+NEEDS = ("needs_verilator", "needs_yosys", "needs_sta", "needs_sby", "needs_iverilog", "needs_gappa")
 #: Tests (node id prefixes) whose cocotb runs stay in the default run: ``test_harness.py``
 #: tests the cocotb back end itself (stalls, resets, waveforms, build failures),
 #: ``test_lirp.py`` runs the smallest block through it, with and without bubbles, and the
@@ -70,10 +71,12 @@ def pytest_collection_modifyitems(config, items):
 
 
 def pytest_runtest_setup(item):
-    """A test that needs Icarus Verilog is skipped where it is missing (``make`` installs it
-    where apt-get works)."""
+    """A test that needs Icarus Verilog or Gappa is skipped where it is missing (``make``
+    installs them where apt-get works)."""
     if item.get_closest_marker("needs_iverilog") and not (shutil.which("iverilog") and shutil.which("vvp")):
         pytest.skip("Icarus Verilog (iverilog, vvp) is not installed; apt-get install iverilog")
+    if item.get_closest_marker("needs_gappa") and not shutil.which("gappa"):
+        pytest.skip("Gappa is not installed; apt-get install gappa")
 
 
 @pytest.fixture(params=BACKENDS)

@@ -3,6 +3,7 @@
 ``phongfx blocks`` lists the datapath blocks; ``phongfx verilog NAME -o FILE`` emits
 one as Verilog; ``phongfx sim NAME`` checks it cycle by cycle against its golden
 model; ``phongfx compile SCENE.toml -o DIR`` compiles a scene to its cheapest datapath;
+``phongfx certify METHOD|DIR`` bounds a design's error over a scene's whole input domain;
 ``phongfx render`` is ``make sim``: Lyon's scene through Figure 7, golden and
 RTL.  ``--set field=value`` (repeatable; ``shape.k=1`` inside a composite) changes
 the block's configuration.  Errors go to stderr with exit code 2 (bad input) or 1

@@ -23,6 +23,7 @@ from phongfx.scene.span_inputs import UNITS
 from phongfx.sim.harness import BACKENDS
 
 from . import cache as cache_command
+from . import certify as certify_command
 from . import commands
 from . import compile as compile_command
 from . import prove as prove_command
@@ -217,6 +218,12 @@ def build_parser():
                                      "(SymbiYosys, k-induction): exit 0 all proven, 1 a counterexample, 3 unknown")
     prove_command.add_arguments(p)
     p.set_defaults(run=prove_command.cmd_prove)
+
+    p = sub.add_parser("certify", help="a design's worst input (witness) and a sound bound on its error over a "
+                                       "scene's whole input domain: exit 0 the bound meets the requirement, 1 the "
+                                       "witness fails it, 3 only the bound does")
+    certify_command.add_arguments(p)
+    p.set_defaults(run=certify_command.cmd_certify)
 
     p = sub.add_parser("cache", help="the per-user cache of tool results (Verilator builds, synthesis, "
                                      "timing, proofs): --info where and how large, --clear empty it")

@@ -8,6 +8,9 @@
 * :mod:`.file`: scene files (TOML) for the scene compiler, validated;
 * :mod:`.geometry`: one frame of a scene file as the datapaths see it (span ends of N,
   L and V, interpolation amounts);
+* :mod:`.domain`: a scene's input domain, every input its hardware can meet while the scene
+  plays (poses, normals, spans, positions, n), derived soundly, and :mod:`.sampling`, which
+  draws seeded points of it;
 * :mod:`.span_inputs`: the per-span setups of the scanline units (Euler, Gouraud,
   spherical, Schlick, Blinn–Phong, Phong) laid out as per-pixel input streams.
 

@@ -23,11 +23,13 @@ over-approximation, for these reasons:
   least ``cos β`` and the combination is no longer than its weights' sum), so ``N`` is within
   ``90° + β`` of the view axis ``z``.  A viewer direction ``V`` within ``γ`` of ``z`` (a
   camera at infinity: its direction; a local camera: every direction from the bounding ball
-  to it) gives ``N·V >= cos(90° + β + γ) = -sin(β + γ)`` (``-1`` past 180°).  Lyon's
+  to it) gives ``N·V >= cos(90° + β + γ) = -sin(β + γ)`` (``-1`` once ``β + γ >= 90°``).  Lyon's
   spheres present front-hemisphere normals (``β = 0``).
 * **Span angle** (``max_span_angle_deg``).  A span is one triangle's run on one scanline
-  (:func:`~phongfx.scene.mesh.rasterize_screen`); its end normals are normalized convex
-  combinations of the triangle's vertex normals ``n_i``.  For ``u = Σα_i n_i``,
+  (:func:`~phongfx.scene.mesh.rasterize_screen`); its end normals are the triangle's vertex
+  normals ``n_i`` interpolated along its edges, then between them at pixel centres inside the
+  triangle (the fill rule keeps every centre inside), normalized: normalized convex
+  combinations of the ``n_i``.  For ``u = Σα_i n_i``,
   ``w = Σβ_j n_j``: ``u·w >= min n_i·n_j = c`` and ``|u|, |w| <= 1``, so when ``c >= 0`` the
   angle is at most the triangle's largest pairwise vertex-normal angle, for every pose; a
   triangle with a pair over 90° gives 180°.  Lyon's spheres: the widest span of their fixed
@@ -39,21 +41,26 @@ over-approximation, for these reasons:
   surface point under every pose; ``|x1 - x0|`` is at most the longest triangle edge, and
   spans are horizontal on the screen (``x1 - x0`` has no eye-space ``y``).  Lyon's spheres:
   unit spheres at ``(k, 0, 0)``, span chords from the image.
+* **Light and viewer directions.**  Directional lights and a camera at infinity: their one
+  vector.  A point light or a local camera at ``P``: ``unit(P - x)`` for ``x`` in the ball,
+  within ``asin(radius/|P - centre|)`` of ``unit(P - centre)`` (:meth:`Domain.cone`).
 * **n**: every integer of a material's range ``[lo, hi]``, its single ``n``, or the
   ``shininess`` list of ``lyon_spheres``; materials no object uses admit none (``()``).
 
-:meth:`Domain.sample` draws (module functions :func:`sample_chunk`): a material uniformly among
-the used ones; ``n`` uniformly among its admissible values; a pose of the pose set (``"motion"``
-uniform angle, ``"any"`` uniform (Haar) rotation, ``"still"`` a uniform frame and a wobble with
-the Haar density ``∝ 1 - cos θ`` up to ``wobble_degrees`` about a uniform axis); ``n0`` the
-normalized interpolated vertex normal at a uniform point of an area-weighted face of the
-material, turned by the pose, kept when the turned face faces the viewer (Lyon: uniform on the
-front hemisphere); ``n1`` uniform in the cap of ``max_span_angle_deg`` about ``n0``, redrawn
-until ``n1`` and ``N`` meet ``view_cos_min``; ``a`` uniform in [0, 1] with 2 % exactly 0 and 2 %
-exactly 1; span start ``x0`` the surface point (half the points) or uniform in the ball,
-``x1 = x0 + d·u`` with ``u`` uniform in the eye-space xz plane and ``d`` uniform in
-``[-max_span_length, max_span_length]`` clipped to the ball; the pixel at ``(1-a)x0 + a·x1``;
-light and viewer vectors from these points as :func:`phongfx.scene.geometry.frames` makes them.
+:meth:`Domain.sample` draws (:mod:`phongfx.scene.sampling`): a material uniformly among the
+used ones; ``n`` uniformly among its admissible values (Lyon: a uniform sphere and its ``n``); a
+pose of the pose set, shared by 16 points (``"motion"`` a uniform angle, ``"any"`` a uniform (Haar)
+rotation, ``"still"`` a uniform frame and a wobble about a uniform axis with the Haar density
+``∝ 1 - cos θ`` of its angle up to ``wobble_degrees``); ``n0`` the normalized interpolated vertex
+normal at a uniform point of a face of the material drawn by area among those facing the viewer
+under the pose, turned by it (Lyon: uniform on the front hemisphere); ``n1`` uniform in the cap of
+``max_span_angle_deg`` about ``n0``, redrawn until ``n1`` and ``N`` meet ``view_cos_min``; ``a``
+uniform in [0, 1] with 2 % exactly 0 and 2 % exactly 1; with a point light or a local camera, span
+start ``x0`` the surface point (half the points) or uniform in the ball, ``x1 = x0 + d·u`` with
+``u`` uniform in the eye-space xz plane and ``d`` uniform in ``[-max_span_length,
+max_span_length]`` clipped to the ball, the pixel at ``(1-a)x0 + a·x1`` (else all three the
+surface point, as no vector depends on it); light and viewer vectors from these points as
+:func:`phongfx.scene.geometry.frames` makes them.
 """
 
 import math
@@ -61,21 +68,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .geometry import FrameGeometry, rotation, scene_mesh
+from .geometry import scene_mesh
 from .lyon import Scene, pixels
 from .mesh import unit
-from .sampling import sample_chunk
+from .sampling import Surface, draw, draw_chunks, face_table
 
-__all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "CHUNK",
-           "Options", "Surface", "Domain", "domain", "parse_options"]
+__all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "Options",
+           "Domain", "domain", "parse_options"]
 
 POSES = ("motion", "any", "still")
 WOBBLE_DEFAULT = 5.0
 SAMPLES_DEFAULT = 1_000_000
 FINAL_SAMPLES_DEFAULT = 10_000_000
 SEED_DEFAULT = 1
-#: points drawn per generator: ``sample(count, seed)`` is its chunks of this size, concatenated
-CHUNK = 1 << 18
 _KEYS = ("pose", "wobble_degrees", "max_span_angle_deg", "samples", "final_samples", "seed")
 _MAX_SAMPLES = 10 ** 10
 
@@ -100,8 +105,8 @@ def parse_options(reader, data, frame_count):
     if pose is not None and pose not in POSES:
         reader.fail(f"domain.pose must be one of {', '.join(POSES)}, not {pose!r}")
     if "wobble_degrees" in data and (pose or ("motion" if frame_count > 1 else "still")) != "still":
-        reader.fail(f"domain.wobble_degrees applies only to pose \"still\", not to pose "
-                    f"{pose or 'motion'!r} (the default for frames.count = {frame_count})")
+        why = f"{pose!r}" if pose else f"'motion' (the default for frames.count = {frame_count})"
+        reader.fail(f"domain.wobble_degrees applies only to pose \"still\", not to pose {why}")
     wobble = reader.number(data.get("wobble_degrees", WOBBLE_DEFAULT), "domain.wobble_degrees", 0, 180)
     angle = data.get("max_span_angle_deg")
     angle = None if angle is None else reader.number(angle, "domain.max_span_angle_deg", 0, 180)
@@ -109,23 +114,6 @@ def parse_options(reader, data, frame_count):
               for key, default in (("samples", SAMPLES_DEFAULT), ("final_samples", FINAL_SAMPLES_DEFAULT))}
     seed = reader.integer(data.get("seed", SEED_DEFAULT), "domain.seed", 0, 2 ** 63 - 1)
     return Options(pose, wobble, angle, counts["samples"], counts["final_samples"], seed)
-
-
-@dataclass(frozen=True)
-class Surface:
-    """What :meth:`Domain.sample` draws surface points from (module docstring).
-
-    Meshes: placed ``vertices`` (V, 3), unit vertex ``normals`` (V, 3), drawable ``faces``
-    (F, 3), their unit winding normals ``face_normals`` (F, 3), ``areas`` (F,) and
-    ``material`` (F,) index.  Lyon's spheres (``lyon`` True): ``shininess`` per sphere."""
-    lyon: bool
-    vertices: np.ndarray = None
-    normals: np.ndarray = None
-    faces: np.ndarray = None
-    face_normals: np.ndarray = None
-    areas: np.ndarray = None
-    material: np.ndarray = None
-    shininess: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -161,52 +149,56 @@ class Domain:
         """Whether ``max_span_angle_deg`` is the ``[domain]`` table's claim, not derived."""
         return self.derived_span_angle_deg is not None
 
+    def cone(self, position):
+        """``(axis, half_angle_deg)``: every direction toward ``position`` (a point light, a
+        local camera) from a point of the ball lies within ``half_angle_deg`` of the unit
+        ``axis``, ``asin(radius/distance)``; 180° (any direction) when the point is in the ball."""
+        return _cone_of(self.ball, position)
+
+    @property
+    def light_cones(self):
+        """Per light, its :meth:`cone` (a point light) or None (a directional one: one vector)."""
+        return tuple(self.cone(vector) if kind == "point" else None for kind, vector, _ in self.lights)
+
+    @property
+    def viewer_cones(self):
+        """Per camera position (the path's, or the one), its :meth:`cone`; () at infinity."""
+        if self.camera[0] != "point":
+            return ()
+        return tuple(self.cone(p) for p in self.camera_path or (self.camera[1],))
+
     def chunks(self, count, seed):
-        """:class:`~phongfx.scene.geometry.FrameGeometry` pieces of :data:`CHUNK` points (the
-        last shorter) whose concatenation is ``sample(count, seed)``: the same points in
-        bounded memory."""
-        count = _count(count)
-        for index, start in enumerate(range(0, count, CHUNK)):
-            rng = np.random.default_rng((int(seed), index))
-            yield self._geometry(sample_chunk(self, min(CHUNK, count - start), rng))
+        """:class:`~phongfx.scene.geometry.FrameGeometry` pieces of
+        :data:`~phongfx.scene.sampling.CHUNK` points (the last shorter) whose concatenation is
+        ``sample(count, seed)``: the same points in bounded memory."""
+        return draw_chunks(self, count, seed)
 
     def sample(self, count, seed):
         """A :class:`~phongfx.scene.geometry.FrameGeometry` of ``count`` domain points (one
         pixel per span, ``span = arange(count)``, ``frame = -1``), drawn as the module
         docstring says; deterministic for (self, count, seed)."""
-        count = _count(count)
-        parts = [sample_chunk(self, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
-                 for index, start in enumerate(range(0, count, CHUNK))]
-        if not parts:
-            parts = [sample_chunk(self, 0, np.random.default_rng((int(seed), 0)))]
-        return self._geometry({key: _join([p[key] for p in parts], 1 if key in _PER_LIGHT else 0)
-                               for key in parts[0]})
-
-    def _geometry(self, g):
-        count = len(g["a"])
-        zeros = np.zeros(count, dtype=np.int64)
-        rgb = np.array([light[2] for light in self.lights], dtype=np.float64).reshape(-1, 3)
-        return FrameGeometry(0, 0, zeros, zeros.copy(), np.arange(count), g["a"], g["n0"], g["n1"],
-                             g["normal"], g["position"], g["l0"], g["l1"], g["light"], g["v0"],
-                             g["v1"], g["viewer"], rgb, g["n"], g["kd"], g["ks"], g["ka"], g["colour"],
-                             g["material"], None, -1, self.bits)
+        return draw(self, count, seed)
 
     def as_dict(self):
-        """JSON-able: every field but the sampler's surface, and where the span angle came from."""
+        """JSON-able, for the manifest: what the domain holds and why (the sampler's surface and
+        the materials' coefficients, which the scene gives, left out), where the span angle
+        came from, and :meth:`describe`."""
         out = {"pose": self.pose, "axis": list(self.axis), "degrees": list(self.degrees),
                "wobble_degrees": self.wobble_degrees, "still_degrees": list(self.still_degrees),
                "view_cos_min": self.view_cos_min, "face_cap_deg": self.face_cap_deg,
                "view_tilt_deg": self.view_tilt_deg, "max_span_angle_deg": self.max_span_angle_deg,
                "max_span_angle_source": ("user claim ([domain] max_span_angle_deg)" if self.user_span_angle
-                                         else "derived from the meshes (sound)"),
+                                         else "derived (sound)"),
                "derived_max_span_angle_deg": (self.derived_span_angle_deg if self.user_span_angle
                                               else self.max_span_angle_deg),
                "min_normal_length": self.min_normal_length,
                "ball": {"centre": list(self.ball[0]), "radius": self.ball[1]},
                "max_span_length": self.max_span_length,
-               "lights": [{"kind": k, "vector": list(v), "rgb": list(c)} for k, v, c in self.lights],
+               "lights": [{"kind": k, "vector": list(v), "rgb": list(c), "cone": _cone(cone)}
+                          for (k, v, c), cone in zip(self.lights, self.light_cones)],
                "camera": {"kind": self.camera[0], "vector": list(self.camera[1]),
-                          "path": [list(p) for p in self.camera_path]},
+                          "path": [list(p) for p in self.camera_path],
+                          "cones": [_cone(cone) for cone in self.viewer_cones]},
                "materials": [{"name": name, "n": _n_summary(values)} for name, values in self.materials],
                "samples": self.samples, "final_samples": self.final_samples, "seed": self.seed,
                "description": self.describe()}
@@ -222,14 +214,18 @@ class Domain:
         else:
             pose = (f"each frame's pose turned by up to {self.wobble_degrees:g}° about any axis (a still "
                     f"scene's default: it holds the normals between the frame's pixels)")
-        if self.surface is not None and self.surface.lyon:
-            pose = "the fixed image of Lyon's spheres (they ignore rotation; normals: the front hemisphere)"
+        lyon = self.surface is not None and self.surface.lyon
+        if lyon:
+            pose = "the fixed image of Lyon's spheres (they ignore rotation)"
+            why = "front-hemisphere normals"
+        else:
+            why = f"faces' vertex normals within {self.face_cap_deg:.2f}° of the face's"
+        source = "the image's widest span" if lyon else "the widest triangle"
         claim = (f", the [domain] table's claim (derived: {self.derived_span_angle_deg:.2f}°)"
-                 if self.user_span_angle else ", from the widest triangle")
-        ns = "; ".join(f"{name}: n {_n_summary(values)}" for name, values in self.materials if values)
-        return (f"Poses: {pose}. Every presented normal has N·V >= {self.view_cos_min:.4f} "
-                f"(faces' vertex normals within {self.face_cap_deg:.2f}° of the face, viewer within "
-                f"{self.view_tilt_deg:.2f}° of the view axis); span ends at most "
+                 if self.user_span_angle else f", from {source}")
+        ns = "; ".join(f"{name}: n in {_n_text(values)}" for name, values in self.materials if values)
+        return (f"Poses: {pose}. Every presented normal has N·V >= {self.view_cos_min:.4f} ({why}, "
+                f"viewer within {self.view_tilt_deg:.2f}° of the view axis); span ends at most "
                 f"{self.max_span_angle_deg:.2f}° apart{claim}, so |(1-a)n0 + a·n1| >= "
                 f"{self.min_normal_length:.4f}, any a in [0, 1]; surface points within {self.ball[1]:.4g} "
                 f"of ({_vec(self.ball[0])}), span ends at most {self.max_span_length:.4g} apart; "
@@ -237,20 +233,8 @@ class Domain:
                 f"{self.final_samples:,} for the chosen one (seed {self.seed}).")
 
 
-_PER_LIGHT = ("l0", "l1", "light")
-
-
-def _join(parts, axis):
-    """``parts`` concatenated along ``axis``; broadcasts of one fixed vector (stride 0 along
-    ``axis``: a directional light, a camera at infinity) stay a broadcast, not gigabytes."""
-    full = [p for p in parts if p.shape[axis]]
-    if len(full) == 1:
-        return full[0]
-    if full and all(p.strides[axis] == 0 for p in full):
-        shape = list(full[0].shape)
-        shape[axis] = sum(p.shape[axis] for p in full)
-        return np.broadcast_to(np.take(full[0], [0], axis=axis), shape)
-    return np.concatenate(parts, axis=axis)
+def _cone(cone):
+    return None if cone is None else {"axis": list(cone[0]), "half_angle_deg": cone[1]}
 
 
 def _vec(v):
@@ -265,10 +249,9 @@ def _n_summary(values):
     return values
 
 
-def _count(count):
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
-        raise ValueError(f"count must be a non-negative integer, not {count!r}")
-    return int(count)
+def _n_text(values):
+    summary = _n_summary(values)
+    return "{}..{}".format(*summary["range"]) if isinstance(summary, dict) else "{" + ", ".join(map(str, summary)) + "}"
 
 
 def _angle(u, w):
@@ -277,6 +260,7 @@ def _angle(u, w):
 
 
 def _mesh_surface(spec, names):
+    """(Surface, β, span-angle bound, ball, longest edge) of the placed meshes (module docstring)."""
     mesh, owner = scene_mesh(spec)
     tri = mesh.vertices[mesh.faces]
     cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -290,12 +274,16 @@ def _mesh_surface(spec, names):
     longest = max(float(np.max(np.linalg.norm(tri[keep][:, i] - tri[keep][:, (i + 1) % 3], axis=-1)))
                   for i in range(3)) if len(faces) else 0.0
     material = np.array([names.index(obj.material) for obj in spec.objects])[owner[keep]]
-    surface = Surface(False, mesh.vertices, normals, faces, f, area[keep] / 2, material)
+    tables = tuple(face_table(mesh.vertices, normals, faces[material == m], f[material == m],
+                              area[keep][material == m]) if np.any(material == m) else None
+                   for m in range(len(names)))
+    surface = Surface(False, tables=tables)
     radius = float(np.max(np.linalg.norm(mesh.vertices, axis=-1)))
     return surface, cap, pair if pair <= 90.0 else 180.0, ((0.0, 0.0, 0.0), radius), longest
 
 
 def _lyon_surface(spec, geometries):
+    """(Surface, β = 0, widest span angle, ball, widest span chord) of Lyon's fixed image."""
     params = spec.objects[0].params
     if geometries:
         n0, n1 = geometries[0].n0, geometries[0].n1
@@ -308,21 +296,23 @@ def _lyon_surface(spec, geometries):
     return Surface(True, shininess=tuple(params["shininess"])), 0.0, angle, ((half, 0.0, 0.0), half + 1.0), chord
 
 
+def _cone_of(ball, position):
+    """:meth:`Domain.cone` of ``position`` seen from ``ball``."""
+    d = np.asarray(position, dtype=np.float64) - np.asarray(ball[0])
+    distance = float(np.linalg.norm(d))
+    if distance <= ball[1]:
+        return (0.0, 0.0, 1.0), 180.0
+    return tuple(float(x) for x in d / distance), math.degrees(math.asin(ball[1] / distance))
+
+
 def _view_tilt(spec, ball):
     """γ (degrees): the largest angle between the view axis z and a direction toward the
     viewer from a point of ``ball`` (module docstring)."""
     z = np.array([0.0, 0.0, 1.0])
     if spec.camera.kind == "infinity":
         return float(_angle(np.asarray(spec.camera.vector), z))
-    centre, radius = np.asarray(ball[0]), ball[1]
-    worst = 0.0
-    for position in spec.frames.camera_path or (spec.camera.vector,):
-        d = np.asarray(position) - centre
-        distance = float(np.linalg.norm(d))
-        if distance <= radius:
-            return 180.0
-        worst = max(worst, float(_angle(d / distance, z)) + math.degrees(math.asin(radius / distance)))
-    return min(worst, 180.0)
+    cones = [_cone_of(ball, position) for position in spec.frames.camera_path or (spec.camera.vector,)]
+    return min(180.0, max(float(_angle(np.asarray(axis), z)) + half for axis, half in cones))
 
 
 def _admissible(spec, names):
@@ -349,7 +339,8 @@ def domain(spec, geometries=None):
     surface, cap, span_angle, ball, span_length = (_lyon_surface(spec, geometries) if lyon
                                                    else _mesh_surface(spec, names))
     tilt = _view_tilt(spec, ball)
-    view_cos_min = -1.0 if cap > 90.0 else max(-1.0, math.cos(math.radians(min(90.0 + cap + tilt, 180.0))))
+    # N within 90° + β of the view axis, V within γ: N·V >= cos(90° + β + γ) = -sin(β + γ)
+    view_cos_min = 0.0 - math.sin(math.radians(cap + tilt)) if cap <= 90.0 and cap + tilt < 90.0 else -1.0
     derived = None
     if options.max_span_angle_deg is not None:
         derived, span_angle = span_angle, options.max_span_angle_deg

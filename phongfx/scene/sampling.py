@@ -1,58 +1,92 @@
 """Random points of a scene's input domain (:class:`phongfx.scene.domain.Domain`).
 
 :func:`sample_chunk` draws one chunk of points with the distribution that
-:mod:`phongfx.scene.domain`'s docstring states, as plain arrays; ``Domain.sample`` and
-``Domain.chunks`` seed it per chunk and wrap the arrays in a
-:class:`~phongfx.scene.geometry.FrameGeometry`.  Everything is vectorized numpy; a point
-that breaks a bound of the domain (a back-facing pose, an ``n1`` or ``N`` below
+:mod:`phongfx.scene.domain`'s docstring states, as plain arrays; :func:`draw` and
+:func:`draw_chunks` (``Domain.sample``, ``Domain.chunks``) seed it per chunk and wrap the
+arrays in a :class:`~phongfx.scene.geometry.FrameGeometry`.  Everything is vectorized numpy;
+a point that breaks a bound of the domain (a back-facing face, an ``n1`` or ``N`` below
 ``view_cos_min``) is redrawn, so every point drawn lies in the domain.
 """
 
+from dataclasses import dataclass
+
 import numpy as np
 
-from .mesh import unit
+from .geometry import FrameGeometry
 
-__all__ = ["ENDS", "sample_chunk", "rotations", "random_poses", "cap"]
+__all__ = ["CHUNK", "ENDS", "GROUP", "draw", "draw_chunks", "sample_chunk", "Surface", "FaceTable", "face_table",
+           "random_poses", "random_rotations", "cap", "span_end"]
 
+#: points drawn per generator: ``draw(domain, count, seed)`` is its chunks of this size, concatenated
+CHUNK = 1 << 16
 #: fraction of points with ``a`` exactly 0, and again exactly 1 (the span's end pixels)
 ENDS = 0.02
 _ROUNDS = 200  # redraws before a bound is declared unreachable (each keeps about half or more)
+#: points that share one pose (drawn per group, so that the faces facing the viewer under
+#: it are found once for all of them rather than by rejecting back faces point by point)
+GROUP = 16
 
 
-def rotations(axes, radians):
-    """(P, 3, 3) rotations by ``radians`` (P,) about the unit ``axes`` (P, 3) (Rodrigues)."""
-    axes = np.broadcast_to(np.asarray(axes, dtype=np.float64), (len(radians), 3))
-    c, s = np.cos(radians)[:, None, None], np.sin(radians)[:, None, None]
-    x, y, z = axes[:, 0], axes[:, 1], axes[:, 2]
-    zero = np.zeros_like(x)
-    cross = np.stack([np.stack([zero, -z, y], -1), np.stack([z, zero, -x], -1),
-                      np.stack([-y, x, zero], -1)], 1)
-    return c * np.eye(3) + s * cross + (1 - c) * axes[:, :, None] * axes[:, None, :]
+def _dot(u, w):
+    """Row-wise dot products of (P, 3) arrays (einsum: a reduction over an axis of 3 is slow)."""
+    return np.einsum("ij,ij->i", u, w)
 
 
-def _directions(rng, count):
-    return unit(rng.standard_normal((count, 3)))
+def _unit(v):
+    """Each row of ``v`` (P, k) scaled to length 1."""
+    return v / np.maximum(np.sqrt(_dot(v, v)), 1e-300)[:, None]
+
+
+def _cross(u, w):
+    """Row-wise cross products of (P, 3) arrays (``np.cross`` is twice as slow)."""
+    out = np.empty(np.broadcast_shapes(u.shape, w.shape))
+    out[:, 0] = u[:, 1] * w[:, 2] - u[:, 2] * w[:, 1]
+    out[:, 1] = u[:, 2] * w[:, 0] - u[:, 0] * w[:, 2]
+    out[:, 2] = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
+    return out
+
+
+def _axis_angle(axes, radians):
+    """(P, 4) unit quaternions ``(w, x, y, z)`` of rotations by ``radians`` about unit ``axes``."""
+    half = np.asarray(radians, dtype=np.float64) / 2
+    axes = np.broadcast_to(np.asarray(axes, dtype=np.float64), (len(half), 3))
+    return np.concatenate([np.cos(half)[:, None], np.sin(half)[:, None] * axes], axis=1)
+
+
+def _product(p, q):
+    """Quaternion products ``p·q`` (rotation ``q`` first, then ``p``)."""
+    w1, v1, w2, v2 = p[:, :1], p[:, 1:], q[:, :1], q[:, 1:]
+    return np.concatenate([w1 * w2 - _dot(v1, v2)[:, None], w1 * v2 + w2 * v1 + _cross(v1, v2)], axis=1)
 
 
 def random_poses(domain, count, rng):
-    """(count, 3, 3) rotations drawn from the domain's pose set (module docstring of
-    :mod:`phongfx.scene.domain`)."""
+    """(count, 4) unit quaternions drawn from the domain's pose set (module docstring of
+    :mod:`phongfx.scene.domain`): ``"motion"`` a uniform angle about the axis, ``"any"``
+    uniform (a uniform unit quaternion is a Haar-uniform rotation), ``"still"`` a uniform
+    frame's pose, then a wobble about a uniform axis with the Haar density of its angle,
+    ``∝ 1 - cos θ``, up to ``wobble_degrees``."""
     if domain.pose == "motion":
         lo, hi = domain.degrees
-        return rotations(domain.axis, np.radians(rng.uniform(lo, hi, count)))
-    if domain.pose == "any":  # a uniform unit quaternion is a uniform (Haar) rotation
-        w, x, y, z = unit(rng.standard_normal((count, 4))).T
-        return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
-                         np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
-                         np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
-    frame = np.radians(np.asarray(domain.still_degrees))[rng.integers(len(domain.still_degrees), size=count)]
-    base = rotations(domain.axis, frame)
-    # Haar measure restricted to angles <= wobble: density of the angle ∝ 1 - cos θ
+        return _axis_angle(domain.axis, np.radians(rng.uniform(lo, hi, count)))
+    if domain.pose == "any":
+        return _unit(rng.standard_normal((count, 4)))
+    frames = np.radians(np.asarray(domain.still_degrees))
+    base = _axis_angle(domain.axis, frames[rng.integers(len(frames), size=count)])
     top = np.radians(domain.wobble_degrees)
     grid = np.linspace(0.0, top, 1025)
     cdf = grid - np.sin(grid)
     angle = np.interp(rng.random(count) * cdf[-1], cdf, grid) if top > 0 else np.zeros(count)
-    return rotations(_directions(rng, count), angle) @ base
+    return _product(_axis_angle(_directions(rng, count), angle), base)
+
+
+def _directions(rng, count):
+    """(count, 3) uniform unit vectors (z uniform in [-1, 1]: Archimedes' hat-box theorem)."""
+    z = rng.uniform(-1.0, 1.0, count)
+    phi = rng.uniform(0.0, 2 * np.pi, count)
+    rho = np.sqrt(1 - z * z)
+    out = np.empty((count, 3))
+    out[:, 0], out[:, 1], out[:, 2] = rho * np.cos(phi), rho * np.sin(phi), z
+    return out
 
 
 def cap(centre, degrees, rng):
@@ -62,43 +96,113 @@ def cap(centre, degrees, rng):
     cos = rng.uniform(np.cos(np.radians(degrees)), 1.0, count)
     sin = np.sqrt(np.maximum(1 - cos * cos, 0.0))
     phi = rng.uniform(0, 2 * np.pi, count)
-    helper = np.where((np.abs(centre[:, 0]) < 0.9)[:, None], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0])
-    b1 = unit(np.cross(centre, helper))
-    b2 = np.cross(centre, b1)
-    return (cos[:, None] * centre + (sin * np.cos(phi))[:, None] * b1
-            + (sin * np.sin(phi))[:, None] * b2)
+    u, v = sin * np.cos(phi), sin * np.sin(phi)
+    # a tangent basis without branches (Duff et al., "Building an Orthonormal Basis, Revisited")
+    x, y, z = centre[:, 0], centre[:, 1], centre[:, 2]
+    sign = np.where(z >= 0, 1.0, -1.0)
+    a = -1.0 / (sign + z)
+    b = x * y * a
+    out = np.empty((count, 3))
+    out[:, 0] = cos * x + u * (1 + sign * x * x * a) + v * b
+    out[:, 1] = cos * y + u * (sign * b) + v * (sign + y * y * a)
+    out[:, 2] = cos * z - u * (sign * x) - v * y
+    return out
 
 
-def _rotate(r, v):
-    return np.einsum("pij,pj->pi", r, v)
+def random_rotations(domain, count, rng):
+    """(count, 3, 3) rotation matrices drawn from the domain's pose set (:func:`random_poses`),
+    for whoever rasterizes whole frames of random poses."""
+    return _matrices(random_poses(domain, count, rng))
+
+
+def _matrices(q):
+    """(G, 3, 3) rotation matrices of the unit quaternions ``q`` (G, 4)."""
+    w, x, y, z = q.T
+    return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+                     np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+                     np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], 1)
+
+
+@dataclass(frozen=True)
+class Surface:
+    """What :func:`sample_chunk` draws surface points from (:mod:`phongfx.scene.domain`):
+    meshes, per material index their :class:`FaceTable` (None: no face); Lyon's spheres
+    (``lyon`` True), the ``shininess`` of each sphere."""
+    lyon: bool
+    tables: tuple = ()
+    shininess: tuple = ()
+
+
+@dataclass(frozen=True)
+class FaceTable:
+    """The faces of one material as :func:`sample_chunk` draws them: per face its corners'
+    unit ``normals`` and ``vertices`` (F, 3, 3), unit winding normal ``face_normals`` (F, 3),
+    and Walker's alias table (``prob``, ``alias``) of its area: a face by area in O(1)."""
+    normals: np.ndarray
+    vertices: np.ndarray
+    face_normals: np.ndarray
+    prob: np.ndarray
+    alias: np.ndarray
+
+    def draw(self, count, rng):
+        """(count,) face indices, each with probability proportional to its area."""
+        index = rng.integers(len(self.prob), size=count)
+        return np.where(rng.random(count) < self.prob[index], index, self.alias[index])
+
+
+def face_table(vertices, normals, faces, face_normals, areas):
+    """The :class:`FaceTable` of ``faces`` (F, 3) of a mesh's ``vertices`` and unit vertex
+    ``normals``, with their ``face_normals`` and ``areas`` (Vose's alias construction)."""
+    scaled = np.asarray(areas, dtype=np.float64) * len(areas) / np.sum(areas)
+    prob, alias = np.ones(len(areas)), np.arange(len(areas))
+    small = [i for i in range(len(areas)) if scaled[i] < 1]
+    large = [i for i in range(len(areas)) if scaled[i] >= 1]
+    while small and large:
+        less, more = small.pop(), large.pop()
+        prob[less], alias[less] = scaled[less], more
+        scaled[more] += scaled[less] - 1
+        (small if scaled[more] < 1 else large).append(more)
+    return FaceTable(normals[faces], vertices[faces], np.asarray(face_normals, dtype=np.float64), prob, alias)
 
 
 def _mesh_points(domain, material, rng):
-    """(n0, surface point) of area-weighted faces of each point's material under random poses,
-    redrawn until the turned face faces the viewer."""
-    s = domain.surface
-    count = len(material)
-    n0, point = np.empty((count, 3)), np.empty((count, 3))
-    pending = np.arange(count)
-    for _ in range(_ROUNDS):
-        if not len(pending):
-            return n0, point
-        face = np.empty(len(pending), dtype=np.int64)
-        for m in np.unique(material[pending]):
-            mine = material[pending] == m
-            faces = np.flatnonzero(s.material == m)
-            weight = np.cumsum(s.areas[faces])
-            pick = np.searchsorted(weight, rng.random(int(mine.sum())) * weight[-1], side="right")
-            face[mine] = faces[np.minimum(pick, len(faces) - 1)]
-        r1, r2 = np.sqrt(rng.random(len(pending))), rng.random(len(pending))
+    """(n0, surface point) of each point: a pose of the pose set shared by :data:`GROUP`
+    points, a face of the point's material drawn by area and redrawn until it faces the
+    viewer under that pose (a pose under which a point's draws keep failing, one with almost
+    no face toward the viewer, is redrawn for its group), a uniform point of the face."""
+    n0, point = np.empty((len(material), 3)), np.empty((len(material), 3))
+    for m in np.unique(material):
+        table = domain.surface.tables[m]
+        mine = np.flatnonzero(material == m)
+        groups = -(-len(mine) // GROUP)
+        turned = _matrices(random_poses(domain, groups, rng))
+        toward = np.ascontiguousarray(turned[:, 2, :])  # a face is drawn when its normal · this > 0
+        local = table.draw(groups * GROUP, rng)
+        ok = np.einsum("gkj,gj->gk", table.face_normals[local].reshape(groups, GROUP, 3), toward).ravel() > 0
+        pending = np.flatnonzero(~ok)
+        for round in range(1, _ROUNDS + 1):
+            if not len(pending):
+                break
+            pick = table.draw(len(pending), rng)
+            ok = _dot(toward[pending // GROUP], table.face_normals[pick]) > 0
+            local[pending[ok]] = pick[ok]
+            pending = pending[~ok]
+            if round % 32 == 0 and len(pending):
+                stuck = np.unique(pending // GROUP)
+                turned[stuck] = _matrices(random_poses(domain, len(stuck), rng))
+                toward[stuck] = turned[stuck, 2, :]
+                pending = np.flatnonzero(np.isin(np.arange(groups * GROUP) // GROUP, stuck))
+        else:
+            raise ValueError(f"no face of material {domain.materials[m][0]!r} faces the viewer under "
+                             f"pose {domain.pose!r}; the domain is empty")
+        r1, r2 = np.sqrt(rng.random(len(local))), rng.random(len(local))
         bary = np.stack([1 - r1, r1 * (1 - r2), r1 * r2], -1)[:, :, None]
-        corners = s.faces[face]
-        pose = random_poses(domain, len(pending), rng)
-        front = _rotate(pose, s.face_normals[face])[:, 2] > 0
-        n0[pending] = _rotate(pose, unit(np.sum(bary * s.normals[corners], 1)))
-        point[pending] = _rotate(pose, np.sum(bary * s.vertices[corners], 1))
-        pending = pending[~front]
-    raise ValueError(f"no face of the scene faces the viewer under pose {domain.pose!r}; the domain is empty")
+        transposed = turned.transpose(0, 2, 1)
+        normal = _unit(np.einsum("pkj,pkj->pj", bary, table.normals[local])).reshape(groups, GROUP, 3)
+        where = np.einsum("pkj,pkj->pj", bary, table.vertices[local]).reshape(groups, GROUP, 3)
+        n0[mine] = np.matmul(normal, transposed).reshape(-1, 3)[:len(mine)]
+        point[mine] = np.matmul(where, transposed).reshape(-1, 3)[:len(mine)]
+    return n0, point
 
 
 def _lyon_points(domain, rng, count):
@@ -116,46 +220,59 @@ def _in_ball(domain, rng, count):
     return centre + _directions(rng, count) * (radius * np.cbrt(rng.random(count)))[:, None]
 
 
-def _span_end(domain, x0, rng):
+def span_end(domain, x0, rng):
     """``x0 + d·u``: ``u`` uniform in the eye-space xz plane (spans are horizontal),
     ``d`` uniform in [-max_span_length, max_span_length] cut to stay in the ball."""
     count = len(x0)
     psi = rng.uniform(0, 2 * np.pi, count)
-    u = np.stack([np.cos(psi), np.zeros(count), np.sin(psi)], -1)
+    cos, sin = np.cos(psi), np.sin(psi)
     rel = x0 - np.asarray(domain.ball[0])
-    b = np.sum(rel * u, -1)
-    root = np.sqrt(np.maximum(b * b - (np.sum(rel * rel, -1) - domain.ball[1] ** 2), 0.0))
+    b = rel[:, 0] * cos + rel[:, 2] * sin
+    root = np.sqrt(np.maximum(b * b - (_dot(rel, rel) - domain.ball[1] ** 2), 0.0))
     lo = np.maximum(-domain.max_span_length, np.minimum(-b - root, 0.0))
     hi = np.minimum(domain.max_span_length, np.maximum(-b + root, 0.0))
-    return x0 + (lo + (hi - lo) * rng.random(count))[:, None] * u
+    d = lo + (hi - lo) * rng.random(count)
+    x1 = x0.copy()
+    x1[:, 0] += d * cos
+    x1[:, 2] += d * sin
+    return x1
 
 
 def _toward(kind, vector, points):
     if kind in ("directional", "infinity"):
         return [np.broadcast_to(np.asarray(vector, dtype=np.float64), p.shape) for p in points]
-    return [unit(np.asarray(vector) - p) for p in points]
+    return [_unit(np.asarray(vector) - p) for p in points]
 
 
 def _second_normal(domain, n0, a, views, rng):
     """``(n1, N)``: ``n1`` uniform in the cap of the span angle about ``n0``, redrawn while it
     or ``N = unit((1-a)n0 + a·n1)`` meets some viewer vector below ``view_cos_min``; after
     the last round the few left take ``n1 = n0`` (a one-normal span, in the domain)."""
-    n1 = n0.copy()
-    pending = np.arange(len(n0))
+    n1 = cap(n0, domain.max_span_angle_deg, rng)
+    normal = _unit((1 - a)[:, None] * n0 + a[:, None] * n1)
+    pending = np.flatnonzero(~_meets(domain, (n1, normal), views, None))
+    n1[pending], normal[pending] = n0[pending], n0[pending]  # until a redraw meets the bound
     for _ in range(_ROUNDS):
         if not len(pending):
             break
         got = cap(n0[pending], domain.max_span_angle_deg, rng)
-        normal = unit((1 - a[pending, None]) * n0[pending] + a[pending, None] * got)
-        ok = np.ones(len(pending), dtype=bool)
-        if domain.view_cos_min > -1:
-            for v in views:
-                for n in (got, normal):
-                    ok &= np.sum(n * v[pending], -1) >= domain.view_cos_min
-        n1[pending[ok]] = got[ok]
+        t = a[pending, None]
+        mixed = _unit((1 - t) * n0[pending] + t * got)
+        ok = _meets(domain, (got, mixed), views, pending)
+        n1[pending[ok]], normal[pending[ok]] = got[ok], mixed[ok]
         pending = pending[~ok]
-    a = a[:, None]
-    return n1, unit((1 - a) * n0 + a * n1)
+    return n1, normal
+
+
+def _meets(domain, normals, views, index):
+    """(P,) whether every one of ``normals`` has N·V >= view_cos_min for every one of ``views``
+    (a fixed vector, or per point, taken at ``index`` unless None)."""
+    ok = np.ones(len(normals[0]), dtype=bool)
+    for v in views:
+        v = v if v.ndim == 1 or index is None else v[index]
+        for n in normals:
+            ok &= (n @ v if v.ndim == 1 else _dot(n, v)) >= domain.view_cos_min
+    return ok
 
 
 def sample_chunk(domain, count, rng):
@@ -177,18 +294,25 @@ def sample_chunk(domain, count, rng):
             values = np.asarray(domain.materials[m][1], dtype=np.float64)
             n[mine] = values[rng.integers(len(values), size=int(mine.sum()))]
         n0, surface = _mesh_points(domain, material, rng)
-    x0 = np.where((rng.random(count) < 0.5)[:, None], surface, _in_ball(domain, rng, count))
-    x1 = _span_end(domain, x0, rng)
-    draw = rng.random(count)
-    a = np.where(draw < ENDS, 0.0, np.where(draw >= 1 - ENDS, 1.0, rng.random(count)))
-    position = (1 - a)[:, None] * x0 + a[:, None] * x1
-    points = (x0, x1, position)
+    end = rng.random(count)
+    a = np.where(end < ENDS, 0.0, np.where(end >= 1 - ENDS, 1.0, rng.random(count)))
+    if domain.camera[0] == "point" or any(kind == "point" for kind, _, _ in domain.lights):
+        x0 = surface
+        inside = np.flatnonzero(rng.random(count) < 0.5)
+        x0[inside] = _in_ball(domain, rng, len(inside))
+        x1 = span_end(domain, x0, rng)
+        points = (x0, x1, (1 - a)[:, None] * x0 + a[:, None] * x1)
+    else:  # no vector depends on where the surface is: the pixel is the surface point
+        points = (surface, surface, surface)
+    position = points[2]
     if domain.camera_path:
         path = np.asarray(domain.camera_path)
         views = _toward("point", path[rng.integers(len(path), size=count)], points)
     else:
         views = _toward(domain.camera[0], domain.camera[1], points)
-    n1, normal = _second_normal(domain, n0, a, views, rng)
+    checks = [] if domain.view_cos_min <= -1 else (
+        [np.asarray(domain.camera[1], dtype=np.float64)] if views[0].strides[0] == 0 else views)
+    n1, normal = _second_normal(domain, n0, a, checks, rng)
     if all(kind == "directional" for kind, _, _ in domain.lights):
         fixed = np.array([vector for _, vector, _ in domain.lights], dtype=np.float64)[:, None, :]
         l0 = l1 = light = np.broadcast_to(fixed, (len(domain.lights), count, 3))
@@ -199,3 +323,64 @@ def sample_chunk(domain, count, rng):
     return {"a": a, "n0": n0, "n1": n1, "normal": normal, "position": position, "l0": l0, "l1": l1,
             "light": light, "v0": views[0], "v1": views[1], "viewer": views[2], "n": n, "kd": kd,
             "ks": ks, "ka": ka, "colour": colour.reshape(-1, 3), "material": material}
+
+
+def draw_chunks(domain, count, seed):
+    """:class:`~phongfx.scene.geometry.FrameGeometry` pieces of :data:`CHUNK` domain points
+    (the last shorter) whose concatenation is ``draw(domain, count, seed)``."""
+    for _, part in _parts(domain, _count(count), seed):
+        yield _geometry(domain, part)
+
+
+def draw(domain, count, seed):
+    """A :class:`~phongfx.scene.geometry.FrameGeometry` of ``count`` points of ``domain``
+    (one pixel per span, ``span = arange(count)``, ``frame = -1``), deterministic for
+    (domain, count, seed): the chunks of :func:`draw_chunks`, filled into arrays made once
+    (no second copy of every array)."""
+    count = _count(count)
+    out = None
+    for start, part in _parts(domain, count, seed, at_least_one=True):
+        if out is None:
+            out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
+        for key, value in part.items():
+            axis = 1 if key in _PER_LIGHT else 0
+            if out[key].strides[axis] != 0:
+                np.moveaxis(out[key], axis, 0)[start:start + CHUNK] = np.moveaxis(value, axis, 0)
+    return _geometry(domain, out)
+
+
+_PER_LIGHT = ("l0", "l1", "light")
+
+
+def _parts(domain, count, seed, at_least_one=False):
+    """``(start, arrays)`` of each chunk: chunk ``index`` drawn from its own generator,
+    seeded by ``(seed, index)``."""
+    for index, start in enumerate(range(0, max(count, 1) if at_least_one else count, CHUNK)):
+        yield start, sample_chunk(domain, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
+
+
+def _empty(value, count, axis):
+    """An array like ``value`` with ``count`` along ``axis``: a broadcast of its one vector
+    when ``value`` is one (stride 0 along ``axis``: a directional light, a camera at
+    infinity), which stays a broadcast rather than gigabytes of copies."""
+    shape = list(value.shape)
+    shape[axis] = count
+    if value.shape[axis] and value.strides[axis] == 0:
+        return np.broadcast_to(np.take(value, [0], axis=axis), shape)
+    return np.empty(shape, dtype=value.dtype)
+
+
+def _geometry(domain, g):
+    count = len(g["a"])
+    zeros = np.zeros(count, dtype=np.int64)
+    rgb = np.array([light[2] for light in domain.lights], dtype=np.float64).reshape(-1, 3)
+    return FrameGeometry(0, 0, zeros, zeros.copy(), np.arange(count), g["a"], g["n0"], g["n1"],
+                         g["normal"], g["position"], g["l0"], g["l1"], g["light"], g["v0"],
+                         g["v1"], g["viewer"], rgb, g["n"], g["kd"], g["ks"], g["ka"], g["colour"],
+                         g["material"], None, -1, domain.bits)
+
+
+def _count(count):
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
+        raise ValueError(f"count must be a non-negative integer, not {count!r}")
+    return int(count)

@@ -1,0 +1,104 @@
+"""The error at a shader's ``r``, ``g``, ``b`` outputs, bounded box by box.
+
+Per channel ``c`` the hardware blend (:mod:`phongfx.golden.blend`) sums, exactly, its
+coefficient codes times the unit's terms, and rounds once; the reference
+(:func:`phongfx.scene.geometry.shade`) is the same sum with the exact coefficients and the exact
+terms.  For a material ``m`` and light ``i`` with codes ``Dc``, ``Sc`` and exact values ``De``,
+``Se`` (the display scale ``2^bits - 1`` folded in, as :meth:`BlendConfig.raw_code`):
+
+``out - levels·I_ref = round - acc`` (at most 1/2, the ``"output"`` part: clipping to the
+code range moves neither side apart) ``+ rounding + approximation``, with
+
+* ``rounding = (Ac - Ae) + Σ_i Dc·diff_hw - De·diff_ideal + Sc·gate·spec_hw - Se·lit·spec_ideal``,
+  bounded by ``|Ac - Ae| + Σ_i Dc·e_diff + |Dc - De|·max diff_ideal + Sc·e_spec +
+  |Sc - Se|·max spec_ideal``, where the hardware's gate (``diff_hw > 0``) and the reference's
+  ``lit`` agree; they do in a box whose diffuse error ``e_diff`` is below ``s_min/levels``:
+  outside the terminator band ``|N̂·L| <= 1/levels`` (where ``lit`` is the hardware's own test,
+  :func:`phongfx.scene.geometry.terminator_lit`) the ideal ``N·L = s·q`` is at least
+  ``s_min/levels`` from 0, so the hardware's ``N·L`` has the same sign and its clamped,
+  rounded ``diff`` is 0 exactly where ``q < 0``.  Elsewhere a mismatch costs the whole term,
+  ``max(Sc·max spec_hw, Se·max spec_ideal)``;
+* ``approximation = Σ_i De·(diff_ideal - max(q, 0)) + Se·lit·(spec_ideal - spec_ref)``
+  (:mod:`.approximation`).
+"""
+
+import numpy as np
+
+from .approximation import (diffuse_shift, form_distance, halfway_distance, halfway_vectors, scale_range,
+                            shape_shift)
+from .datapath import unit_terms
+from .sphere import projection
+
+__all__ = ["coefficient_tables", "box_errors"]
+
+
+def coefficient_tables(blend):
+    """``(codes, exact)``, each ``(A, D, S)`` arrays of shape (materials, 3) and
+    (materials, lights, 3), in output levels."""
+    scale = 2.0 ** -blend.coef_frac
+    codes = [blend.coefficients(m) for m in range(blend.materials)]
+    out_codes = tuple(np.array([c[part] for c in codes], dtype=np.float64) * scale for part in range(3))
+    exact = tuple(np.array(table, dtype=np.float64) * blend.levels
+                  for table in (blend.ambient, blend.diffuse, blend.specular))
+    return out_codes, exact
+
+
+def _applied_n(unit, n):
+    """The ``n`` the hardware's ``x = (n/2)|D|²`` applies for the domain's ``n`` per box."""
+    return np.asarray(unit.unit.applied_n(unit, n.astype(np.float64)) if unit.shininess_const == 0
+                      else np.full(len(n), float(unit.unit.top_n(unit.shininess_const))))
+
+
+def _form(against, unit, n_hw, n, k, c):
+    """Per box the distance of the ideal form at ``s = 1`` from the reference's (grouped by n)."""
+    out = np.zeros(len(n))
+    for pair in np.unique(np.stack([n_hw, n], -1), axis=0).astype(np.int64).tolist():
+        if against == "self" and pair[0] == pair[1]:
+            continue
+        pick = (n_hw == pair[0]) & (n == pair[1])
+        out[pick] = form_distance(pair[0], pair[1], k, (c[0][pick], c[1][pick]), against)
+    return out
+
+
+def _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k):
+    target, target_ref = halfway_vectors(unit, basis[0], light)
+    w, w_ref = projection(boxes, basis, target), projection(boxes, basis, target_ref)
+    return halfway_distance(against, s, w, w_ref, c, float(target @ target), float(target_ref @ target_ref),
+                            n_hw * 2.0 ** unit.halfway_shift, n, k)
+
+
+def box_errors(shader, against, boxes, basis, lights, min_normal_length):
+    """Per box and channel ``(rounding, approximation)`` arrays (B, 3), in levels, the unit's
+    ``faults`` (quantizes that may overflow: :class:`~phongfx.certify.interval.Interval`) and per
+    box ``gate``: 0 where the backside tests agree, else the ``|N·L|`` below which they may not."""
+    unit, blend = shader.units[0], shader.blend
+    spec, diff = unit_terms(unit, boxes, basis, lights, min_normal_length)
+    (ac, dc, sc), (ae, de, se) = coefficient_tables(blend)
+    m = boxes.material
+    s = scale_range(boxes.z, unit.normalize.order)
+    p = projection(boxes, basis, basis[0])
+    n = boxes.n.astype(np.float64)
+    n_hw = _applied_n(unit, n)
+    k = unit.root.k if unit.specular == "fig8" else unit.shape.k
+    rounding = np.abs(ac - ae)[m].copy()
+    approximation = np.zeros_like(rounding)
+    faults, gate = set(), np.zeros(len(boxes))
+    for i, light in enumerate(lights):
+        q = projection(boxes, basis, light)
+        c = projection(boxes, basis, light, reflected=True)
+        d, t = diff[i], spec[i]
+        faults |= d.faults | t.faults
+        e_d, e_s = d.dev[:, None], t.dev[:, None]
+        rounding += dc[m, i] * e_d + np.abs(dc[m, i] - de[m, i]) * (d.hi[:, None] + e_d)
+        both = sc[m, i] * e_s + np.abs(sc[m, i] - se[m, i]) * (t.hi[:, None] + e_s)
+        margin = d.dev / s[0]  # where |q| exceeds it, the hardware's N·L has the ideal's sign
+        agree = ((margin < 1.0 / blend.levels) | (q[0] > margin) | (q[1] < -margin))[:, None]
+        mismatch = np.maximum(sc[m, i] * t.hi[:, None], se[m, i] * (t.hi[:, None] + e_s))
+        rounding += np.where(agree, both, np.maximum(both, mismatch))
+        gate = np.where(agree[:, 0], gate, np.maximum(gate, margin))
+        if unit.specular == "halfway":
+            shift = _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k)
+        else:
+            shift = shape_shift(s, p, q, c, n_hw, k) + _form(against, unit, n_hw, n, k, c)
+        approximation += de[m, i] * diffuse_shift(s, q)[:, None] + se[m, i] * shift[:, None]
+    return rounding, approximation, faults, gate
