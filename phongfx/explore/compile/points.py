@@ -27,7 +27,7 @@ import numpy as np
 
 from phongfx.scene.geometry import FrameGeometry, frames, rotation
 from phongfx.scene.mesh import Mesh
-from phongfx.scene.sampling import random_poses
+from phongfx.scene.sampling import random_rotations
 
 from . import run as runs
 from .climb import climb, state_of
@@ -98,12 +98,12 @@ def posed_frame(spec, r):
 
 def pose_frames(spec, domain, count, seed):
     """``[(rotation, frame)]`` of random poses of ``domain``
-    (:func:`phongfx.scene.sampling.random_poses`, :func:`posed_frame`) until they hold
+    (:func:`phongfx.scene.sampling.random_rotations`, :func:`posed_frame`) until they hold
     ``count`` visible pixels (at most ``count`` frames, as a frame may show nothing)."""
     rng = np.random.default_rng([seed, 1])
     out, pixels = [], 0
     while pixels < count and len(out) < count:
-        for r in random_poses(domain, 16, rng):
+        for r in random_rotations(domain, 16, rng):
             g = posed_frame(spec, r)
             out.append((r, g))
             pixels += len(g)
