@@ -334,13 +334,17 @@ def test_the_conventional_unit_normalizes_a_point_light_and_a_local_viewer():
         assert np.any(raw[port] != codes(exact, config.vec))
 
 
-def test_asic_target_prices_in_square_microns_beside_the_phong_baseline(tmp_path, capsys):
+def _compile_tiny(tmp_path, *args):
+    """``(scene path, manifest)`` of the tiny torus compiled by the CLI with ``args``."""
     path = tmp_path / "tiny.toml"
     path.write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,conventional", "--target", "asic",
-                 "--library", "osu035", "--no-check", "--quiet"]) == 0
-    data = json.loads((out / "manifest.json").read_text())
+    assert main(["compile", str(path), "-o", str(out), "--no-check", "--quiet", *args]) == 0
+    return path, json.loads((out / "manifest.json").read_text())
+
+
+def test_asic_target_prices_in_square_microns_beside_the_phong_baseline(tmp_path, capsys):
+    _, data = _compile_tiny(tmp_path, "--methods", "fig7,conventional", "--target", "asic", "--library", "osu035")
     assert data["cost_model"] == "asic-proxy"
     cost = data["cost"]
     assert (cost["unit"], cost["target"], cost["device"], cost["model"]) == ("µm²", "asic", "osu035", "asic-proxy")
@@ -411,16 +415,11 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
 
 
 def test_the_report_and_manifest_say_what_held_over_the_domain(tmp_path, capsys):
-    path = tmp_path / "tiny.toml"
-    path.write_text(TORUS.format(error=1.0, against="phong"))
-    out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--no-check", "--quiet",
-                 "--samples", "1500", "--final-samples", "4000"]) == 0
+    path, data = _compile_tiny(tmp_path, "--methods", "fig7", "--samples", "1500", "--final-samples", "4000")
     text = capsys.readouterr().out
     assert re.search(r"^chosen fig7 \(tiny_fig7\): max 1 level over the domain \(witness; frames 1\) at out_r/g/b",
                      text, re.M)
     assert re.search(r"fig7 .* \(frames 1, domain 1 on [\d,]+ points; defaults: ", text)
-    data = json.loads((out / "manifest.json").read_text())
     assert data["domain"]["samples"] == 1500 and data["domain"]["final_samples"] == 4000
     assert data["domain"]["description"].startswith("Poses: ") and data["certificate"] is None
     witness = data["witness"]
