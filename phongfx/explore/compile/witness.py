@@ -1,7 +1,7 @@
 """A design's worst input over the scene's domain: the **witness**, and how to replay it.
 
 :func:`search` measures a design (``method`` at ``params``) on ``samples`` fresh points of
-the domain (:meth:`phongfx.scene.domain.Domain.sample`, default ``final_samples``, with a
+the domain (:meth:`phongfx.scene.domain.Domain.chunks`, default ``final_samples``, with a
 seed of its own, never the width search's), in chunks, keeping the :data:`STARTS` worst;
 from those, :func:`phongfx.explore.compile.climb.climb` hill-climbs the continuous error.
 The witness is the worst integer error found by either, ties broken by the continuous
