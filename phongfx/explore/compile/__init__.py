@@ -28,7 +28,7 @@ from importlib import import_module
 
 #: public name -> the module it lives in
 _HOMES = {"compile_scene": ".compiler", "Compiled": ".compiler", "check_methods": ".compiler",
-          "analyse": ".analysis", "Analysis": ".analysis", "SceneEval": ".measure"}
+          "analyse": ".analysis", "Analysis": ".analysis"}
 __all__ = list(_HOMES)
 
 
