@@ -39,7 +39,7 @@ __all__ = ["DESIGNS", "STAGES", "measure", "run", "table", "main"]
 ROOT = os.path.join(os.path.dirname(__file__), "..")
 #: The design ``phongfx compile`` chooses for each example scene (searched on its domain).
 DESIGNS = {
-    "torus": ("fig7", {"vec_frac": 11, "x2_frac": 6, "shape_t_frac": 12, "coef": 0, "order": 2, "k": 4}),
+    "torus": ("fig7", {"vec_frac": 11, "x2_frac": 7, "shape_t_frac": 12, "coef": 0, "order": 2, "k": 4}),
     "local-mesh": ("conventional", {"vec_frac": 13, "rsqrt_addr": 8, "table_addr": 5, "coef": 1}),
 }
 STAGES = ("sample", "encode", "golden", "reference", "error")
