@@ -6,12 +6,14 @@ measured (not the last one tried: every width at its maximum can be worse than t
 defaults), and why it could go no further, from measurements: the method's own float form
 against true Phong (an error no width removes), the shape function's ``k`` scanned over its
 whole range, and a cap reached.  :func:`hint`, when nothing is feasible, computes a way
-forward: the requirement that is met (with the command), and, for a shininess range that
+forward: the requirement that is met (with the command; met by the best point's measurement
+and by its witness, :func:`phongfx.explore.compile.witness.search`), and, for a shininess range that
 no single ``k`` serves, the split of the range whose parts each meet it.
 """
 
 import math
 
+from . import witness as witnesses
 from .measure import GUARD, met_at
 
 __all__ = ["summary", "per_variant", "split", "hint"]
@@ -148,7 +150,10 @@ def hint(compiled):
     spec = compiled.spec
     requirement = spec.requirement.max_error_levels
     best = min(results, key=lambda r: (_met(r), r["max"], r["mean"]))
-    levels = _met(best)
+    levels, witness = _met(best), None
+    if compiled.domain is not None:  # what the requirement it quotes must hold: the witness search's worst
+        witness = witnesses.search(best["method"], best["params"], spec, compiled.domain, analysis=compiled.analysis)
+        levels = max(levels, witness["error_levels"])
     command = f"phongfx compile {spec.path or spec.name + '.toml'} -o DIR --max-error {levels}"
     text = [f"the best any method reaches is {_levels(best['max'])} ({best['method']} at {best['params']}); "
             f"a requirement of {_levels(levels)} is met: {command}"]
@@ -167,5 +172,5 @@ def hint(compiled):
                     f"measured at {samples}): split it into two materials ({parts}) or two units, "
                     f"at k = {found['k'][0]} "
                     f"and k = {found['k'][1]}")
-    return {"best": {"method": best["method"], "max": best["max"], "params": best["params"]},
+    return {"best": {"method": best["method"], "max": best["max"], "params": best["params"], "witness": witness},
             "command": command, "split": found, "text": text}

@@ -76,9 +76,11 @@ def _lyon(radius=32):
     return parse_scene(re.sub(r"radius = \d+", f"radius = {radius}", text), name="lyon-balls")
 
 
-def _instances(compiled):
-    config = build(compiled.chosen, compiled.best["params"], compiled.analysis)
-    block = get_block(block_name(compiled.chosen), config=config)
+def _instances(compiled, method=None):
+    """The config and sub-block instances of the chosen design (or of ``method``'s result)."""
+    method = method or compiled.chosen
+    config = build(method, compiled.results[method]["params"], compiled.analysis)
+    block = get_block(block_name(method), config=config)
     return config, submodules(verilog(block.component(), "top", emit_src=False), "top")
 
 
@@ -123,7 +125,7 @@ def test_default_widths_are_measured_beside_the_minimal_ones():
 def test_lyon_balls_compile_without_l_or_v_interpolators():
     compiled = compile_scene(_lyon(), methods=["fig7", "blinn", "spherical"])
     assert (compiled.analysis.local_lights, compiled.analysis.local_viewer) == (False, False)
-    config, instances = _instances(compiled)
+    config, instances = _instances(compiled, "fig7")
     assert _kinds(instances, "lirp") == 1 and _kinds(instances, "normalize") == 1
     assert {"v", "l0", "l1"} <= set(config.inputs) and not {"v0", "l0_0"} & set(config.inputs)
     assert compiled.rejected["spherical"] == ("needs mesh spans (its setup is per span); the scene "
@@ -273,10 +275,10 @@ def test_example_scenes_compile_and_verify(tmp_path, name):
     data = json.loads((out / "manifest.json").read_text())
     required = data["requirement"]["max_error_levels"]
     assert data["error"]["max"] <= required and data["witness"]["error_levels"] <= required
-    # Lyon's datapath on the torus and Lyon's balls (one LIRP, for N); on the local mesh, whose
-    # shininess range leaves Figure 7's shape function too close to its domain's requirement,
-    # conventional Phong, which normalizes the interpolated L and V itself (no LIRP)
-    chosen, lirps = {"local-mesh": ("conventional", None)}.get(name, ("fig7", 1))
+    # Lyon's datapath on the torus (one LIRP, for N); conventional Phong (no LIRP: it normalizes
+    # the interpolated vectors itself) where Figure 7 misses over the domain (Lyon's balls: spans
+    # up to 39° apart anywhere on the sphere at n = 256) or costs more (the local mesh: k = 5)
+    chosen, lirps = {"torus": ("fig7", 1)}.get(name, ("conventional", None))
     assert data["chosen"] == chosen and data["block_counts"].get("lirp") == lirps
     assert data["rtl_check"]["mismatches"] == 0
     proof = data["overflow_proof"]  # every overflow="error" claim of the shipped design, proven
