@@ -243,8 +243,9 @@ def _choose(out, scene, cost, prove, prove_timeout, progress):
         ranked.pop(0)
         step = {"method": name, "params": r["params"], "witness_levels": found["error_levels"],
                 "witness_unrounded": found["unrounded"]}
-        mine = sum(step["method"] == name for step in out.rounds)
-        if not runs.per_pixel(name) or len(out.rounds) >= ROUNDS or mine >= METHOD_ROUNDS:
+        searched = [s["method"] for s in out.rounds if s["action"] == "searched again"]
+        mine = searched.count(name)
+        if not runs.per_pixel(name) or len(searched) >= ROUNDS or mine >= METHOD_ROUNDS:
             r["why_not_chosen"] = (f"its witness is {found['error_levels']} levels over the domain "
                                    f"(requirement {required:g}); "
                                    + ("a unit fed per span takes no hard points" if not runs.per_pixel(name)
