@@ -48,6 +48,9 @@ def add_arguments(p):
     p.add_argument("--final-samples", type=int, metavar="N",
                    help="fresh domain points the chosen design's witness is searched on, instead of the "
                         "scene's [domain] final_samples (default 10,000,000)")
+    p.add_argument("--certified", action="store_true",
+                   help="the chosen design's certificate (a sound bound over the scene's domain, phongfx "
+                        "certify) must meet the requirement too: widen until it does")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -89,9 +92,36 @@ def _where(result):
             f"on {result['domain_points']:,} points")
 
 
+def _certified(certificate):
+    """``, certified ≤ 1.4 (interval)`` or why the design is not certified."""
+    if not certificate:
+        return ""
+    bound, method = certificate["bound_levels"], certificate["method"]
+    if certificate["certified"]:
+        return f", certified ≤ {bound:.3g} ({method})"
+    if bound is None:
+        return f", not certified ({certificate['why']})"
+    return f", not certified: bound {bound:.3g} ({method})"
+
+
+def _certainty(certainty):
+    """The line that says what ``--certified`` cost against the sampled choice."""
+    sampled = certainty["sampled"]
+    extra = certainty.get("extra_cost")
+    return (f"  certainty: the sampled choice was {sampled['method']} at {sampled['params']}, "
+            f"{_cost(sampled['cost'])}, bound {_bound(sampled['certificate'])}"
+            + (f"; certainty costs {extra:+.1%}" if extra is not None else ""))
+
+
+def _bound(certificate):
+    value = certificate["bound_levels"]
+    return "none" if value is None else f"{value:.3g} levels"
+
+
 def cmd_compile(args):
     from tqdm import tqdm
 
+    from phongfx.certify import certify
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.compile.emit import emit
     from phongfx.scene.file import load_scene, with_requirement
@@ -110,7 +140,8 @@ def cmd_compile(args):
                                  freq=args.freq, seed=args.seed, progress=progress,
                                  journal=folder("compile"),
                                  prove=args.prove, prove_timeout=args.prove_timeout,
-                                 samples=args.samples, final_samples=args.final_samples)
+                                 samples=args.samples, final_samples=args.final_samples,
+                                 certifier=certify, certified=args.certified)
         data = emit(compiled, args.output, check=not args.no_check, progress=progress,
                     testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
@@ -132,10 +163,18 @@ def cmd_compile(args):
               file=sys.stderr)
         for line in (data["hint"] or {}).get("text", []):
             print(f"phongfx: hint: {line}", file=sys.stderr)
+        certainty = data.get("certainty") or {}
+        if certainty.get("why"):
+            print(f"phongfx: --certified: {certainty['why']}; the sampled choice was "
+                  f"{certainty['sampled']['method']} at {certainty['sampled']['params']}", file=sys.stderr)
+            for name, why in certainty["methods"].items():
+                print(f"phongfx:   {name}: {why.get('why') or 'bound ' + format(why['bound_levels'], '.3f')}",
+                      file=sys.stderr)
         return 1
     error, witness = data["error"], data["witness"]
     print(f"chosen {data['chosen']} ({data['module']}): max {_levels(float(witness['error_levels']))} over the "
-          f"domain (witness; frames {_levels(error['frames_max']).split()[0]}) at out_r/g/b, "
+          f"domain (witness; frames {_levels(error['frames_max']).split()[0]}){_certified(data['certificate'])} "
+          f"at out_r/g/b, "
           f"mean {error['mean']:.4f} ({witness['unrounded']:.3f} against the unrounded reference), "
           f"{_cost(data['cost'])}, latency {data['latency']}")
     for step in data["witness_rounds"]:
@@ -143,6 +182,10 @@ def cmd_compile(args):
               + (f"searched again with {step['hard_points']} hard points" if step["action"] == "searched again"
                  else "not chosen"))
     print(f"  witness: {witness['found_by']}; replay: {witness['replay']}")
+    if data["certificate"] and not data["certificate"]["certified"]:
+        print(f"  not certified: {data['certificate']['why']}")
+    if data.get("certainty"):
+        print(_certainty(data["certainty"]))
     tie = data["tie"]
     if tie:
         runner = _cost({"cost": tie["runner_up_cost"], "unit": data["cost"].get("unit")})

@@ -131,6 +131,7 @@ def manifest(compiled, module=None, instances=None, check=None):
                           **_domain_evaluation(compiled)},
            "domain": compiled.domain and compiled.domain.as_dict(), "witness": compiled.witness,
            "certificate": compiled.certificate and compiled.certificate.as_dict(),
+           "certainty": compiled.certainty,
            "witness_rounds": compiled.rounds,
            "chosen": compiled.chosen, "tie": compiled.tie, "hint": compiled.hint,
            "rejected": dict(compiled.rejected),
