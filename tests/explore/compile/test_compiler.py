@@ -424,11 +424,17 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
 def test_the_report_and_manifest_say_what_held_over_the_domain(tmp_path, capsys):
     path, data = _compile_tiny(tmp_path, "--methods", "fig7", "--samples", "1500", "--final-samples", "4000")
     text = capsys.readouterr().out
-    assert re.search(r"^chosen fig7 \(tiny_fig7\): max 1 level over the domain \(witness; frames 1\) at out_r/g/b",
-                     text, re.M)
+    found = re.search(r"^chosen fig7 \(tiny_fig7\): max 1 level over the domain \(witness; frames 1\), "
+                      r"(certified ≤ ([\d.]+)|not certified: bound ([\d.]+)) \(interval\) at out_r/g/b", text, re.M)
+    assert found
     assert re.search(r"fig7 .* \(frames 1, domain 1 on [\d,]+ points; defaults: ", text)
     assert data["domain"]["samples"] == 1500 and data["domain"]["final_samples"] == 4000
-    assert data["domain"]["description"].startswith("Poses: ") and data["certificate"] is None
+    assert data["domain"]["description"].startswith("Poses: ")
+    certificate = data["certificate"]  # the interval method's, sound: never under the witness
+    assert certificate["method"] == "interval" and float(found.group(2) or found.group(3)) == pytest.approx(
+        certificate["bound_levels"], rel=1e-2)
+    assert certificate["bound_levels"] >= data["witness"]["unrounded"]
+    assert certificate["certified"] == (found.group(2) is not None)
     witness = data["witness"]
     assert witness["error_levels"] <= 1 and witness["samples"] == 4000 and set(witness["outputs"]) == set("rgb")
     assert data["error"]["witness"] == witness["error_levels"] and data["error"]["domain_points"] >= 1500
