@@ -60,8 +60,8 @@ TOOLS_FREE := not slow and not needs_verilator and not needs_yosys and not needs
 	and not needs_iverilog and not needs_gappa
 
 # the in-process tier: the folders of the golden models, configs, scenes, the core, the HDL
-# (Amaranth simulation of every block) and the checkers, and the import rules
-CHECK_PATHS := tests/golden tests/config tests/scene tests/core tests/hdl tests/sim tests/test_imports.py
+# (Amaranth simulation of every block), the checkers, the certificates' bounds, and the import rules
+CHECK_PATHS := tests/golden tests/config tests/scene tests/core tests/hdl tests/sim tests/certify tests/test_imports.py
 
 check: $(STAMP)
 	$(PYTEST) -m "$(TOOLS_FREE)" $(CHECK_PATHS)
@@ -100,6 +100,7 @@ bench: $(STAMP)
 	$(VENV)/bin/python -m bench.rtl
 	$(VENV)/bin/python -m bench.golden
 	$(VENV)/bin/python -m bench.scaling
+	$(VENV)/bin/python -m bench.domain
 
 # the behaviour identity check: this checkout's outputs against revision REF's (bench/identity.py)
 REF ?= 58cdcc7

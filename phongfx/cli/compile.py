@@ -42,6 +42,15 @@ def add_arguments(p):
                         "on a datapath); a design with a counterexample is not chosen")
     p.add_argument("--prove-timeout", type=float, default=600, metavar="S",
                    help="with --prove: seconds per claim before it is reported unknown (default 600)")
+    p.add_argument("--samples", type=int, metavar="N",
+                   help="domain points each measured design is measured on, instead of the scene's "
+                        "[domain] samples (default 1,000,000)")
+    p.add_argument("--final-samples", type=int, metavar="N",
+                   help="fresh domain points the chosen design's witness is searched on, instead of the "
+                        "scene's [domain] final_samples (default 10,000,000)")
+    p.add_argument("--certified", action="store_true",
+                   help="the chosen design's certificate (a sound bound over the scene's domain, phongfx "
+                        "certify) must meet the requirement too: widen until it does")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -74,9 +83,45 @@ def _levels(value):
     return f"{value} level" if value == 1 else f"{value} levels"
 
 
+def _where(result):
+    """``frames 1, domain 1`` of a method's result: where its max error was measured."""
+    domain = result.get("domain_max")
+    if domain is None:
+        return f"frames {_levels(result.get('frames_max', result['max'])).split()[0]}, domain not measured"
+    return (f"frames {_levels(result['frames_max']).split()[0]}, domain {_levels(domain).split()[0]} "
+            f"on {result['domain_points']:,} points")
+
+
+def _certified(certificate):
+    """``, certified ≤ 1.4 (interval)`` or why the design is not certified."""
+    if not certificate:
+        return ""
+    bound, method = certificate["bound_levels"], certificate["method"]
+    if certificate["certified"]:
+        return f", certified ≤ {bound:.3g} ({method})"
+    if bound is None:
+        return f", not certified ({certificate['why']})"
+    return f", not certified: bound {bound:.3g} ({method})"
+
+
+def _certainty(certainty):
+    """The line that says what ``--certified`` cost against the sampled choice."""
+    sampled = certainty["sampled"]
+    extra = certainty.get("extra_cost")
+    return (f"  certainty: the sampled choice was {sampled['method']} at {sampled['params']}, "
+            f"{_cost(sampled['cost'])}, bound {_bound(sampled['certificate'])}"
+            + (f"; certainty costs {extra:+.1%}" if extra is not None else ""))
+
+
+def _bound(certificate):
+    value = certificate["bound_levels"]
+    return "none" if value is None else f"{value:.3g} levels"
+
+
 def cmd_compile(args):
     from tqdm import tqdm
 
+    from phongfx.certify import certify
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.compile.emit import emit
     from phongfx.scene.file import load_scene, with_requirement
@@ -94,7 +139,9 @@ def cmd_compile(args):
         compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
                                  freq=args.freq, seed=args.seed, progress=progress,
                                  journal=folder("compile"),
-                                 prove=args.prove, prove_timeout=args.prove_timeout)
+                                 prove=args.prove, prove_timeout=args.prove_timeout,
+                                 samples=args.samples, final_samples=args.final_samples,
+                                 certifier=certify, certified=args.certified)
         data = emit(compiled, args.output, check=not args.no_check, progress=progress,
                     testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
@@ -102,7 +149,9 @@ def cmd_compile(args):
     for name, r in data["methods"].items():
         default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'], args.synth)}"
         if r["feasible"]:
-            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({default})")
+            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({_where(r)}; {default})")
+            if r.get("why_not_chosen"):
+                print(f"  {'':12s}   not chosen: {r['why_not_chosen']}")
         else:
             print(f"  {name:12s} infeasible: best max {_levels(r['max'])} at {r['params']} ({default})")
             for why in r.get("why", []):
@@ -114,11 +163,29 @@ def cmd_compile(args):
               file=sys.stderr)
         for line in (data["hint"] or {}).get("text", []):
             print(f"phongfx: hint: {line}", file=sys.stderr)
+        certainty = data.get("certainty") or {}
+        if certainty.get("why"):
+            print(f"phongfx: --certified: {certainty['why']}; the sampled choice was "
+                  f"{certainty['sampled']['method']} at {certainty['sampled']['params']}", file=sys.stderr)
+            for name, why in certainty["methods"].items():
+                print(f"phongfx:   {name}: {why.get('why') or 'bound ' + format(why['bound_levels'], '.3f')}",
+                      file=sys.stderr)
         return 1
-    error = data["error"]
-    print(f"chosen {data['chosen']} ({data['module']}): max {_levels(error['max'])} at out_r/g/b, "
-          f"mean {error['mean']:.4f} ({error['max_unrounded']:.3f} against the unrounded reference), "
+    error, witness = data["error"], data["witness"]
+    print(f"chosen {data['chosen']} ({data['module']}): max {_levels(float(witness['error_levels']))} over the "
+          f"domain (witness; frames {_levels(error['frames_max']).split()[0]}){_certified(data['certificate'])} "
+          f"at out_r/g/b, "
+          f"mean {error['mean']:.4f} ({witness['unrounded']:.3f} against the unrounded reference), "
           f"{_cost(data['cost'])}, latency {data['latency']}")
+    for step in data["witness_rounds"]:
+        print(f"  {step['method']} at {step['params']}: witness {step['witness_levels']} levels, "
+              + (f"searched again with {step['hard_points']} hard points" if step["action"] == "searched again"
+                 else "not chosen"))
+    print(f"  witness: {witness['found_by']}; replay: {witness['replay']}")
+    if data["certificate"] and not data["certificate"]["certified"]:
+        print(f"  not certified: {data['certificate']['why']}")
+    if data.get("certainty"):
+        print(_certainty(data["certainty"]))
     tie = data["tie"]
     if tie:
         runner = _cost({"cost": tie["runner_up_cost"], "unit": data["cost"].get("unit")})

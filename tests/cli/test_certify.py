@@ -59,7 +59,7 @@ def test_interval(capsys):
     assert cert["method"] == "interval" and not cert["certified"]
     assert witness["error_levels"] <= 5 < math.floor(cert["bound_levels"] + 0.5)
     assert cert["bound_levels"] >= witness["unrounded"]
-    assert "local search (2,000 domain points" in witness["found_by"]
+    assert "(2,000 fresh domain points" in witness["found_by"]
 
 
 @pytest.mark.parametrize("argv, message", [

@@ -232,7 +232,8 @@ def test_a_new_specular_unit_is_selectable_everywhere(toy_unit, tmp_path):
 
     # the compiler: its method list accepts it and it is searched like fig7
     assert check_methods(["toy"]) == ["toy"]
-    compiled = compile_scene(load_scene(ROOT / "scenes" / "torus.toml"), methods=["toy"])
+    compiled = compile_scene(load_scene(ROOT / "scenes" / "torus.toml"), methods=["toy"], samples=2000,
+                             final_samples=10000)
     assert list(compiled.results) == ["toy"]
 
     # the renderer: render mesh's method list has it and shades with it

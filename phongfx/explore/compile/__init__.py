@@ -3,8 +3,10 @@
 * :mod:`.analysis`: what varies in the scene (local L and V, lights, n, span angles,
   highlights inside spans);
 * :mod:`.run`: how each method represents and shades a scene's frame;
+* :mod:`.measure`: a width point's error on the frames and the scene's input domain
+  (:mod:`.points`: the domain sample; :mod:`.climb`: the local search for the worst input);
 * :mod:`.compiler`: fitting every method, the width search with its local-minimality
-  proof, the choice of the cheapest;
+  proof, the choice of the cheapest whose witness meets the requirement (:mod:`.witness`);
 * :mod:`.emit`: the output folder (manifest, Verilog, frames, the RTL check).
 
 The names below are the compiler's entry points from Python, imported on first use (so

@@ -36,7 +36,8 @@ class State:
     n1: np.ndarray        # (K, 3) unit
     a: np.ndarray         # (K,)
     p: np.ndarray         # (K, 3) surface point
-    d: np.ndarray         # (K, 3) span end minus span start
+    d: np.ndarray         # (K, 3) span end minus span start (horizontal: no eye-space y)
+    eye: np.ndarray       # (K, 3) a local viewer's position (its camera path's point), else zeros
     n_index: np.ndarray   # (K,) index into the material's admissible n values
     material: np.ndarray  # (K,) int64
     kd: np.ndarray
@@ -52,37 +53,45 @@ class State:
 
 
 def _local(domain):
-    """The positions of the domain's point lights and of a local viewer (where the span's
-    ends move the unit vectors)."""
-    out = [np.asarray(vector, dtype=np.float64) for kind, vector, *_ in domain.lights if kind == "point"]
-    if domain.camera[0] == "point":
-        out.append(np.asarray(domain.camera[1], dtype=np.float64))
-    return out
+    """Whether a point light or a local viewer makes the span's ends matter."""
+    return domain.camera[0] == "point" or any(kind == "point" for kind, *_ in domain.lights)
 
 
 def _values(domain):
     return [np.asarray(values, dtype=np.int64) for _, values in domain.materials]
 
 
+def _eyes(g, domain):
+    """(K, 3) per point, the local viewer's position that explains its ``viewer`` best (a
+    camera path's point), or zeros for a camera at infinity."""
+    if domain.camera[0] != "point":
+        return np.zeros((len(g.a), 3))
+    path = np.asarray(domain.camera_path or (domain.camera[1],), dtype=np.float64)
+    fit = np.stack([np.sum(unit(c - g.position) * g.viewer, -1) for c in path], -1)
+    return path[np.argmax(fit, axis=-1)]
+
+
 def state_of(g, domain):
     """The :class:`State` of the domain points ``g``: the span's extent from the first
-    point light or local viewer (the span start on its ray nearest the surface point)."""
+    point light, else the local viewer (the span start on its ray nearest the surface point)."""
     a = np.asarray(g.a, dtype=np.float64)
     p = np.asarray(g.position, dtype=np.float64)
+    eye = _eyes(g, domain)
     d = np.zeros_like(p)
-    sources = _local(domain)
-    if sources:
-        toward = np.asarray(g.l0[[k for k, (kind, *_) in enumerate(domain.lights) if kind == "point"][0]]
-                            if any(kind == "point" for kind, *_ in domain.lights) else g.v0)
-        x0 = sources[0] - np.sum((sources[0] - p) * toward, -1, keepdims=True) * toward
+    point = [k for k, (kind, *_) in enumerate(domain.lights) if kind == "point"]
+    if _local(domain):
+        source, toward = ((np.asarray(domain.lights[point[0]][1], dtype=np.float64), np.asarray(g.l0[point[0]]))
+                          if point else (eye, np.asarray(g.v0)))
+        x0 = source - np.sum((source - p) * toward, -1, keepdims=True) * toward
         d = np.where(a[:, None] > 1e-3, (p - x0) / np.maximum(a, 1e-3)[:, None], 0.0)
+        d[:, 1] = 0.0
         length = np.linalg.norm(d, axis=-1, keepdims=True)
         d = np.where(length > domain.max_span_length, d * domain.max_span_length / np.maximum(length, 1e-300), d)
     values = _values(domain)
     material = np.asarray(g.material, dtype=np.int64)
     n = np.round(g.n).astype(np.int64)
     n_index = np.array([int(np.searchsorted(values[m], v)) for m, v in zip(material, n)], dtype=np.int64)
-    return State(np.asarray(g.n0, float), np.asarray(g.n1, float), a, p, d, n_index, material,
+    return State(np.asarray(g.n0, float), np.asarray(g.n1, float), a, p, d, eye, n_index, material,
                  np.asarray(g.kd, float), np.asarray(g.ks, float), np.asarray(g.ka, float),
                  np.asarray(g.colour, float))
 
@@ -101,7 +110,10 @@ def points(s, domain, rgb, bits):
     ends = (x0, x1, s.p)
     lights = [[_toward(kind, vector, x) for x in ends] for kind, vector, *_ in domain.lights]
     l0, l1, light = (np.stack([v[k] for v in lights]) for k in range(3))
-    v0, v1, viewer = (_toward(domain.camera[0], domain.camera[1], x) for x in ends)
+    if domain.camera[0] == "point":
+        v0, v1, viewer = (unit(s.eye - x) for x in ends)
+    else:
+        v0, v1, viewer = (_toward(domain.camera[0], domain.camera[1], x) for x in ends)
     values = _values(domain)
     n = np.array([values[m][i] for m, i in zip(s.material, s.n_index)], dtype=np.float64)
     count = len(s)
@@ -112,10 +124,15 @@ def points(s, domain, rgb, bits):
 
 
 def inside(s, g, domain):
-    """(K,) bool: the points of state ``s`` (fed as ``g = points(s, ...)``) lie in the domain."""
+    """(K,) bool: the points of state ``s`` (fed as ``g = points(s, ...)``) lie in the domain:
+    span-end normals within its span angle, every normal (``n0``, ``n1``, ``N``) facing every
+    viewer vector of the span (``>= view_cos_min``), surface point and span ends in its ball,
+    the span no longer than its longest."""
     ok = np.sum(s.n0 * s.n1, -1) >= np.cos(np.radians(domain.max_span_angle_deg)) - 1e-12
-    ok &= np.sum(s.n0 * g.v0, -1) >= domain.view_cos_min
-    ok &= np.sum(s.n1 * g.v1, -1) >= domain.view_cos_min
+    if domain.view_cos_min > -1:
+        for n in (s.n0, s.n1, g.normal):
+            for v in (g.v0, g.v1, g.viewer):
+                ok &= np.sum(n * v, -1) >= domain.view_cos_min
     centre, radius = np.asarray(domain.ball[0], dtype=np.float64), domain.ball[1]
     a = s.a[:, None]
     for x in (s.p, s.p - a * s.d, s.p + (1 - a) * s.d):
@@ -132,7 +149,7 @@ def perturb(s, sigma, rng, domain):
     p, d = s.p, s.d
     if _local(domain):  # positions matter only toward a point light or a local viewer
         p = p + step * domain.ball[1] * rng.normal(size=(k, 3))
-        d = d + step * domain.max_span_length * rng.normal(size=(k, 3))
+        d = d + step * domain.max_span_length * rng.normal(size=(k, 3)) * [1.0, 0.0, 1.0]
     top = np.array([len(v) - 1 for v in _values(domain)])[s.material]
     jump = np.where(rng.random(k) < 0.25, rng.integers(-1, 2, size=k), 0)
     return replace(s, n0=n0, n1=n1, a=a, p=p, d=d, n_index=np.clip(s.n_index + jump, 0, top))
@@ -142,35 +159,38 @@ def climb(evaluate, start, domain, rgb, bits, rng, *, rounds=40, batch=32, sigma
     """Hill-climb from every row of ``start`` (module docstring).
 
     :param evaluate: ``g -> (levels, unrounded)``, each (P,): the error of the points ``g``.
-    :returns: ``(state, levels, unrounded, evaluated)``: the worst point found (one row; by
-        integer error, ties by the continuous one) and how many points were evaluated.
+    :returns: ``(best, ends, evaluated)``: ``best`` the worst point found ``(levels,
+        unrounded, state)`` (one row; by integer error, ties by the continuous one), ``ends``
+        where each start's climb ended ``(levels, unrounded, state)`` (one row each) and how
+        many points were evaluated.
     """
     g = points(start, domain, rgb, bits)
     cur_e, cur_u = evaluate(g)
     ok = inside(start, g, domain)
     cur_u = np.where(ok, cur_u, -np.inf)
     best = _best(start, cur_e, cur_u, ok)
-    steps, evaluated = np.full(len(start), float(sigma)), len(start)
-    current = start
+    steps, evaluated, count = np.full(len(start), float(sigma)), len(start), len(start)
+    current, every = start, np.arange(len(start))
     for _ in range(rounds):
-        rows = np.repeat(np.arange(len(current)), batch)
+        rows = np.repeat(every, batch)
         candidates = perturb(current.rows(rows), steps[rows], rng, domain)
         g = points(candidates, domain, rgb, bits)
         e, u = evaluate(g)
         ok = inside(candidates, g, domain)
         evaluated += len(rows)
         best = max(best, _best(candidates, e, u, ok), key=lambda b: b[:2])
-        u = np.where(ok, u, -np.inf).reshape(len(current), batch)
+        u = np.where(ok, u, -np.inf).reshape(count, batch)
         pick = np.argmax(u, axis=1)
-        gain = u[np.arange(len(current)), pick] > cur_u
-        chosen = np.arange(len(current)) * batch + pick
-        moved = current.rows(np.arange(len(current)))
+        gain = u[every, pick] > cur_u
+        chosen = every * batch + pick
+        moved = current.rows(every)
         for name in moved.__dataclass_fields__:
             getattr(moved, name)[gain] = getattr(candidates, name)[chosen[gain]]
-        cur_u = np.where(gain, u[np.arange(len(current)), pick], cur_u)
+        cur_u = np.where(gain, u[every, pick], cur_u)
+        cur_e = np.where(gain, e[chosen], cur_e)
         steps = np.clip(np.where(gain, steps * 1.5, steps * 0.6), 1e-7, 0.5)
         current = moved
-    return best[2], best[0], best[1], evaluated
+    return best, (cur_e, cur_u, current), evaluated
 
 
 def _best(s, levels, unrounded, ok):

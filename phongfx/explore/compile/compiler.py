@@ -12,8 +12,9 @@ scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
 2. greedily lower each width (binary search, then verified) while the error stays within
    ``requirement.max_error_levels`` on every frame and on a seeded sample of the scene's
    input domain (:class:`~phongfx.explore.compile.measure.SceneEval`: the golden model of
-   the whole shader, measured at its ``r``, ``g``, ``b`` outputs against the reference);
-   passes repeat until no single width can drop;
+   the whole shader, measured at its ``r``, ``g``, ``b`` outputs against the reference),
+   on the domain with a guard (:func:`~phongfx.explore.compile.measure.meets`); passes repeat
+   until no single width can drop;
 3. the **proof** of local minimality: for each width, the config with that width one
    lower and its measured max error (above the requirement), or "at range minimum".
 
@@ -28,8 +29,9 @@ the domain, ``final_samples`` fresh points and a local search from the worst
 requirement makes the design unfit as it is: the witness and its neighbourhood join the
 domain sample as hard points (:meth:`~phongfx.explore.compile.measure.SceneEval.add_hard`),
 that method's widths are searched again, and the designs re-ranked, for at most
-:data:`ROUNDS` such rounds (each recorded in :attr:`Compiled.rounds`); a design whose
-witness still misses is not chosen.
+:data:`ROUNDS` such rounds (:data:`METHOD_ROUNDS` per method; each recorded in
+:attr:`Compiled.rounds`); a design whose witness still misses is not chosen.  A quick local
+search from the width search's own worst points comes before each fresh sample.
 
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
@@ -41,27 +43,19 @@ proxies :func:`phongfx.explore.synth.proxy.proxy_cost` (LUT-eq) and
 import dataclasses
 from dataclasses import dataclass, field
 
-from phongfx.core.registry import get_block
 from phongfx.explore.methods import METHODS
 from phongfx.explore.progress import Candidates
 
 from . import run as runs
-from . import witness as witnesses
-from .costing import COST_UNITS, TIE_MARGIN, costed, tie
-from .infeasible import hint, summary
-from .measure import SceneEval
+from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, certain, choose
+from .costing import COST_UNITS, costed
+from .infeasible import hint
+from .measure import SceneEval, meets
 from .points import DomainPoints
+from .search import search_widths, widest, width_params
 
-__all__ = ["ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params", "widest",
-           "search_widths", "scene_domain"]
-
-#: At most this many rounds of hard points (a witness over the requirement) per compile.
-ROUNDS = 4
-#: Points a failed witness adds to the domain sample: itself and its neighbourhood.
-HARD_POINTS = 2048
-
-_FIXED = ("n", "k", "lights")
-
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params",
+           "widest", "search_widths", "scene_domain", "meets"]
 
 @dataclass
 class Compiled:
@@ -79,88 +73,12 @@ class Compiled:
     domain: object = None               # phongfx.scene.domain.Domain the search measured on
     witness: dict = None                # the chosen design's worst input found (witness.search)
     certificate: object = None          # phongfx.certify's bound of the chosen design, when computed
+    certainty: dict = None              # certified=True: the sampled choice and what certainty costs
     rounds: list = field(default_factory=list)  # each witness over the requirement and what it did
 
     @property
     def best(self):
         return self.results.get(self.chosen)
-
-
-def width_params(method, against="phong"):
-    """``{name: (default, (lo, hi))}`` of the widths the search lowers; against ``"phong"``
-    Lyon's datapaths add the shape function's ``k`` (its range up to
-    :data:`~phongfx.config.shape.K_MAX`; against ``"self"`` it stays at the default, as it
-    defines the reference)."""
-    spec = METHODS[method]
-    out = {k: (v, spec.ranges[k]) for k, v in spec.params.items() if k not in _FIXED}
-    out.update(runs.extra(method))
-    if against == "phong" and runs.is_datapath(method) and "k" in spec.params:
-        out["k"] = (spec.params["k"], spec.ranges["k"])
-    return out
-
-
-def _passes(scene, method, params):
-    return scene.error(method, params)["max"] <= scene.spec.requirement.max_error_levels
-
-
-def _lowest(scene, method, params, name, lo):
-    """Lowest value of ``name`` in ``lo..params[name]`` that passes (binary search)."""
-    good, bad = params[name], lo - 1
-    while good - bad > 1:
-        mid = (good + bad) // 2
-        if _passes(scene, method, {**params, name: mid}):
-            good = mid
-        else:
-            bad = mid
-    return good
-
-
-def widest(scene, method, widths):
-    """The fallback start: every width at its range maximum, and the shape function's ``k``
-    (when searched) at the value of its range with the lowest error there, since ``f_k`` is
-    Phong's power only where ``2^k = n`` (a larger k is not closer).  Returns the params
-    and ``{k: error}`` of the scan (empty without ``k``)."""
-    top = {k: r[1] for k, (_, r) in widths.items()}
-    if "k" not in widths:
-        return top, {}
-    lo, hi = widths["k"][1]
-    scan = {k: scene.error(method, {**top, "k": k}) for k in range(lo, hi + 1)}
-    return {**top, "k": min(scan, key=lambda k: (scan[k]["max"], scan[k]["mean"], k))}, scan
-
-
-def search_widths(scene, method, progress=None):
-    """The width search of the module docstring; returns a result dict (an infeasible
-    method's is :func:`~phongfx.explore.compile.infeasible.summary`)."""
-    widths = width_params(method, scene.spec.requirement.against)
-    default = {k: v for k, (v, _) in widths.items()}
-    start, scan = (default, {}) if _passes(scene, method, default) else widest(scene, method, widths)
-    result = {"method": method, "default": {"params": default, **scene.measured(method, default)}}
-    if not _passes(scene, method, start):
-        return {**result, **summary(scene, method, start, scan)}
-    params, changed = dict(start), True
-    while changed:
-        changed = False
-        for name, (_, (lo, _hi)) in widths.items():
-            value = _lowest(scene, method, params, name, lo)
-            if value < params[name]:
-                params[name], changed = value, True
-            if progress:
-                progress(f"{method} {name}={params[name]}")
-        if not changed:  # the proof pass: one lower must fail for every width
-            proof = {}
-            for name, (_, (lo, _hi)) in widths.items():
-                if params[name] <= lo:
-                    proof[name] = {"value": params[name], "lower": None, "why": "at range minimum"}
-                    continue
-                lower = {**params, name: params[name] - 1}
-                measured = scene.error(method, lower)
-                if measured["max"] <= scene.spec.requirement.max_error_levels:
-                    params, changed = lower, True
-                    break
-                proof[name] = {"value": params[name], "lower": params[name] - 1,
-                               **{k: measured[k] for k in ("max", "why") if k in measured}}
-                proof[name]["max_error"] = proof[name].pop("max")
-    return {**result, "feasible": True, "params": params, **scene.measured(method, params), "proof": proof}
 
 
 def check_methods(methods):
@@ -170,18 +88,6 @@ def check_methods(methods):
         if name not in METHODS:
             raise ValueError(f"method must be one of {', '.join(METHODS)}, not {name!r}")
     return names
-
-
-def _proven(scene, result, timeout, progress):
-    """Whether ``result``'s design has no counterexample to its overflow claims (proven in
-    turn, ``result["overflow_proof"]``)."""
-    from phongfx.sim.prove import prove
-
-    name = result["method"]
-    block = get_block(runs.block_name(name), config=runs.build(name, result["params"], scene.analysis))
-    proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
-    result["overflow_proof"] = proof.as_dict()
-    return not proof.counts.get("counterexample")
 
 
 def scene_domain(spec, geometries, samples=None, final_samples=None):
@@ -197,58 +103,9 @@ def scene_domain(spec, geometries, samples=None, final_samples=None):
     return dataclasses.replace(found, **changes) if changes else found
 
 
-def _ranked(results):
-    """The feasible results by cost; an uncosted design (its synthesis failed) last."""
-    feasible = [r for r in results.values() if r["feasible"]]
-    return sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
-
-
-def _choose(out, scene, cost, prove, prove_timeout, progress):
-    """The cheapest feasible design whose witness meets the requirement (module docstring)
-    and, with ``prove``, without a counterexample to its overflow claims."""
-    spec, domain = out.spec, out.domain
-    required = spec.requirement.max_error_levels
-    ranked = _ranked(out.results)
-    while ranked:
-        r = ranked[0]
-        name = r["method"]
-        found = witnesses.search(name, r["params"], spec, domain, progress=progress, analysis=scene.analysis)
-        r["witness"] = found
-        if found["error_levels"] <= required:
-            if prove and not _proven(scene, r, prove_timeout, progress):
-                r["why_not_chosen"] = "a counterexample to its overflow claims"
-                ranked.pop(0)
-                continue
-            out.chosen, out.witness, out.tie = name, found, tie(ranked, TIE_MARGIN)
-            return
-        ranked.pop(0)
-        step = {"method": name, "params": r["params"], "witness_levels": found["error_levels"],
-                "witness_unrounded": found["unrounded"]}
-        if not runs.per_pixel(name) or len(out.rounds) >= ROUNDS:
-            r["why_not_chosen"] = (f"its witness is {found['error_levels']} levels over the domain "
-                                   f"(requirement {required:g}); "
-                                   + ("a unit fed per span takes no hard points" if not runs.per_pixel(name)
-                                      else f"no round of hard points left ({ROUNDS} used)"))
-            out.rounds.append({**step, "action": "not chosen"})
-            continue
-        scene.add_hard(witnesses.hard_points(found, spec, domain, HARD_POINTS, seed=len(out.rounds)))
-        if progress:
-            progress(f"{name}: witness {found['error_levels']} levels; searched again with "
-                     f"{scene.points.hard_points} hard points")
-        again = search_widths(scene, name, progress)
-        for where in ((again["default"], again) if again["feasible"] else (again["default"],)):
-            where["cost"] = cost(name, where["params"], again["feasible"])
-        again["superseded"] = {k: r.get(k) for k in ("params", "max", "cost", "witness")}
-        out.results[name] = again
-        out.rounds.append({**step, "action": "searched again", "hard_points": scene.points.hard_points,
-                           "params_after": again.get("params"), "feasible_after": again["feasible"],
-                           "max_after": again["max"]})
-        ranked = [x for x in _ranked(out.results) if x is again or any(x is y for y in ranked)]
-
-
 def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, seed=1,
                   progress=None, geometries=None, journal=None, prove=False, prove_timeout=600,
-                  samples=None, final_samples=None):
+                  samples=None, final_samples=None, certifier=None, certified=False):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
     :param methods: keys of :data:`~phongfx.explore.methods.METHODS` to consider (default
@@ -267,6 +124,13 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         counterexample is not chosen and the next cheapest is proven instead.
     :param samples: domain points per measured width point, instead of the scene's
         (``[domain] samples``); ``final_samples``: those of the witness search.
+    :param certifier: ``certifier(method, params, spec, domain, early=False, analysis=None)`` gives a
+        :class:`~phongfx.certify.certificate.Certificate` (:func:`phongfx.certify.certify`,
+        which sits above this wing and is passed in): the chosen design's is kept in
+        :attr:`Compiled.certificate`.
+    :param certified: the chosen design's certificate must meet the requirement too: when the
+        sampled choice's does not, every method is searched again for a certified design
+        (:func:`~phongfx.explore.compile.choice.certain`) and the cheapest is chosen (None when none is).
     :returns: a :class:`Compiled`.
     """
     names = check_methods(methods)
@@ -299,6 +163,12 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
 
     for name, where, by_synth in designs:
         where["cost"] = cost(name, where["params"], by_synth, steps.next(name, where["params"]) if by_synth else None)
-    _choose(out, scene, cost, prove, prove_timeout, progress)
+    choose(out, scene, cost, prove, prove_timeout, progress)
+    if certifier is not None and out.chosen is not None:
+        if progress:
+            progress(f"certifying {out.chosen}")
+        out.certificate = certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis)
+        if certified and not out.certificate.certified:
+            certain(out, scene, cost, certifier, progress)
     out.hint = hint(out)
     return out

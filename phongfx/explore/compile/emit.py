@@ -91,13 +91,29 @@ def _ports(config):
 def _baseline(compiled, method):
     if method in compiled.results:
         r = compiled.results[method]
-        return {k: r.get(k) for k in ("feasible", "params", "max", "mean", "cost", "default")}
+        return {k: r.get(k) for k in ("feasible", "params", "max", "mean", "frames_max", "domain_max", "cost",
+                                      "default")}
     return {"why_not": compiled.rejected.get(method, "not among the methods considered")}
 
 
 #: What the manifest keeps of each method's search result (an infeasible one adds its
 #: best point's reasons: :func:`phongfx.explore.compile.infeasible.summary`).
-_METHOD_KEYS = ("feasible", "params", "max", "mean", "cost", "default", "widest", "why", "k_scan", "overflow_proof")
+_METHOD_KEYS = ("feasible", "params", "max", "mean", "frames_max", "domain_max", "domain_points", "cost", "default",
+                "widest", "why", "k_scan", "overflow_proof", "witness", "why_not_chosen", "superseded")
+
+
+def _domain_evaluation(compiled):
+    """How the width search measured the domain (the manifest's ``"evaluation"``)."""
+    points = compiled.scene.points
+    if points is None:
+        return {}
+    per_span = [name for name in compiled.results if not runs.per_pixel(name)]
+    return {"domain_samples": points.count, "domain_seed": points.seed, "hard_points": points.hard_points,
+            "domain_measured": "only where the frames meet the requirement (elsewhere the point fails "
+                               "whatever the domain holds; domain_max null)",
+            "fed_per_span": {name: "measured on the visible pixels of rasterized random poses of the domain "
+                                   "(its stream is per span: a domain point cannot be fed alone)"
+                             for name in per_span}}
 
 
 def manifest(compiled, module=None, instances=None, check=None):
@@ -111,7 +127,12 @@ def manifest(compiled, module=None, instances=None, check=None):
                           "shininess_variants": compiled.scene.shininess_variants,
                           "points_measured": len(compiled.scene.cache),
                           "points_resumed": compiled.scene.resumed,
-                          "journal": compiled.scene.journal and compiled.scene.journal.path},
+                          "journal": compiled.scene.journal and compiled.scene.journal.path,
+                          **_domain_evaluation(compiled)},
+           "domain": compiled.domain and compiled.domain.as_dict(), "witness": compiled.witness,
+           "certificate": compiled.certificate and compiled.certificate.as_dict(),
+           "certainty": compiled.certainty,
+           "witness_rounds": compiled.rounds,
            "chosen": compiled.chosen, "tie": compiled.tie, "hint": compiled.hint,
            "rejected": dict(compiled.rejected),
            "methods": {name: {k: r[k] for k in _METHOD_KEYS if k in r} for name, r in compiled.results.items()},
@@ -126,6 +147,9 @@ def manifest(compiled, module=None, instances=None, check=None):
                     "latency": block.latency, "ports": _ports(config),
                     "error": {"max": best["max"], "mean": best["mean"],
                               "max_unrounded": best.get("max_unrounded"),
+                              "frames_max": best.get("frames_max"), "domain_max": best.get("domain_max"),
+                              "domain_points": best.get("domain_points"),
+                              "witness": compiled.witness and compiled.witness["error_levels"],
                               "measured_at": "out_r, out_g, out_b (display levels)"},
                     "cost": best["cost"],
                     "minimality_proof": best["proof"], "default_widths": best["default"],

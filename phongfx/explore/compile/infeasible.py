@@ -6,11 +6,15 @@ measured (not the last one tried: every width at its maximum can be worse than t
 defaults), and why it could go no further, from measurements: the method's own float form
 against true Phong (an error no width removes), the shape function's ``k`` scanned over its
 whole range, and a cap reached.  :func:`hint`, when nothing is feasible, computes a way
-forward: the requirement that is met (with the command), and, for a shininess range that
+forward: the requirement that is met (with the command; met by the best point's measurement
+and by its witness, :func:`phongfx.explore.compile.witness.search`), and, for a shininess range that
 no single ``k`` serves, the split of the range whose parts each meet it.
 """
 
 import math
+
+from . import witness as witnesses
+from .measure import GUARD, met_at
 
 __all__ = ["summary", "per_variant", "split", "hint"]
 
@@ -66,6 +70,11 @@ def _why(scene, method, best, widest_point, scan, requirement):
         elif form is not None:
             out.append(f"its own float form is {form:.2f} levels from true Phong at the best point: the rest "
                        f"is the fixed-point rounding, with the widths at their range maxima")
+    unrounded = error.get("domain_unrounded")
+    if error["max"] <= requirement and unrounded is not None and unrounded > requirement + 0.5 - GUARD:
+        out.append(f"on the domain its continuous error reaches {unrounded:.3f} levels, past the "
+                   f"{requirement + 0.5 - GUARD:g} the search allows (the requirement's {requirement + 0.5:g} "
+                   f"less a guard of {GUARD:g}, so that a fresh witness search does not find a point past it)")
     if scan:
         lo, hi = min(scan), max(scan)
         k = min(scan, key=lambda v: (scan[v]["max"], scan[v]["mean"], v))
@@ -83,8 +92,10 @@ def summary(scene, method, widest_point, scan):
     ``why`` (sentences) and ``k_scan`` (per ``k``: max error, and per shininess variant)."""
     requirement = scene.spec.requirement.max_error_levels
     best = _best(scene, method) or (widest_point, scene.error(method, widest_point))
+    # on the domain too (the search skips it where the frames already miss): what a hint quotes
+    best = (best[0], scene.error(method, best[0], complete=True))
     out = {"feasible": False, "params": _ordered(best[0], widest_point), **scene.measured(method, best[0]),
-           "widest": {"params": widest_point, "max": scene.error(method, widest_point)["max"]},
+           "widest": {"params": widest_point, "max": scene.error(method, widest_point, complete=True)["max"]},
            "why": _why(scene, method, best, widest_point, scan, requirement)}
     if scan:
         out["k_scan"] = {k: {"max": e["max"], "per_variant": per_variant(scene, e)} for k, e in scan.items()}
@@ -121,6 +132,12 @@ def split(scene, k_scan, requirement):
     return None
 
 
+def _met(result):
+    """The whole requirement a method's result meets: its measurement's (:func:`met_at`), or
+    its witness's error when that is more (a design the witness search failed)."""
+    return max(met_at(result), (result.get("witness") or {}).get("error_levels", 0))
+
+
 def hint(compiled):
     """When no method meets the requirement: ``{"best": {method, max, params}, "command",
     "split" (:func:`split` of the best method with a ``k_scan``, or None), "text"}``,
@@ -132,8 +149,11 @@ def hint(compiled):
         return None
     spec = compiled.spec
     requirement = spec.requirement.max_error_levels
-    best = min(results, key=lambda r: (r["max"], r["mean"]))
-    levels = math.ceil(best["max"])
+    best = min(results, key=lambda r: (_met(r), r["max"], r["mean"]))
+    levels, witness = _met(best), None
+    if compiled.domain is not None:  # what the requirement it quotes must hold: the witness search's worst
+        witness = witnesses.search(best["method"], best["params"], spec, compiled.domain, analysis=compiled.analysis)
+        levels = max(levels, witness["error_levels"])
     command = f"phongfx compile {spec.path or spec.name + '.toml'} -o DIR --max-error {levels}"
     text = [f"the best any method reaches is {_levels(best['max'])} ({best['method']} at {best['params']}); "
             f"a requirement of {_levels(levels)} is met: {command}"]
@@ -152,5 +172,5 @@ def hint(compiled):
                     f"measured at {samples}): split it into two materials ({parts}) or two units, "
                     f"at k = {found['k'][0]} "
                     f"and k = {found['k'][1]}")
-    return {"best": {"method": best["method"], "max": best["max"], "params": best["params"]},
+    return {"best": {"method": best["method"], "max": best["max"], "params": best["params"], "witness": witness},
             "command": command, "split": found, "text": text}

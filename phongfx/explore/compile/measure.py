@@ -20,9 +20,11 @@ a ``domain`` (:class:`phongfx.scene.domain.Domain`), the same error is measured 
 :class:`~phongfx.explore.compile.points.DomainPoints` too, every input the hardware can
 receive while the scene plays, and ``max`` (the search's criterion) is the larger of
 ``frames_max`` and ``domain_max``.  The domain is measured only where the frames meet
-the requirement: elsewhere the point fails whatever the domain holds, and ``domain_max``
-is None.
+the requirement (elsewhere the point fails whatever the domain holds, and ``domain_max``
+is None), or when asked (``complete``: an infeasible method's best point).
 """
+
+import math
 
 import numpy as np
 
@@ -34,7 +36,29 @@ from . import run as runs
 from .analysis import analyse
 from .journal import Journal, scene_key
 
-__all__ = ["SceneEval", "cosines", "diffuse", "phong_terms", "shade_points", "point_errors", "worst_per_point"]
+__all__ = ["GUARD", "meets", "met_at", "SceneEval", "cosines", "diffuse", "phong_terms", "shade_points", "point_errors",
+           "worst_per_point"]
+
+
+#: Levels of continuous error the width search keeps under the requirement on the domain (:func:`meets`).
+GUARD = 0.1
+
+
+def meets(error, required):
+    """Whether a measured ``error`` (:meth:`SceneEval.error`) meets ``required`` levels: its
+    ``max`` within it, and on the domain its continuous error ``domain_unrounded`` at least
+    :data:`GUARD` under the ``required + 0.5`` the integer error allows.  The width search
+    stops at the edge of what it measured; without the guard, a fresh witness search (more
+    points, a longer local search) finds a point a hair past that edge almost every time,
+    one round of hard points after another."""
+    unrounded = error.get("domain_unrounded")
+    return error["max"] <= required and (unrounded is None or unrounded <= required + 0.5 - GUARD)
+
+
+def met_at(error):
+    """The smallest whole requirement (levels) that :func:`meets` ``error``."""
+    unrounded = error.get("domain_unrounded")
+    return max(math.ceil(error["max"]), 0 if unrounded is None else math.ceil(unrounded - 0.5 + GUARD - 1e-12))
 
 
 def cosines(g):
@@ -164,18 +188,22 @@ class SceneEval:
         g, n = self.renders[index]
         return shade_points(method, config, params, self.spec.requirement.against, g, n, self.reference[index])
 
-    def error(self, method, params):
-        """``{"max", "mean", "max_unrounded", "frames_max", "domain_max", "domain_points"}``
-        error in levels of ``method`` at ``params`` (cached; module docstring); a config that
-        cannot be built or overflows has ``max = inf`` and says why in ``"why"``."""
+    def error(self, method, params, complete=False):
+        """``{"max", "mean", "max_unrounded", "frames_max", "domain_max", "domain_unrounded",
+        "domain_points", "domain_climbed"}`` error in levels of ``method`` at ``params``
+        (cached; module docstring); a config that cannot be built or overflows has ``max =
+        inf`` and says why in ``"why"``.  ``complete``: measure the domain even where the
+        frames miss (an infeasible method's best point, which a hint quotes)."""
         key = (method, tuple(sorted(params.items())))
-        if key not in self.cache:
-            self.cache[key] = self._error(method, params)
+        cached = self.cache.get(key)
+        if cached is None or (complete and self.points is not None and cached.get("domain_max") is None
+                              and math.isfinite(cached["max"])):
+            self.cache[key] = self._error(method, params, complete)
             if self.journal is not None:
                 self.journal.add(key, self.cache[key])
         return self.cache[key]
 
-    def _error(self, method, params):
+    def _error(self, method, params, complete=False):
         inf = float("inf")
         try:
             config = runs.build(method, params, self.analysis)
@@ -191,20 +219,21 @@ class SceneEval:
         if self.points is None:
             return out
         out.update(domain_max=None, domain_points=0)
-        if out["max"] > self.spec.requirement.max_error_levels:
+        if out["max"] > self.spec.requirement.max_error_levels and not complete:
             return out  # fails on the frames: the domain cannot make it pass
         try:
             measured = self.points.error(method, config, params)
         except (ValueError, OverflowError) as error:
             return {**out, "max": inf, "domain_max": inf, "why": f"on the domain: {error}"}
         out.update(domain_max=measured["max"], domain_mean=measured["mean"], domain_points=measured["points"],
+                   domain_climbed=measured["climbed"], domain_unrounded=measured["max_unrounded"],
                    max=max(out["max"], measured["max"]),
                    max_unrounded=max(out["max_unrounded"], measured["max_unrounded"]))
         return out
 
-    def measured(self, method, params):
+    def measured(self, method, params, complete=False):
         """:meth:`error` without its per-render list: what a result and the manifest keep."""
-        return {k: v for k, v in self.error(method, params).items() if k != "per_render"}
+        return {k: v for k, v in self.error(method, params, complete).items() if k != "per_render"}
 
     def form_error(self, method, params):
         """Max over every render of ``|I_form - I_ref|·(2^bits - 1)``: how far the method's

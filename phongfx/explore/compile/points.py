@@ -1,13 +1,16 @@
 """The sample of a scene's input domain that the compiler measures every width point on.
 
 :class:`DomainPoints` draws ``count`` points of a :class:`phongfx.scene.domain.Domain`
-(:meth:`~phongfx.scene.domain.Domain.sample`) once per compile, seeded, in chunks of
-:data:`CHUNK` (so that one golden evaluation and its temporaries stay well under a
-gigabyte whatever the count), with true Phong's specular terms of each chunk computed
+(:meth:`~phongfx.scene.domain.Domain.chunks`) once per compile, seeded, in the domain's
+chunks (so that one golden evaluation and its temporaries stay well under a gigabyte
+whatever the count), with true Phong's specular terms of each chunk computed
 once; :meth:`DomainPoints.error` is the compiler's error
 (:func:`~phongfx.explore.compile.measure.shade_points`) over all of them.  Hard points
 (the neighbourhood of a witness that failed, :mod:`phongfx.explore.compile.witness`) are
-added with :meth:`~DomainPoints.add_hard` and measured with the rest.
+added with :meth:`~DomainPoints.add_hard` and measured with the rest.  Each measurement
+also hill-climbs from the sample's worst points (:func:`phongfx.explore.compile.climb.climb`):
+the width search is held to the worst the witness search would find, not only to the
+sample's.
 
 A domain point is one pixel of a span of its own, which the units fed per pixel take as
 they take a frame's.  A unit fed per *span* (the spherical unit's setup is per span and
@@ -24,27 +27,25 @@ import numpy as np
 
 from phongfx.scene.geometry import FrameGeometry, frames, rotation
 from phongfx.scene.mesh import Mesh
+from phongfx.scene.sampling import random_rotations
 
 from . import run as runs
-from .measure import phong_terms, point_errors, shade_points
+from .climb import climb, state_of
+from .measure import phong_terms, point_errors, shade_points, worst_per_point
 
-__all__ = ["CHUNK", "DomainPoints", "chunk_seeds", "take", "concat", "posed_frame", "pose_frames", "random_rotations"]
+__all__ = ["STARTS", "CLIMB_ROUNDS", "BATCH", "DomainPoints", "take", "concat", "posed_frame", "pose_frames"]
 
-#: Domain points per golden evaluation.
-CHUNK = 1 << 17
+#: How many of the sample's worst points the local search of each measurement starts from.
+STARTS = 32
+#: Rounds of that local search (each ``STARTS`` × :data:`BATCH` points), at most; fewer on a
+#: small sample, so that it costs at most about a twentieth of the sample's evaluation.
+CLIMB_ROUNDS = 20
+BATCH = 32
 
 #: Fields of a :class:`~phongfx.scene.geometry.FrameGeometry` indexed per light (lights, P, ...).
 _PER_LIGHT = ("l0", "l1", "light")
 #: Fields that are not per point.
 _WHOLE = ("width", "height", "rgb", "spans", "frame", "bits")
-
-
-def chunk_seeds(seed, count, chunk=CHUNK):
-    """``[(size, seed)]`` of the chunks of ``count`` points drawn with ``seed``: each chunk
-    its own seed (:class:`numpy.random.SeedSequence` of ``(seed, index)``)."""
-    sizes = [min(chunk, count - start) for start in range(0, count, chunk)]
-    return [(size, int(np.random.SeedSequence([seed, index]).generate_state(1)[0]))
-            for index, size in enumerate(sizes)]
 
 
 def take(g, index):
@@ -77,24 +78,6 @@ def concat(parts):
     return FrameGeometry(**fields)
 
 
-def random_rotations(domain, count, rng):
-    """``count`` rotation matrices of the domain's poses: about its ``axis`` by an angle in
-    its ``degrees`` (``"motion"``), up to ``wobble_degrees`` about any axis (``"still"``),
-    or any rotation (``"any"``, uniform: a random unit quaternion)."""
-    out = []
-    for _ in range(count):
-        if domain.pose == "any":
-            w, x, y, z = (q := rng.normal(size=4)) / np.linalg.norm(q)
-            out.append(np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                                 [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                                 [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]))
-        elif domain.pose == "still":
-            out.append(rotation(rng.normal(size=3), rng.uniform(0, domain.wobble_degrees)))
-        else:
-            out.append(rotation(domain.axis, rng.uniform(*domain.degrees)))
-    return out
-
-
 def _posed(spec, r):
     """``spec`` with every object turned by the rotation ``r`` and one frame (no rotation of its own)."""
     objects = []
@@ -114,9 +97,9 @@ def posed_frame(spec, r):
 
 
 def pose_frames(spec, domain, count, seed):
-    """``[(rotation, frame)]`` of random poses of ``domain`` (:func:`random_rotations`,
-    :func:`posed_frame`) until they hold ``count`` visible pixels (at most ``count`` frames,
-    as a frame may show nothing)."""
+    """``[(rotation, frame)]`` of random poses of ``domain``
+    (:func:`phongfx.scene.sampling.random_rotations`, :func:`posed_frame`) until they hold
+    ``count`` visible pixels (at most ``count`` frames, as a frame may show nothing)."""
     rng = np.random.default_rng([seed, 1])
     out, pixels = [], 0
     while pixels < count and len(out) < count:
@@ -138,8 +121,7 @@ class DomainPoints:
         self.count = domain.samples if count is None else count
         self.seed = domain.seed if seed is None else seed
         self.chunks = []
-        for size, chunk_seed in chunk_seeds(self.seed, self.count):
-            g = domain.sample(size, chunk_seed)
+        for g in domain.chunks(self.count, self.seed):
             n = np.round(g.n).astype(np.int64)
             self.chunks.append((g, n, phong_terms(g, n)))
         self.hard = []        # FrameGeometry of hard points, as added
@@ -172,19 +154,50 @@ class DomainPoints:
         return self._poses
 
     def error(self, method, config, params):
-        """``{"max", "mean", "max_unrounded", "points", "how"}`` over the sample (or, for a
-        unit fed per span, the frames of random poses) of ``method`` at ``config``."""
+        """``{"max", "mean", "max_unrounded", "points", "climbed", "how"}`` of ``method`` at
+        ``config`` over the sample (or, for a unit fed per span, the frames of random poses),
+        and for a unit fed per pixel over a local search from the sample's :data:`STARTS`
+        worst points (:func:`phongfx.explore.compile.climb.climb`, up to :data:`CLIMB_ROUNDS`
+        rounds: a few percent of the sample's cost, and it finds the corners of the bad
+        regions that a sample only brushes)."""
         per_pixel = runs.per_pixel(method)
         parts = self.chunks if per_pixel else self.poses()
+        against = self.spec.requirement.against
         worst = worst_raw = total = 0.0
-        points = 0
+        points, kept = 0, []
         for g, n, phong in parts:
-            codes, reference, _, _ = shade_points(method, config, params, self.spec.requirement.against, g, n, phong)
+            codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong)
             levels, raw = point_errors(codes, reference, g.bits)
             worst = max(worst, float(levels.max(initial=0)))
             worst_raw = max(worst_raw, float(raw.max(initial=0.0)))
             total += float(levels.sum())
             points += len(g)
-        how = "domain points" if per_pixel else f"visible pixels of {len(parts)} random poses"
-        return {"max": worst, "mean": total / max(3 * points, 1), "max_unrounded": worst_raw,
-                "points": points, "how": how}
+            if per_pixel:
+                kept.append(take(g, np.lexsort((raw.max(axis=-1), levels.max(axis=-1)))[-STARTS:]))
+        out = {"max": worst, "mean": total / max(3 * points, 1), "max_unrounded": worst_raw, "points": points,
+               "climbed": 0, "how": "domain points" if per_pixel else f"visible pixels of {len(parts)} random poses"}
+        if not per_pixel:
+            return out
+        pool = concat(kept)
+
+        def evaluate(g):
+            return worst_per_point(method, config, params, against, g, np.round(g.n).astype(np.int64))
+
+        e, u = evaluate(pool)
+        top = np.lexsort((u, e))[-STARTS:]
+        rounds = int(np.clip(points // (20 * STARTS * BATCH), 1, CLIMB_ROUNDS))
+        best, _, climbed = climb(evaluate, state_of(take(pool, top), self.domain), self.domain, pool.rgb,
+                                 pool.bits, np.random.default_rng([self.seed, 4]), rounds=rounds, batch=BATCH)
+        out.update(climbed=climbed, how="domain points and a local search from the worst")
+        if best[2] is not None:
+            out.update(max=max(worst, float(best[0])), max_unrounded=max(worst_raw, best[1]))
+        return out
+
+    def worst(self, method, config, params, count):
+        """The ``count`` worst points of the sample (hard points included) of ``method`` at
+        ``config`` (a unit fed per pixel), by integer error, ties by the continuous one."""
+        kept = []
+        for g, n, phong in self.chunks:
+            e, u = worst_per_point(method, config, params, self.spec.requirement.against, g, n, phong)
+            kept.append(take(g, np.lexsort((u, e))[-count:]))
+        return concat(kept)

@@ -1,7 +1,7 @@
 """A design's worst input over the scene's domain: the **witness**, and how to replay it.
 
 :func:`search` measures a design (``method`` at ``params``) on ``samples`` fresh points of
-the domain (:meth:`phongfx.scene.domain.Domain.sample`, default ``final_samples``, with a
+the domain (:meth:`phongfx.scene.domain.Domain.chunks`, default ``final_samples``, with a
 seed of its own, never the width search's), in chunks, keeping the :data:`STARTS` worst;
 from those, :func:`phongfx.explore.compile.climb.climb` hill-climbs the continuous error.
 The witness is the worst integer error found by either, ties broken by the continuous
@@ -32,12 +32,17 @@ from . import run as runs
 from .analysis import analyse
 from .climb import climb, neighbourhood, points, state_of
 from .measure import point_errors, shade_points, worst_per_point
-from .points import chunk_seeds, concat, pose_frames, posed_frame, take
+from .points import concat, pose_frames, posed_frame, take
 
-__all__ = ["STARTS", "REPLAY", "search", "replay", "geometry", "hard_points"]
+__all__ = ["STARTS", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore", "climb_rounds", "replay",
+           "geometry"]
 
 #: How many of the worst sampled points the local search starts from.
 STARTS = 32
+#: Rounds of the local search, at most.
+ROUNDS = 40
+#: How many of the climbs (the worst where they ended) give hard points beside the witness.
+CLIMBS = 7
 #: How a compiled design's witness is replayed.
 REPLAY = "phongfx certify DIR --replay"
 #: The witness search's seed, when not given: the domain's, offset so that its points are
@@ -50,7 +55,7 @@ def _analysis(spec, analysis):
 
 
 def search(method, params, spec, domain, *, samples=None, seed=None, progress=None, analysis=None,
-           rounds=40):
+           rounds=None):
     """The witness dict of ``method`` at ``params`` over ``domain`` (module docstring).
 
     :param samples: fresh domain points (default ``domain.final_samples``).
@@ -58,51 +63,78 @@ def search(method, params, spec, domain, *, samples=None, seed=None, progress=No
     :param progress: called with a line per chunk (points done, points per second).
     :param analysis: the scene's :class:`~phongfx.explore.compile.analysis.Analysis`
         (computed from its frames when None).
-    :param rounds: rounds of the local search.
+    :param rounds: rounds of the local search (default :func:`climb_rounds`).
+    """
+    return explore(method, params, spec, domain, samples=samples, seed=seed, progress=progress,
+                   analysis=analysis, rounds=rounds)[0]
+
+
+def climb_rounds(samples):
+    """Rounds of the local search after ``samples`` fresh points: :data:`ROUNDS` from a
+    million points up (each round costs ``STARTS`` × 32 points), fewer for a small sample
+    (a quick compile, a test), at least 2."""
+    return int(np.clip(samples // (8 * STARTS * 32), 2, ROUNDS))
+
+
+def explore(method, params, spec, domain, *, samples=None, seed=None, progress=None, analysis=None,
+            rounds=None, starts=None, hard=0):
+    """:func:`search`, and with ``hard`` > 0 the hard points of what it found: ``(witness,
+    hard points or None)``.  ``starts``: domain points (a
+    :class:`~phongfx.scene.geometry.FrameGeometry`) to climb from instead of a fresh sample's
+    worst (the width search's own worst, a quick check before a fresh sample).
+
+    The hard points are the worst point found and where the :data:`CLIMBS` worst climbs
+    ended, each with its neighbourhood (:func:`phongfx.explore.compile.climb.neighbourhood`),
+    ``hard`` points in all: what the width search must get right next.
     """
     samples = domain.final_samples if samples is None else samples
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1:
         raise ValueError(f"samples must be a positive integer, not {samples!r}")
     seed = domain.seed + SEED_OFFSET if seed is None else seed
+    rounds = climb_rounds(samples) if rounds is None else rounds
     analysis = _analysis(spec, analysis)
     config = runs.build(method, params, analysis)
-    against, start = spec.requirement.against, time.perf_counter()
+    against, start, bits = spec.requirement.against, time.perf_counter(), spec.output.bits
     if not runs.per_pixel(method):
-        return _pose_search(method, config, params, spec, domain, samples, seed, start)
-    kept, done = [], 0
-    for size, chunk_seed in chunk_seeds(seed, samples):
-        g = domain.sample(size, chunk_seed)
-        e, u = worst_per_point(method, config, params, against, g, np.round(g.n).astype(np.int64))
-        worst = np.lexsort((u, e))[-STARTS:]
-        kept.append(take(g, worst))
-        done += size
-        if progress:
-            rate = done / max(time.perf_counter() - start, 1e-9)
-            progress(f"witness {method}: {done:,} of {samples:,} domain points, {rate:,.0f} points/s")
-    pool = concat(kept)
-    e, u = worst_per_point(method, config, params, against, pool, np.round(pool.n).astype(np.int64))
-    top = np.lexsort((u, e))[-STARTS:]
-    sampled = (int(e[top[-1]]), float(u[top[-1]]))
-    rgb = pool.rgb
+        return _pose_search(method, config, params, spec, domain, samples, seed, start), None
 
     def evaluate(g):
         return worst_per_point(method, config, params, against, g, np.round(g.n).astype(np.int64))
 
-    rng = np.random.default_rng([seed, 2])
-    state, found_e, found_u, evaluated = climb(evaluate, state_of(take(pool, top), domain), domain, rgb,
-                                               spec.output.bits, rng, rounds=rounds)
+    if starts is None:
+        kept, done = [], 0
+        for g in domain.chunks(samples, seed):
+            e, u = evaluate(g)
+            kept.append(take(g, np.lexsort((u, e))[-STARTS:]))
+            done += len(g)
+            if progress:
+                rate = done / max(time.perf_counter() - start, 1e-9)
+                progress(f"witness {method}: {done:,} of {samples:,} domain points, {rate:,.0f} points/s")
+        starts, source = concat(kept), f"{samples:,} fresh domain points, seed {seed}"
+    else:
+        source = f"the {len(starts):,} worst points of the width search's domain sample"
+    e, u = evaluate(starts)
+    top = np.lexsort((u, e))[-STARTS:]
+    sampled = (int(e[top[-1]]), float(u[top[-1]]))
+    best, ends, evaluated = climb(evaluate, state_of(take(starts, top), domain), domain, starts.rgb, bits,
+                                  np.random.default_rng([seed, 2]), rounds=rounds)
     if progress:
         progress(f"witness {method}: local search, {evaluated:,} points")
-    if state is not None and (found_e, found_u) > sampled:
-        g, found_by = points(state, domain, rgb, spec.output.bits), "local search"
+    if best[2] is not None and best[:2] > sampled:
+        g, found_by = points(best[2], domain, starts.rgb, bits), "local search"
     else:
-        g, found_by = take(pool, top[-1:]), "sample"
+        g, found_by = take(starts, top[-1:]), "sample"
     out = _witness(method, config, params, against, g, 0)
-    out.update(found_by=f"{found_by} ({samples:,} domain points, seed {seed}; hill-climbing from the "
-                        f"{len(top)} worst, {evaluated:,} points)",
+    out.update(found_by=f"{found_by} ({source}; hill-climbing from the {len(top)} worst, {evaluated:,} points)",
                sampled={"error_levels": sampled[0], "unrounded": sampled[1]},
                samples=samples, seed=seed, local_points=evaluated, seconds=time.perf_counter() - start)
-    return out
+    if not hard:
+        return out, None
+    worst = np.argsort(ends[1])[-CLIMBS:]
+    centres = [state_of(g, domain)] + [ends[2].rows([i]) for i in worst]
+    rng = np.random.default_rng([seed, 3])
+    each = max(hard // len(centres), 1)
+    return out, concat([neighbourhood(c, domain, starts.rgb, bits, each, rng) for c in centres])
 
 
 def _witness(method, config, params, against, g, index, point=None):
@@ -166,7 +198,8 @@ def geometry(witness, spec):
     normal = (1 - a[:, None]) * n0 + a[:, None] * n1
     zero = np.zeros(1, dtype=np.int64)
     return FrameGeometry(0, 0, zero, zero, np.arange(1), a, n0, n1, normal / np.linalg.norm(normal),
-                         one(p["position"]), *(np.asarray(p[k], dtype=np.float64)[:, None] for k in ("l0", "l1", "light")),
+                         one(p["position"]),
+                         *(np.asarray(p[k], dtype=np.float64)[:, None] for k in ("l0", "l1", "light")),
                          one(p["v0"]), one(p["v1"]), one(p["viewer"]),
                          np.array([light.rgb for light in spec.lights], dtype=np.float64).reshape(-1, 3),
                          np.asarray([p["n"]], dtype=np.float64), one(m.kd), one(m.ks), one(m.ka), one(m.colour),
@@ -209,11 +242,3 @@ def _verdict(witness, fresh, given):
     return {**{k: fresh[k] for k in ("error_levels", "unrounded", "codes", "outputs", "reference_levels")},
             "codes_match": codes_match, "outputs_match": outputs_match,
             "matches": codes_match and outputs_match and fresh["error_levels"] == witness["error_levels"]}
-
-
-def hard_points(witness, spec, domain, count=2048, seed=0):
-    """The witness point and ``count - 1`` neighbours of it in the domain
-    (:func:`phongfx.explore.compile.climb.neighbourhood`): a :class:`FrameGeometry`."""
-    g = geometry(witness, spec)
-    return neighbourhood(state_of(g, domain), domain, g.rgb, spec.output.bits, count,
-                         np.random.default_rng([seed, 3]))

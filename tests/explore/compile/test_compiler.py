@@ -10,7 +10,8 @@ import pytest
 
 from phongfx.cli import main
 from phongfx.core.registry import get_block
-from phongfx.explore.compile.compiler import SceneEval, compile_scene, width_params
+from phongfx.explore.compile.compiler import compile_scene, meets, width_params
+from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.emit import submodules
 from phongfx.explore.compile.run import block_name, build
 from phongfx.explore.compile.run import frame_inputs as run_frame_inputs
@@ -31,13 +32,16 @@ n = 16
 [[objects]]
 type = "torus"
 material = "shiny"
-polygons = 72
+polygons = 288
 [output]
 width = 32
 height = 32
 [requirement]
 max_error_levels = {error}
 against = "{against}"
+[domain]                 # small samples keep the tests fast (the default is 10^6 and 10^7)
+samples = 2000
+final_samples = 10000
 """
 
 LOCAL = """
@@ -57,6 +61,9 @@ width = 24
 height = 24
 [requirement]
 against = "self"
+[domain]
+samples = 2000
+final_samples = 10000
 """
 
 
@@ -64,14 +71,16 @@ def _torus(error=1.0, against="phong"):
     return parse_scene(TORUS.format(error=error, against=against), name="tiny")
 
 
-def _lyon(radius=16):
-    text = open(os.path.join(SCENES, "lyon-balls.toml")).read()
+def _lyon(radius=32):
+    text = open(os.path.join(SCENES, "lyon-balls.toml")).read() + "[domain]\nsamples = 2000\nfinal_samples = 10000\n"
     return parse_scene(re.sub(r"radius = \d+", f"radius = {radius}", text), name="lyon-balls")
 
 
-def _instances(compiled):
-    config = build(compiled.chosen, compiled.best["params"], compiled.analysis)
-    block = get_block(block_name(compiled.chosen), config=config)
+def _instances(compiled, method=None):
+    """The config and sub-block instances of the chosen design (or of ``method``'s result)."""
+    method = method or compiled.chosen
+    config = build(method, compiled.results[method]["params"], compiled.analysis)
+    block = get_block(block_name(method), config=config)
     return config, submodules(verilog(block.component(), "top", emit_src=False), "top")
 
 
@@ -92,27 +101,31 @@ def test_widths_are_locally_minimal_measured_afresh():
     spec = _torus()
     compiled = compile_scene(spec, methods=["fig7"])
     best, fresh = compiled.best, SceneEval(spec)  # a new evaluator: no shared cache
-    assert fresh.error("fig7", best["params"])["max"] <= 1.0
+    fresh.measure_domain(compiled.scene.points)   # the same domain points (hard points too)
+    assert meets(fresh.error("fig7", best["params"]), 1.0)
     for name, (_, (lo, _hi)) in width_params("fig7", "phong").items():
         value = best["params"][name]
         if value == lo:
             assert best["proof"][name]["why"] == "at range minimum"
             continue
-        lower = fresh.error("fig7", {**best["params"], name: value - 1})["max"]
-        assert lower > 1.0, name
-        assert best["proof"][name]["max_error"] == pytest.approx(lower)
+        lower = fresh.error("fig7", {**best["params"], name: value - 1})
+        assert not meets(lower, 1.0), name
+        assert best["proof"][name]["max_error"] == pytest.approx(lower["max"])
 
 
 def test_default_widths_are_measured_beside_the_minimal_ones():
     best = compile_scene(_torus(against="self"), methods=["fig7"]).best
-    assert best["default"]["params"] == {k: v for k, (v, _) in width_params("fig7", "self").items()}
-    assert best["cost"]["lut_eq"] < best["default"]["cost"]["lut_eq"]
+    default = best["default"]
+    assert default["params"] == {k: v for k, (v, _) in width_params("fig7", "self").items()}
+    assert default["frames_max"] <= default["max"] and default["cost"]["lut_eq"] > 0
+    # the searched widths are cheaper, unless the defaults miss the requirement on the domain
+    assert default["max"] > 1.0 or best["cost"]["lut_eq"] < default["cost"]["lut_eq"]
 
 
 def test_lyon_balls_compile_without_l_or_v_interpolators():
     compiled = compile_scene(_lyon(), methods=["fig7", "blinn", "spherical"])
     assert (compiled.analysis.local_lights, compiled.analysis.local_viewer) == (False, False)
-    config, instances = _instances(compiled)
+    config, instances = _instances(compiled, "fig7")
     assert _kinds(instances, "lirp") == 1 and _kinds(instances, "normalize") == 1
     assert {"v", "l0", "l1"} <= set(config.inputs) and not {"v0", "l0_0"} & set(config.inputs)
     assert compiled.rejected["spherical"] == ("needs mesh spans (its setup is per span); the scene "
@@ -221,7 +234,7 @@ def test_the_shipped_top_has_named_ports_and_its_testbench_passes_under_icarus(t
 
 @pytest.mark.parametrize("change, message", [
     (("direction = [1, 1, 1]", "position = [1, 2]"), r"bad\.toml: lights\[0\]\.position must be 3 numbers"),
-    (("polygons = 72", "polygons = 70"), r"bad\.toml: objects\[0\]\.polygons must be 2·k²"),
+    (("polygons = 288", "polygons = 286"), r"bad\.toml: objects\[0\]\.polygons must be 2·k²"),
     (("[[objects]]", "[[objects]"), r"bad\.toml: invalid TOML"),
 ])
 def test_bad_scenes_exit_2_with_one_line(tmp_path, capsys, change, message):
@@ -234,8 +247,8 @@ def test_bad_scenes_exit_2_with_one_line(tmp_path, capsys, change, message):
 
 def test_a_scene_with_nothing_in_view_exits_2(tmp_path, capsys):
     path = tmp_path / "empty.toml"
-    far = TORUS.format(error=1.0, against="phong").replace("polygons = 72",
-                                                           "polygons = 72\noffset = [100, 0, 0]")
+    far = TORUS.format(error=1.0, against="phong").replace("polygons = 288",
+                                                           "polygons = 288\noffset = [100, 0, 0]")
     path.write_text(far)
     assert main(["compile", str(path), "-o", str(tmp_path / "o"), "--quiet"]) == 2
     assert capsys.readouterr().err == ("phongfx: error: tiny: no object covers a pixel in any frame; "
@@ -260,9 +273,14 @@ def test_example_scenes_compile_and_verify(tmp_path, name):
     out = tmp_path / name
     assert main(["compile", os.path.join(SCENES, f"{name}.toml"), "-o", str(out), "--quiet", "--prove"]) == 0
     data = json.loads((out / "manifest.json").read_text())
-    assert data["error"]["max"] <= data["requirement"]["max_error_levels"]
-    local = name == "local-mesh"  # a point light and a local viewer: L and V interpolated too
-    assert data["rtl_check"]["mismatches"] == 0 and data["block_counts"]["lirp"] == (3 if local else 1)
+    required = data["requirement"]["max_error_levels"]
+    assert data["error"]["max"] <= required and data["witness"]["error_levels"] <= required
+    # Lyon's datapath on the torus (one LIRP, for N); conventional Phong (no LIRP: it normalizes
+    # the interpolated vectors itself) where Figure 7 misses over the domain (Lyon's balls: spans
+    # up to 39° apart anywhere on the sphere at n = 256) or costs more (the local mesh: k = 5)
+    chosen, lirps = {"torus": ("fig7", 1)}.get(name, ("conventional", None))
+    assert data["chosen"] == chosen and data["block_counts"].get("lirp") == lirps
+    assert data["rtl_check"]["mismatches"] == 0
     proof = data["overflow_proof"]  # every overflow="error" claim of the shipped design, proven
     assert proof["claims"] and proof["counterexample"] == 0 and proof["unknown"] == 0
 
@@ -323,13 +341,17 @@ def test_the_conventional_unit_normalizes_a_point_light_and_a_local_viewer():
         assert np.any(raw[port] != codes(exact, config.vec))
 
 
-def test_asic_target_prices_in_square_microns_beside_the_phong_baseline(tmp_path, capsys):
+def _compile_tiny(tmp_path, *args):
+    """``(scene path, manifest)`` of the tiny torus compiled by the CLI with ``args``."""
     path = tmp_path / "tiny.toml"
     path.write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,conventional", "--target", "asic",
-                 "--library", "osu035", "--no-check", "--quiet"]) == 0
-    data = json.loads((out / "manifest.json").read_text())
+    assert main(["compile", str(path), "-o", str(out), "--no-check", "--quiet", *args]) == 0
+    return path, json.loads((out / "manifest.json").read_text())
+
+
+def test_asic_target_prices_in_square_microns_beside_the_phong_baseline(tmp_path, capsys):
+    _, data = _compile_tiny(tmp_path, "--methods", "fig7,conventional", "--target", "asic", "--library", "osu035")
     assert data["cost_model"] == "asic-proxy"
     cost = data["cost"]
     assert (cost["unit"], cost["target"], cost["device"], cost["model"]) == ("µm²", "asic", "osu035", "asic-proxy")
@@ -361,6 +383,9 @@ width = 24
 height = 24
 [requirement]
 against = "self"
+[domain]
+samples = 2000
+final_samples = 10000
 """
 
 
@@ -394,3 +419,34 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
     assert tried == ["fig7", "conventional"] and compiled.chosen == "conventional"
     assert compiled.results["fig7"]["overflow_proof"]["counterexample"] == 1
     assert compiled.best["overflow_proof"]["proven"] == 1
+
+
+def test_the_report_and_manifest_say_what_held_over_the_domain(tmp_path, capsys):
+    path, data = _compile_tiny(tmp_path, "--methods", "fig7", "--samples", "1500", "--final-samples", "4000")
+    text = capsys.readouterr().out
+    found = re.search(r"^chosen fig7 \(tiny_fig7\): max 1 level over the domain \(witness; frames 1\), "
+                      r"(certified ≤ ([\d.]+)|not certified: bound ([\d.]+)) \(interval\) at out_r/g/b", text, re.M)
+    assert found
+    assert re.search(r"fig7 .* \(frames 1, domain 1 on [\d,]+ points; defaults: ", text)
+    assert data["domain"]["samples"] == 1500 and data["domain"]["final_samples"] == 4000
+    assert data["domain"]["description"].startswith("Poses: ")
+    certificate = data["certificate"]  # the interval method's, sound: never under the witness
+    assert certificate["method"] == "interval" and float(found.group(2) or found.group(3)) == pytest.approx(
+        certificate["bound_levels"], rel=1e-2)
+    assert certificate["bound_levels"] >= data["witness"]["unrounded"]
+    assert certificate["certified"] == (found.group(2) is not None)
+    witness = data["witness"]
+    assert witness["error_levels"] <= 1 and witness["samples"] == 4000 and set(witness["outputs"]) == set("rgb")
+    assert data["error"]["witness"] == witness["error_levels"] and data["error"]["domain_points"] >= 1500
+    method = data["methods"]["fig7"]
+    assert method["frames_max"] <= method["max"] and method["domain_max"] <= method["max"]
+    assert data["evaluation"]["domain_samples"] == 1500 and data["path"] == str(path)
+
+
+@pytest.mark.parametrize("option, value", [("--samples", "0"), ("--final-samples", "-3")])
+def test_bad_sample_counts_exit_2(tmp_path, capsys, option, value):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    assert main(["compile", str(path), "-o", str(tmp_path / "o"), option, value, "--quiet"]) == 2
+    name = option[2:].replace("-", "_")
+    assert capsys.readouterr().err == f"phongfx: error: {name} must be a positive integer, not {value}\n"

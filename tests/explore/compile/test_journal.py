@@ -1,7 +1,8 @@
 """A rerun of the same scene resumes from the journal of measured width points."""
 
-from phongfx.explore.compile import compiler
-from phongfx.explore.compile.compiler import SceneEval, compile_scene
+from phongfx.explore.compile import measure
+from phongfx.explore.compile.compiler import compile_scene
+from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.journal import Journal, scene_key
 from phongfx.scene.file import parse_scene
 from tests.explore.compile.test_costing import TORUS
@@ -11,10 +12,10 @@ def _counting(monkeypatch):
     calls = []
     original = SceneEval._error
 
-    def counted(self, method, params):
+    def counted(self, method, params, *args):
         calls.append((method, params))
-        return original(self, method, params)
-    monkeypatch.setattr(compiler.SceneEval, "_error", counted)
+        return original(self, method, params, *args)
+    monkeypatch.setattr(measure.SceneEval, "_error", counted)
     return calls
 
 

@@ -1,0 +1,164 @@
+"""The choice among the searched methods: the cheapest design whose witness meets the requirement.
+
+:func:`choose` (:mod:`phongfx.explore.compile.compiler`'s docstring): the feasible designs by
+cost; the cheapest is searched for its worst input over the domain (its witness,
+:mod:`phongfx.explore.compile.witness`); one over the requirement sends its method back to the
+width search with hard points.  :func:`certain`: the same with a certificate that must meet
+the requirement too (``phongfx compile --certified``).
+"""
+
+from phongfx.core.registry import get_block
+
+from . import run as runs
+from . import witness as witnesses
+from .costing import TIE_MARGIN, tie
+from .search import measured_passes, search_widths
+
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "choose", "certain"]
+
+#: At most this many rounds of hard points (a witness over the requirement) per compile,
+#: and per method.
+ROUNDS = 8
+METHOD_ROUNDS = 3
+#: Points a failed witness adds to the domain sample: itself and its neighbourhood.
+HARD_POINTS = 2048
+
+def _proven(scene, result, timeout, progress):
+    """Whether ``result``'s design has no counterexample to its overflow claims (proven in
+    turn, ``result["overflow_proof"]``)."""
+    from phongfx.sim.prove import prove
+
+    name = result["method"]
+    block = get_block(runs.block_name(name), config=runs.build(name, result["params"], scene.analysis))
+    proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
+    result["overflow_proof"] = proof.as_dict()
+    return not proof.counts.get("counterexample")
+
+
+def _ranked(results):
+    """The feasible results by cost; an uncosted design (its synthesis failed) last."""
+    feasible = [r for r in results.values() if r["feasible"]]
+    return sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
+
+
+def _witness(scene, name, params, domain, progress):
+    """``(witness, hard points)`` of ``name`` at ``params``: first a local search from the
+    width search's own worst domain points, of its own seed (a miss there needs no fresh
+    sample), then the full search (:func:`phongfx.explore.compile.witness.explore`)."""
+    spec, analysis = scene.spec, scene.analysis
+    if runs.per_pixel(name):
+        starts = scene.points.worst(name, runs.build(name, params, analysis), params, witnesses.STARTS)
+        quick, hard = witnesses.explore(name, params, spec, domain, starts=starts, analysis=analysis,
+                                        hard=HARD_POINTS)
+        if quick["error_levels"] > spec.requirement.max_error_levels:
+            return quick, hard
+    return witnesses.explore(name, params, spec, domain, progress=progress, analysis=analysis, hard=HARD_POINTS)
+
+
+def choose(out, scene, cost, prove, prove_timeout, progress):
+    """The cheapest feasible design whose witness meets the requirement (module docstring)
+    and, with ``prove``, without a counterexample to its overflow claims."""
+    spec, domain = out.spec, out.domain
+    required = spec.requirement.max_error_levels
+    ranked = _ranked(out.results)
+    while ranked:
+        r = ranked[0]
+        name = r["method"]
+        found, hard = _witness(scene, name, r["params"], domain, progress)
+        r["witness"] = found
+        if found["error_levels"] <= required:
+            if prove and not _proven(scene, r, prove_timeout, progress):
+                r["why_not_chosen"] = "a counterexample to its overflow claims"
+                ranked.pop(0)
+                continue
+            out.chosen, out.witness, out.tie = name, found, tie(ranked, TIE_MARGIN)
+            return
+        ranked.pop(0)
+        step = {"method": name, "params": r["params"], "witness_levels": found["error_levels"],
+                "witness_unrounded": found["unrounded"]}
+        searched = [s["method"] for s in out.rounds if s["action"] == "searched again"]
+        mine = searched.count(name)
+        if not runs.per_pixel(name) or len(searched) >= ROUNDS or mine >= METHOD_ROUNDS:
+            r["why_not_chosen"] = (f"its witness is {found['error_levels']} levels over the domain "
+                                   f"(requirement {required:g}); "
+                                   + ("a unit fed per span takes no hard points" if not runs.per_pixel(name)
+                                      else f"after {mine} rounds of hard points"))
+            out.rounds.append({**step, "action": "not chosen"})
+            continue
+        scene.add_hard(hard)
+        if progress:
+            progress(f"{name}: witness {found['error_levels']} levels; searched again with "
+                     f"{scene.points.hard_points} hard points")
+        again = search_widths(scene, name, progress)
+        again["default"]["cost"] = r["default"]["cost"]  # the same widths: the same cost
+        if again["feasible"]:
+            again["cost"] = cost(name, again["params"], True)
+        again["superseded"] = {k: r.get(k) for k in ("params", "max", "cost", "witness")}
+        out.results[name] = again
+        out.rounds.append({**step, "action": "searched again", "hard_points": scene.points.hard_points,
+                           "params_after": again.get("params"), "feasible_after": again["feasible"],
+                           "max_after": again["max"]})
+        ranked = [x for x in _ranked(out.results) if x is again or any(x is y for y in ranked)]
+
+
+def certain(out, scene, cost, certifier, progress):
+    """``certified``: the cheapest design whose certificate meets the requirement too.
+
+    Each method with a bounding method is searched again (from its defaults, else its widest
+    widths) with both tests (its measured error
+    and its certificate, refined only until it meets: ``early``); its witness is searched as
+    for every choice.  The sampled choice is kept in :attr:`Compiled.certainty`, with what
+    certainty costs against it."""
+    spec, domain = out.spec, out.domain
+    required = spec.requirement.max_error_levels
+    sampled = out.best
+    out.certainty = {"sampled": {"method": out.chosen, "params": sampled["params"], "cost": sampled["cost"],
+                                 "certificate": out.certificate.as_dict()}, "methods": {}}
+    found = {}
+    for name, r in out.results.items():
+        first = certifier(name, r["params"], spec, domain, early=True, analysis=scene.analysis)
+        if first.bound_levels is None:  # no bounding method for this unit or scene: no width helps
+            out.certainty["methods"][name] = {"certified": False, "why": first.why}
+            continue
+        if progress:
+            progress(f"{name}: a certified design")
+        checked = {}
+
+        def passes(params, name=name):
+            key = tuple(sorted(params.items()))
+            if key not in checked:
+                checked[key] = (measured_passes(scene, name, params)
+                                and certifier(name, params, spec, domain, early=True,
+                                              analysis=scene.analysis).certified)
+            return checked[key]
+
+        result = search_widths(scene, name, progress, passes=passes)
+        result["default"]["cost"] = r["default"]["cost"]  # the same widths: the same cost
+        if not result["feasible"]:
+            out.certainty["methods"][name] = {"certified": False, "why": "no width point is both measured and "
+                                              "certified within the requirement"}
+            continue
+        result["cost"] = cost(name, result["params"], True)
+        result["certificate"] = certifier(name, result["params"], spec, domain, analysis=scene.analysis)
+        out.certainty["methods"][name] = {"certified": result["certificate"].certified,
+                                          "params": result["params"], "cost": result["cost"],
+                                          "bound_levels": result["certificate"].bound_levels}
+        if result["certificate"].certified:
+            found[name] = result
+    ranked = sorted(found.values(), key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
+    if not ranked:
+        out.certainty["why"] = "no method has a certified design within the requirement"
+        out.chosen = out.witness = None
+        return
+    best = ranked[0]
+    best["superseded"] = {k: out.results[best["method"]].get(k) for k in ("params", "max", "cost", "witness")}
+    best["witness"], _ = _witness(scene, best["method"], best["params"], domain, progress)
+    out.results[best["method"]] = best
+    out.chosen, out.witness, out.certificate = best["method"], best["witness"], best.pop("certificate")
+    out.tie = tie(ranked, TIE_MARGIN)
+    before, after = sampled["cost"]["cost"], best["cost"]["cost"]
+    out.certainty["extra_cost"] = after / before - 1 if before and after else None
+    if best["witness"]["error_levels"] > required:  # a sound bound is never under a witness
+        raise AssertionError(f"internal error: {best['method']} at {best['params']} has a witness of "
+                             f"{best['witness']['error_levels']} levels over its certificate's bound "
+                             f"{out.certificate.bound_levels:.3f}: the bound is not sound")

@@ -1,0 +1,104 @@
+"""The width search of one method: the lowest widths whose error still meets the scene's requirement.
+
+:func:`search_widths` (the steps are those of :mod:`phongfx.explore.compile.compiler`'s
+docstring): from the method's default widths, or from the widest (:func:`widest`), lower
+each width by binary search while a width point ``passes`` (its error measured by
+:class:`~phongfx.explore.compile.measure.SceneEval` meets the requirement, or that and a
+certificate for a certified choice), until no single width can drop; then the proof of local
+minimality, one lower for every width.
+"""
+
+from phongfx.explore.methods import METHODS
+
+from . import run as runs
+from .infeasible import summary
+from .measure import meets
+
+__all__ = ["width_params", "widest", "search_widths", "measured_passes"]
+
+_FIXED = ("n", "k", "lights")
+
+
+def width_params(method, against="phong"):
+    """``{name: (default, (lo, hi))}`` of the widths the search lowers; against ``"phong"``
+    Lyon's datapaths add the shape function's ``k`` (its range up to
+    :data:`~phongfx.config.shape.K_MAX`; against ``"self"`` it stays at the default, as it
+    defines the reference)."""
+    spec = METHODS[method]
+    out = {k: (v, spec.ranges[k]) for k, v in spec.params.items() if k not in _FIXED}
+    out.update(runs.extra(method))
+    if against == "phong" and runs.is_datapath(method) and "k" in spec.params:
+        out["k"] = (spec.params["k"], spec.ranges["k"])
+    return out
+
+
+def measured_passes(scene, method, params):
+    """Whether ``method`` at ``params`` meets the requirement as measured (frames and domain)."""
+    return meets(scene.error(method, params), scene.spec.requirement.max_error_levels)
+
+
+def _lowest(passes, params, name, lo):
+    """Lowest value of ``name`` in ``lo..params[name]`` that ``passes`` (binary search)."""
+    good, bad = params[name], lo - 1
+    while good - bad > 1:
+        mid = (good + bad) // 2
+        if passes({**params, name: mid}):
+            good = mid
+        else:
+            bad = mid
+    return good
+
+
+def widest(scene, method, widths):
+    """The fallback start: every width at its range maximum, and the shape function's ``k``
+    (when searched) at the value of its range with the lowest error there, since ``f_k`` is
+    Phong's power only where ``2^k = n`` (a larger k is not closer).  Returns the params
+    and ``{k: error}`` of the scan (empty without ``k``)."""
+    top = {k: r[1] for k, (_, r) in widths.items()}
+    if "k" not in widths:
+        return top, {}
+    lo, hi = widths["k"][1]
+    scan = {k: scene.error(method, {**top, "k": k}) for k in range(lo, hi + 1)}
+    return {**top, "k": min(scan, key=lambda k: (scan[k]["max"], scan[k]["mean"], k))}, scan
+
+
+def search_widths(scene, method, progress=None, passes=None):
+    """The width search of the module docstring; returns a result dict (an infeasible
+    method's is :func:`~phongfx.explore.compile.infeasible.summary`).  ``passes(params)``:
+    whether a width point is good enough (default: its measured error meets the requirement;
+    :func:`compile_scene`'s ``certified`` asks for a certificate too)."""
+    if passes is None:
+        def passes(params):
+            return measured_passes(scene, method, params)
+    widths = width_params(method, scene.spec.requirement.against)
+    default = {k: v for k, (v, _) in widths.items()}
+    start, scan = (default, {}) if passes(default) else widest(scene, method, widths)
+    result = {"method": method, "default": {"params": default, **scene.measured(method, default)}}
+    if not passes(start):
+        return {**result, **summary(scene, method, start, scan)}
+    params, changed = dict(start), True
+    while changed:
+        changed = False
+        for name, (_, (lo, _hi)) in widths.items():
+            value = _lowest(passes, params, name, lo)
+            if value < params[name]:
+                params[name], changed = value, True
+            if progress:
+                progress(f"{method} {name}={params[name]}")
+        if not changed:  # the proof pass: one lower must fail for every width
+            proof = {}
+            for name, (_, (lo, _hi)) in widths.items():
+                if params[name] <= lo:
+                    proof[name] = {"value": params[name], "lower": None, "why": "at range minimum"}
+                    continue
+                lower = {**params, name: params[name] - 1}
+                measured = scene.error(method, lower)
+                if passes(lower):
+                    params, changed = lower, True
+                    break
+                proof[name] = {"value": params[name], "lower": params[name] - 1,
+                               **{k: measured[k] for k in ("max", "why") if k in measured}}
+                if meets(measured, scene.spec.requirement.max_error_levels):
+                    proof[name]["why"] = "its certificate's bound misses the requirement"
+                proof[name]["max_error"] = proof[name].pop("max")
+    return {**result, "feasible": True, "params": params, **scene.measured(method, params), "proof": proof}
