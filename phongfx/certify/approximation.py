@@ -91,7 +91,6 @@ def _shape(x, k):
     return t
 
 
-@functools.lru_cache(maxsize=64)
 def form_table(n_eff, n, k, against="phong"):
     """Per cell ``[c_j, c_j+1]`` of ``c ∈ [-1, 1]`` (:data:`CELLS` of them), a bound on
     ``|f_k(n_eff(1 - c)) - G(c)|`` there, ``G = max(c, 0)^n`` (``"phong"``) or the form at the
@@ -105,10 +104,17 @@ def form_table(n_eff, n, k, against="phong"):
     return np.maximum(cell, 0.0) + 1e-12
 
 
-@functools.lru_cache(maxsize=64)
+#: Tables kept: one per (n the hardware applies, reference n) of a certificate, so that a
+#: material's whole n range (up to this many values) is computed once, not once per round
+#: of the branch and bound; each is 8 MB (float32).
+TABLES_KEPT = 160
+
+
+@functools.lru_cache(maxsize=TABLES_KEPT)
 def _levels(n_eff, n, k, against):
     """:func:`form_table` and its maxima over aligned blocks of 2, 4, ... cells, concatenated,
-    with the offset of each level."""
+    with the offset of each level; in float32 rounded up (never below the float64 bound), which
+    halves what a kept table costs."""
     table = form_table(n_eff, n, k, against)
     levels, offsets, at = [table], [0], len(table)
     while len(levels[-1]) > 1:
@@ -116,7 +122,8 @@ def _levels(n_eff, n, k, against):
         offsets.append(at)
         levels.append(np.maximum(last[0::2], last[1::2]))
         at += len(levels[-1])
-    return np.concatenate(levels), np.array(offsets)
+    flat = np.concatenate(levels)
+    return np.nextafter(flat.astype(np.float32), np.float32(np.inf)), np.array(offsets)
 
 
 def form_distance(n_eff, n, k, c, against="phong"):
