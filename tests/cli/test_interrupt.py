@@ -17,8 +17,12 @@ def _interrupted(args, cwd, folder):
     """Run ``python -m phongfx.cli ARGS`` in ``cwd`` with the cache in ``cwd/cache``, SIGINT it
     once its work has begun (a work folder appears in ``cwd/folder``, plus a moment); (code, stderr)."""
     env = dict(os.environ, PHONGFX_CACHE=str(Path(cwd, "cache")))  # an empty cache of its own
+    # SIGINT at its default and unblocked in the child: a test worker that inherited it ignored (a sweep's pool
+    # worker sets that) would pass it on, and Python then never raises KeyboardInterrupt
     child = subprocess.Popen([sys.executable, "-m", "phongfx.cli", *args], cwd=cwd, env=env,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                             preexec_fn=lambda: (signal.signal(signal.SIGINT, signal.SIG_DFL),
+                                                 signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})))
     deadline = time.monotonic() + 120
     while not _hidden(Path(cwd) / folder) and child.poll() is None and time.monotonic() < deadline:
         time.sleep(0.05)

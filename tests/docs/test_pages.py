@@ -131,7 +131,9 @@ def test_the_page_reader_sees_the_pages_commands():
     assert len(scene) == 1 and 'name = "my-scene"' in scene[0].text
     compile_block = next(b for b in tutorial if b.language == "console")
     (command,) = compile_block.commands()
-    assert command.line == "phongfx compile my-scene.toml -o my-core --methods fig7 --testbench --quiet"
+    assert command.line == (
+        "phongfx compile my-scene.toml -o my-core --methods fig7 --samples 100000 --final-samples 1000000 "
+        "--testbench --quiet")
     assert "cost model: ecp5-proxy; wrote my-core/manifest.json" in command.expected
     assert matches("RTL check frame 0: 1608 pixels, ... 0 mismatches, ...",
                    "RTL check frame 0: 1608 pixels, 2457 cycles (20% stalls), 0 mismatches, 1.87 s\n")

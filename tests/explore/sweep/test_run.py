@@ -335,8 +335,12 @@ def test_ctrl_c_stops_the_workers_at_once_and_a_rerun_resumes(tmp_path, to):
     import time
     (tmp_path / "spec.toml").write_text('scenes = ["sphere"]\nproxy = false\n'
                                         '[[grid]]\nmethod = "spherical"\naddr_bits = [4, 5, 6, 7]\n')
+    # SIGINT at its default and unblocked in the child, whatever this test worker inherited (an ignored SIGINT
+    # passes on through exec, and Python then never raises KeyboardInterrupt)
     child = subprocess.Popen([sys.executable, "-c", _SLOW_CHILD, str(tmp_path)], stdout=subprocess.DEVNULL,
-                             stderr=subprocess.PIPE, text=True, start_new_session=True)
+                             stderr=subprocess.PIPE, text=True, start_new_session=True,
+                             preexec_fn=lambda: (signal.signal(signal.SIGINT, signal.SIG_DFL),
+                                                 signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})))
     jsonl, deadline = tmp_path / "out" / "points.jsonl", time.monotonic() + 60
     while not (jsonl.is_file() and any(tmp_path.glob("tool*.pid"))) and child.poll() is None \
             and time.monotonic() < deadline:
