@@ -25,14 +25,12 @@ graph the clock proxy (:mod:`.clock`) walks.
 import re
 from dataclasses import dataclass, field
 
-__all__ = ["Node", "Netlist", "flatten", "REGISTERS", "COMMUTATIVE", "INPUT"]
+__all__ = ["Node", "Netlist", "flatten", "REGISTERS", "COMMUTATIVE"]
 
 #: Cell types whose output is a register (the graph's sources and sinks).
 REGISTERS = ("$dff", "$dffe", "$sdff", "$sdffe", "$adff", "$adffe", "$dffsr", "$dffsre", "$aldff", "$aldffe")
 #: Cell types whose ``A`` and ``B`` operands commute (``opt_merge`` sorts them).
 COMMUTATIVE = {"$add", "$mul", "$and", "$or", "$xor", "$xnor", "$eq", "$ne", "$logic_and", "$logic_or"}
-#: The pseudo cell type of the design's primary inputs (each registered by the flows' harness).
-INPUT = "$input"
 _OUTPUTS = {"Y", "Q", "X", "CO"}
 _CONST = re.compile(r"^(\d+)'([01xzm-]*)$")
 _SLICE = re.compile(r"^\[(\d+)(?::(\d+))?\]$")
@@ -239,8 +237,10 @@ def _is_register(kind, params):
 
 @dataclass
 class Netlist:
-    """The flattened design: ``nodes``, and per bit id its root and the ``(node, bit)``
-    that drives it (``-1`` a primary input, ``None`` a constant or an undriven bit)."""
+    """The flattened design: ``nodes``; ``driver``, per root bit id, the ``(node, bit)`` that
+    drives it; the top's ``inputs`` (bit ids) and ``outputs`` (port -> bit ids); ``root``,
+    per bit id, the bit it is joined to (0, 1, 2: the constants 0, 1, x).  A root no node
+    drives is a primary input (or undriven)."""
 
     nodes: list
     driver: dict
@@ -275,8 +275,11 @@ class Netlist:
         return self._sources[index]
 
     def _find_sources(self, index):
+        return self._drivers_of(self.nodes[index].inputs.values())
+
+    def _drivers_of(self, ports):
         found = set()
-        for bits in self.nodes[index].inputs.values():
+        for bits in ports:
             for bit in bits:
                 d = self._driver(bit)
                 if d[0] != "c":
@@ -285,13 +288,7 @@ class Netlist:
 
     def output_sources(self):
         """Indices of the nodes that drive the design's outputs (-1 for a pass-through input)."""
-        found = set()
-        for bits in self.outputs.values():
-            for bit in bits:
-                d = self._driver(bit)
-                if d[0] != "c":
-                    found.add(-1 if d[0] == "in" else d[0])
-        return found
+        return self._drivers_of(self.outputs.values())
 
     def merged(self):
         """Indices of the distinct nodes after hash-consing to a fixpoint (module docstring)."""
