@@ -45,15 +45,20 @@ import re
 
 from phongfx.explore.synth.netgraph import flatten
 
-__all__ = ["DSP_LUT_EQ", "RESOURCE_MARGIN", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
+__all__ = ["DSP_LUT_EQ", "LUT4_WEIGHTS", "RESOURCE_MARGIN", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
            "rtlil_cost", "rtlil_features", "rtlil_of"]
 
 DSP_LUT_EQ = 958
+#: LUT4 sites per counted bit (:func:`rtlil_cost`'s ``lut4``): the logic and carry bits of
+#: the RTL over-count what Yosys keeps (it trims unused high bits and folds constants), so
+#: these are fitted (``phongfx tables clock --refit``, non-negative least squares of the
+#: relative error) to the LUT4 sites of the ECP5 calibration runs.
+LUT4_WEIGHTS = {"lut": 0.362, "carry_bits": 0.833}
 #: The largest relative error of :func:`rtlil_cost`'s ``lut4`` and ``dsp`` against ECP5
-#: synthesis (``|synthesized / proxy - 1|``, the LUT4s as nextpnr counts them: LUT4 cells
-#: and two per CCU2C carry cell) over the calibration runs of ``phongfx tables clock``:
-#: the margin a device fit keeps around the proxy's counts.
-RESOURCE_MARGIN = {"lut4": 0.5, "dsp": 0.35}
+#: synthesis (``|synthesized / proxy - 1|``, the LUT4 sites as nextpnr counts them: LUT4
+#: cells and two per CCU2C carry cell) over the calibration runs of ``phongfx tables
+#: clock`` of 1,000 LUT4 sites or more: the margin a device fit keeps around the counts.
+RESOURCE_MARGIN = {"lut4": 0.15, "dsp": 0.0}
 #: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
 FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
 #: µm² per bit of each feature on each library, fitted by
@@ -158,9 +163,10 @@ def rtlil_features(text):
 
 def rtlil_cost(text):
     """``{lut_eq, lut, dsp, carry_bits, ff_bits, lut4}`` of RTLIL ``text`` (module docstring);
-    ``lut4`` counts the LUT4 sites the design fills on ECP5, logic and carry alike (a
+    ``lut4`` estimates the LUT4 sites the design fills on ECP5, logic and carry alike (a
     CCU2C carry cell fills two sites for two bits), what a part's ``lut4`` capacity counts
-    (:func:`~phongfx.explore.synth.fpga.device_resources`)."""
+    (:func:`~phongfx.explore.synth.fpga.device_resources`): the logic and carry bits
+    weighted by :data:`LUT4_WEIGHTS`."""
     lut = dsp = carry = ff = 0
     for kind, *n in _parts(text):
         if kind == "mul":
@@ -176,7 +182,7 @@ def rtlil_cost(text):
         else:
             ff += n[0]
     return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff,
-            "lut4": lut + carry}
+            "lut4": round(LUT4_WEIGHTS["lut"] * lut + LUT4_WEIGHTS["carry_bits"] * carry)}
 
 
 def _coefficients(library):
