@@ -95,11 +95,14 @@ def _zeros(nested):
 
 def frame_inputs(method, config, geometry, n):
     """Raw shader input codes of one frame with per-pixel shininess ``n`` (visible pixels;
-    every span pixel for the units fed per span): each copy's stream side by side, and
-    the pixel's material."""
+    every span pixel for the units fed per span): each copy's stream side by side, the
+    shared inputs (:attr:`~phongfx.config.ShaderConfig.shared`) once, and the pixel's
+    material."""
     streams = hooks(method).streams(method, config, geometry, n)
-    raw = {config.prefix(copy) + name: value for copy, stream in enumerate(streams)
-           for name, value in stream.items()}
+    raw = {}
+    for copy, stream in enumerate(streams):
+        for name, value in stream.items():  # a shared input (the same in every stream) once
+            raw.setdefault(config.port_name(copy, name), value)
     if "material" in config.inputs:
         raw["material"] = np.asarray(geometry.material, dtype=np.int64)
     return raw
