@@ -79,15 +79,18 @@ def _proxy(block, target, device):
     return {"cost": area["area_um2"] if target == "asic" else area["lut_eq"], "fmax_mhz": clock["fmax_mhz"]}
 
 
-def measure(scenes=None, designs=None, targets=TARGETS, log=_log):
+def measure(scenes=None, designs=None, targets=TARGETS, depths=None, log=_log):
     """One row per (scene, architecture, target): synthesized and proxy cost and Fmax, the
-    cycles per pixel and the pixel rates (module docstring)."""
+    cycles per pixel and the pixel rates (module docstring); ``depths``: only those pipeline
+    depths (default every one)."""
     rows = []
     for scene in scenes or list(designs or DESIGNS):
         method, params = (designs or DESIGNS)[scene]
         spec = load_scene(os.path.join(ROOT, "scenes", f"{scene}.toml"))
         analysis = analyse(spec, frames(spec))
         for arch in variants(method, analysis):
+            if depths is not None and arch.get("pipeline", 0) not in depths:
+                continue
             config = runs.build(method, params, analysis, arch)
             block = get_block("shader", config=config)
             for target, device, _, unit in targets:
@@ -95,7 +98,7 @@ def measure(scenes=None, designs=None, targets=TARGETS, log=_log):
                 start = time.perf_counter()
                 synthesized = _synthesize(config, target, device, lambda stage: log(f"{label}: {stage}"))
                 proxy = _proxy(block, target, device)
-                interval = getattr(block, "interval", 1)
+                interval = config.interval
                 rows.append({"scene": scene, "method": method, "params": params, "architecture": arch,
                              "target": target, "device": device, "unit": unit, "interval": interval,
                              "latency": block.latency, **synthesized,
@@ -176,10 +179,11 @@ def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m bench.fronts", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", nargs="*", choices=list(DESIGNS), help="scenes (default all)")
     parser.add_argument("--target", nargs="*", choices=[t[0] for t in TARGETS], help="targets (default both)")
+    parser.add_argument("--depth", nargs="*", type=int, help="pipeline depths (default every one)")
     parser.add_argument("--out", default="build/bench", help="folder for fronts.json and fronts.md")
     args = parser.parse_args(argv)
     targets = [t for t in TARGETS if not args.target or t[0] in args.target]
-    rows = measure(args.scene, targets=targets)
+    rows = measure(args.scene, targets=targets, depths=args.depth)
     text = markdown(rows)
     atomic_write(os.path.join(args.out, "fronts.json"), lambda p: open(p, "w").write(json.dumps(rows, indent=2)))
     atomic_write(os.path.join(args.out, "fronts.md"), lambda p: open(p, "w").write(text + "\n"))
