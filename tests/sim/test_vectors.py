@@ -66,3 +66,12 @@ def test_the_stimulus_of_a_seed_is_unchanged(name):
         digest.update(port.encode())
         digest.update(np.ascontiguousarray(raw[port]).tobytes())
     assert digest.hexdigest()[:16] == STIMULUS_DIGESTS[name]
+
+
+def test_an_interval_spaces_the_vectors():
+    # interval 3: two bubbles after every vector, on top of the drawn ones
+    assert schedule(4, 0.0, 0, interval=3).tolist() == [0, -1, -1, 1, -1, -1, 2, -1, -1, 3, -1, -1]
+    drawn = schedule(12, 0.25, 0)
+    spaced = schedule(12, 0.25, 0, interval=2)
+    assert len(spaced) == len(drawn) + 12 and spaced[spaced >= 0].tolist() == list(range(12))
+    assert spaced[:8].tolist() == [0, -1, 1, -1, -1, -1, 2, -1]
