@@ -182,7 +182,7 @@ def test_build_report_leaves_index_on_error(tmp_path, monkeypatch):
 
 
 def test_build_report_rejects_unknown_table(tmp_path):
-    with pytest.raises(ValueError, match=r"^unknown table 'nope'; valid tables: lyon, szirmay, schlick, hast, cost, proxy, pipeline, extremes$"):
+    with pytest.raises(ValueError, match=r"^unknown table 'nope'; valid tables: lyon, szirmay, schlick, hast, cost, proxy, pipeline, clock, extremes$"):
         build_report(out_dir=str(tmp_path), sweep_dir=str(tmp_path), tables=("nope",))
 
 

@@ -177,5 +177,5 @@ def test_cli_unknown_table_exits_2(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["tables", "nope", "--out", str(out)]) == 2
     err = capsys.readouterr().err
-    assert re.fullmatch(r"phongfx: error: unknown table 'nope'; valid tables: lyon, szirmay, schlick, hast, cost, proxy, pipeline, extremes\n", err), err
+    assert re.fullmatch(r"phongfx: error: unknown table 'nope'; valid tables: lyon, szirmay, schlick, hast, cost, proxy, pipeline, clock, extremes\n", err), err
     assert not out.exists()
