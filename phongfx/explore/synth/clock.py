@@ -34,7 +34,7 @@ import math
 from phongfx.explore.synth.netgraph import flatten
 
 __all__ = ["FEATURES", "COEFFICIENTS", "ERROR", "TARGETS", "cell_features", "critical_path", "clock_rtlil",
-           "proxy_clock", "estimate"]
+           "clock_netlist", "proxy_clock", "estimate"]
 
 #: The amounts a cell's delay is linear in (module docstring); ``stage`` is 1 per path.
 FEATURES = ("stage", "mul", "mul_tiles", "mul_bits", "carry", "carry_bits", "carry_log", "lut")
@@ -200,6 +200,11 @@ def clock_rtlil(block, target):
     return design_rtlil(block, "top", dsp_mapping_of(block, target))
 
 
+def clock_netlist(block, target):
+    """:func:`clock_rtlil` of ``block`` on ``target``, flattened: what the estimate walks."""
+    return flatten(clock_rtlil(block, target))
+
+
 def _describe(amounts, path, ns):
     parts = [f"{int(amounts[k])} {label}" for k, label in
              (("mul", "multiplier"), ("carry", "carry chain"), ("lut", "LUT level")) if amounts[k]]
@@ -228,4 +233,4 @@ def proxy_clock(block, target="ecp5", device=None):
     if device is not None and device not in allowed:
         raise ValueError(f"device must be one of {', '.join(allowed)} for the {target} clock proxy, "
                          f"not {device!r}")
-    return estimate(flatten(clock_rtlil(block, target)), target)
+    return estimate(clock_netlist(block, target), target)

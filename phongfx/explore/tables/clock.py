@@ -24,8 +24,7 @@ from phongfx.config import MAX_PIPELINE, BlendConfig, ShaderConfig
 from phongfx.core.registry import get_block
 
 from phongfx.explore.progress import Candidates
-from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, clock_rtlil, critical_path
-from phongfx.explore.synth.netgraph import flatten
+from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, clock_netlist, critical_path
 from phongfx.explore.synth.proxy import RESOURCE_MARGIN, rtlil_cost, rtlil_of
 from phongfx.explore.tables.proxy import relative_nnls
 
@@ -74,10 +73,6 @@ def points(depths=DEPTHS):
     return result
 
 
-def _netlist(block, target):
-    return flatten(clock_rtlil(block, target))
-
-
 def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=None):
     """One row per point of ``selected`` (default :func:`points`) and target: ``label``,
     ``block``, ``depth``, ``target``, the synthesized ``fmax_mhz`` and ``critical_path``,
@@ -99,7 +94,7 @@ def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=N
             options = {} if target == "asic" else {"seed": SEED}
             result = synth(name, config=config, target=target, device=device, freq=FREQ, workdir=workdir,
                            progress=stage, **options)
-            netlist = _netlist(block, target)
+            netlist = clock_netlist(block, target)
             ns, amounts, path = critical_path(netlist, COEFFICIENTS[target])
             row = {"label": label, "block": name, "depth": depth, "target": target, "device": device,
                    "fmax_mhz": result["fmax_mhz"], "critical_path": result.get("critical_path"),

@@ -5,7 +5,7 @@ import pytest
 
 from phongfx.core.registry import get_block
 from phongfx.explore.synth import fpga
-from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, critical_path, proxy_clock
+from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, clock_netlist, critical_path, proxy_clock
 from phongfx.explore.tables import clock as clock_table
 
 
@@ -25,7 +25,7 @@ def test_fit_recovers_the_periods_of_known_coefficients():
     truth = {k: v for k, v in zip(FEATURES, (0.9, 2.5, 0.0, 0.08, 0.4, 0.0, 0.2, 0.3))}
     blocks = [get_block(name, pipeline=depth) for name in ("shape", "difference", "diffuse", "lirp")
               for depth in (0, 2)]
-    netlists = [clock_table._netlist(block, "asic") for block in blocks]
+    netlists = [clock_netlist(block, "asic") for block in blocks]
     periods = [critical_path(netlist, truth)[0] for netlist in netlists]
     start = dict.fromkeys(FEATURES, 1.0)
     found = clock_table.fit(netlists, periods, start)
