@@ -11,7 +11,8 @@ Three rooms and the pieces they share:
 * :mod:`.methods`: the sweepable methods (block, width parameters, how to build and run
   them) and the reference scenes; :mod:`.evaluate`: one method at one width point;
 * :mod:`.report`: Pareto fronts and the report page; :mod:`.progress`: the progress
-  bars of the long runs;
+  bars of the long runs; :mod:`.cluster`: independent jobs on Dask (the sweeps and the
+  parallel synthesis share it);
 * :mod:`.compile`: the scene compiler (the cheapest datapath whose error a scene hides).
 
 May import every layer but ``phongfx.cli``.

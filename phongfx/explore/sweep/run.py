@@ -12,6 +12,7 @@ rebuilt from the records at the end of every run.
 """
 
 import csv
+import functools
 import json
 import multiprocessing
 import os
@@ -209,38 +210,12 @@ def _execute_pool(evaluate, points, record, workers):
 
 
 def _execute_dask(evaluate, points, record, workers, scheduler):
-    try:
-        from dask.distributed import Client, LocalCluster
-        from dask.distributed import as_completed as dask_completed
-    except ImportError:
-        raise ValueError(f"scheduler {scheduler!r} needs Dask, which is not installed: "
-                         f"pip install phongfx[cluster]") from None
-    import logging
-    cluster = None
-    try:
-        if scheduler == "local":
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None, silence_logs=logging.ERROR)
-            client = Client(cluster)
-        else:
-            try:
-                client = Client(scheduler, timeout=10)
-            except OSError as error:
-                raise ValueError(f"cannot reach the Dask scheduler {scheduler!r}: {error}") from None
-        try:
-            futures = {client.submit(_run_point, evaluate, point, pure=False): point
-                       for point in points}
-            try:
-                for future in dask_completed(list(futures)):
-                    record(_collect(future, futures[future]))
-            except KeyboardInterrupt:
-                client.cancel(list(futures))
-                raise
-        finally:
-            client.close()
-    finally:
-        if cluster is not None:
-            cluster.close()
+    from phongfx.explore.cluster import run_on_dask
+
+    def done(index, value, error):  # a worker that died (not the point) is a failure too
+        record(value if error is None else _record(points[index], "failed", _one_line(error), 0.0, {}, None))
+
+    run_on_dask(functools.partial(_run_point, evaluate), points, done, scheduler=scheduler, workers=workers)
 
 
 def run_sweep(spec, *, out="build/sweep", workers=None, scheduler=None, progress=True,

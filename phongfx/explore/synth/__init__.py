@@ -6,6 +6,7 @@
   timing (OpenSTA);
 * :mod:`.toolrun`: what both flows share (the synthesis harness, the RTLIL of a
   design, the cache of finished runs);
+* :mod:`.parallel`: many syntheses at once on Dask, with progress per candidate;
 * :mod:`.netlist`: the synthesized FPGA netlist simulated against the golden model;
 * :mod:`.proxy`: tool-free cost estimates from the elaborated RTLIL (LUT-eq, and µm²
   fitted to the standard-cell flow by ``phongfx tables proxy``).
@@ -14,9 +15,10 @@
 from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, Library, asic_synth
 from phongfx.explore.synth.fpga import ALL_TARGETS, TARGETS, SynthError, Target, markdown, synth
 from phongfx.explore.synth.netlist import NETLIST_TARGETS, check_netlist, synth_netlist
+from phongfx.explore.synth.parallel import synth_all
 from phongfx.explore.synth.proxy import proxy_area, proxy_cost, proxy_estimate
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "synth", "markdown",
            "Library", "LIBRARIES", "DEFAULT_LIBRARY", "asic_synth",
            "NETLIST_TARGETS", "synth_netlist", "check_netlist",
-           "proxy_cost", "proxy_area", "proxy_estimate"]
+           "proxy_cost", "proxy_area", "proxy_estimate", "synth_all"]
