@@ -28,7 +28,7 @@ from phongfx.core.registry import get_block
 from . import run as runs
 
 __all__ = ["DEFAULT", "CLOCK_MAX", "Speed", "candidates", "timing", "price", "pick", "proposals", "describe",
-           "eligible", "rank_key", "refusal"]
+           "eligible", "rank_key", "refusal", "config_of", "timing_of"]
 
 #: The architecture compiled when no speed is asked: one unit per light side by side,
 #: unpipelined, the light-independent inputs taken once.
@@ -224,3 +224,23 @@ def fit_text(result):
              else "no part of this target holds it")
     return [f"{result['method']} at {result['params']} ({describe(result['cost'].get('architecture'))}) does not "
             f"fit the {fit.get('part')}: {', '.join(counts) or fit.get('why', 'over')}; {where}"]
+
+
+def config_of(result, analysis):
+    """The shader config of a search result (``{"method", "params", "cost"}``) at the
+    architecture its cost chose (:data:`DEFAULT` when it has none)."""
+    architecture = (result.get("cost") or {}).get("architecture")
+    return runs.build(result["method"], result["params"], analysis, architecture)
+
+
+#: The keys of a cost dict that say how fast the design runs (the manifest's ``"timing"``).
+TIMING_KEYS = ("architecture", "interval", "latency", "latency_ns", "fmax_mhz", "clock_mhz", "clock_source",
+               "clock_model", "clock_error", "pixel_rate_mpx", "requirement_mpx", "clock_required_mhz", "met",
+               "missed_by_mhz", "missed_by_percent")
+
+
+def timing_of(cost):
+    """The manifest's ``"timing"`` of a chosen design's cost dict: its architecture, interval,
+    latency (cycles, ns), clock (MHz, and its source: ``"proxy"`` or ``"synthesis"``), pixel
+    rate, the requirement and whether it is ``met`` (by how much it is missed when not)."""
+    return {k: cost[k] for k in TIMING_KEYS if k in cost}

@@ -11,7 +11,7 @@ from phongfx.core.registry import get_block
 
 from . import run as runs
 from . import witness as witnesses
-from .architecture import eligible, rank_key
+from .architecture import config_of, eligible, rank_key
 from .costing import TIE_MARGIN, tie
 from .search import measured_passes, search_widths
 
@@ -30,7 +30,7 @@ def _proven(scene, result, timeout, progress):
     from phongfx.sim.prove import prove
 
     name = result["method"]
-    block = get_block(runs.block_name(name), config=runs.build(name, result["params"], scene.analysis))
+    block = get_block(runs.block_name(name), config=config_of(result, scene.analysis))
     proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
     result["overflow_proof"] = proof.as_dict()
     return not proof.counts.get("counterexample")

@@ -152,12 +152,12 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     names = check_methods(methods)
     if target not in COST_UNITS:
         raise ValueError(f"target must be one of {', '.join(COST_UNITS)}, not {target!r}")
+    speed = Speed(spec.requirement.mpixels_per_second, clock)  # checked before the minutes of search
     scene = SceneEval(spec, geometries, journal=journal)
     domain = scene_domain(spec, scene.geometries, samples, final_samples)
     if progress:
         progress(f"drawing {domain.samples:,} domain points")
     scene.measure_domain(DomainPoints(spec, domain))
-    speed = Speed(spec.requirement.mpixels_per_second, clock)
     freq = clock or freq
     out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy", domain=domain,
                    speed=speed)
