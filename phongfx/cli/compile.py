@@ -240,7 +240,8 @@ def cmd_compile(args):
           f"at out_r/g/b, "
           f"mean {error['mean']:.4f} ({witness['unrounded']:.3f} against the unrounded reference), "
           f"{_cost(data['cost'])}, latency {data['latency']}")
-    print(timing_line(data["timing"]))
+    if data["timing"].get("architecture"):  # not when every synthesis of the design failed
+        print(timing_line(data["timing"]))
     for line in fit_lines(data.get("fit")):
         print(line)
     for step in data["witness_rounds"]:
