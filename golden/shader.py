@@ -1,7 +1,7 @@
 """Golden model of a whole shader: the shading unit's copies, then the blend to r, g, b.
 
 Each copy of the unit (:class:`~phongfx.config.ShaderConfig` ``units``) runs its own golden
-model on its own inputs; every light's diffuse and specular terms, in the order
+model on its own inputs and the shared ones; every light's diffuse and specular terms, in the order
 :attr:`~phongfx.config.ShaderConfig.terms` gives, go to :func:`~phongfx.golden.blend.blend`
 with the pixel's material.  Nothing is narrowed between them: the blend takes the
 unit's output formats as they are.
@@ -26,7 +26,8 @@ def shader(config, **ports):
     config : ShaderConfig
     ports : Fixed
         Every input of ``config.inputs``: the unit's (prefixed ``c<j>_`` per copy when there
-        are several) and ``material`` when the blend has several materials.
+        are several, except the shared ones) and ``material`` when the blend has several
+        materials.
 
     Returns
     -------
@@ -39,16 +40,27 @@ def shader(config, **ports):
 def shader_terms(config, **ports):
     """The blend's inputs :func:`shader` computes: every light's ``diff<i>`` (when the unit
     has a diffuse output) and ``spec<i>``, and ``material``; a caller that also needs the
-    terms (the scene compiler's backside test) blends them itself."""
+    terms (the scene compiler's backside test) blends them itself.
+
+    Each cycle ``t`` of :attr:`~phongfx.config.ShaderConfig.interval` runs the physical
+    copies on what :meth:`~phongfx.config.ShaderConfig.feeds` gives them (the shared inputs
+    fanned out to every copy, light ``t·per_cycle + j`` to copy ``j``), as the hardware does;
+    the terms are blended once, so any interval gives interval 1's codes."""
     unit = REGISTRY[config.unit].load("golden")
-    outputs = [unit(sub, **{name: ports[config.prefix(copy) + name] for name in sub.inputs})
-               for copy, sub in enumerate(config.units)]
+    per = config.per_cycle
+    slots = config.physical_terms
     terms = {}
-    for light, (copy, diff, lane, spec) in enumerate(config.terms):
-        if diff is not None:
-            value = outputs[copy][diff]
-            terms[f"diff{light}"] = value if lane is None else Fixed(value.raw[:, lane], value.fmt)
-        terms[f"spec{light}"] = outputs[copy][spec]
+    for group in range(config.interval):
+        outputs = [unit(sub, **{name: ports[port] for name, port in feed.items()})
+                   for sub, feed in zip(config.physical_units, config.feeds(group))]
+        for slot, (copy, diff, lane, spec) in enumerate(slots):
+            light = group * per + slot
+            if light >= config.lights:
+                continue
+            if diff is not None:
+                value = outputs[copy][diff]
+                terms[f"diff{light}"] = value if lane is None else Fixed(value.raw[:, lane], value.fmt)
+            terms[f"spec{light}"] = outputs[copy][spec]
     if "material" in ports:
         terms["material"] = ports["material"]
     return terms

@@ -12,7 +12,8 @@ __all__ = ["Shader"]
 class Shader(PipelinedBlock):
     """The shading unit (one copy, or one per light) feeding :class:`~phongfx.hdl.blend.Blend`.
 
-    The copies run side by side on their own inputs (:class:`~phongfx.config.ShaderConfig`);
+    The copies run side by side on their own inputs and the shared ones, one wire fanned
+    out to every copy (:attr:`~phongfx.config.ShaderConfig.shared`);
     every light's diffuse and specular outputs and the pixel's ``material`` (delayed by the
     cycle tags to meet the slowest copy's) go to the blend, whose ``r``, ``g``, ``b`` are the
     shader's outputs.
@@ -40,9 +41,9 @@ class Shader(PipelinedBlock):
 
     def datapath(self, m, i):
         c = self.config
-        for copy, (unit, sub) in enumerate(zip(self._units, c.units)):
+        for copy, (unit, feed) in enumerate(zip(self._units, c.feeds(0))):
             m.submodules[f"unit{copy}"] = unit
-            unit.feed(m, self.i.valid, {name: i[c.prefix(copy) + name] for name in sub.inputs})
+            unit.feed(m, self.i.valid, {name: i[port] for name, port in feed.items()})
         m.submodules.blend = self._blend
         results = [unit.results() for unit in self._units]
         terms = {}

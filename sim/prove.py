@@ -102,12 +102,12 @@ class Proof:
 
 
 def _copies(config):
-    """``[(prefix, unit config)]``: a shader's copies (``c<j>_``), else the block itself."""
+    """``[(port name of a unit input, unit config)]``: a shader's copies (``c<j>_`` before
+    their own inputs, the shared ones unprefixed), else the block itself."""
     units = getattr(config, "units", None)
     if units is None:
-        return [("", config)]
-    prefix = getattr(config, "prefix")
-    return [(prefix(j), unit) for j, unit in enumerate(units)]
+        return [(lambda name: name, config)]
+    return [(functools.partial(config.port_name, j), unit) for j, unit in enumerate(units)]
 
 
 def _find(config, name):
@@ -131,12 +131,16 @@ def assumptions(config):
 
     out = []
     inputs = config.inputs
-    for prefix, unit in _copies(config):
+    seen = set()
+    for port_name, unit in _copies(config):
         for name, hi_name, text in (("a", None, "0 <= a <= 1"), ("t", None, "0 <= t <= 1"),
                                     ("n", "n_max", "1 <= n <= n_max = {}"), ("m", "m_max", "1 <= m <= m_max = {}")):
-            port = prefix + name
-            if port not in inputs or inputs[port][1] != 1:  # a vector named n is a normal, not n
+            port = port_name(name)
+            prefix = port[:-len(name)]
+            # a vector named n is a normal, not n; a shared input is bounded once
+            if port not in inputs or inputs[port][1] != 1 or port in seen:
                 continue
+            seen.add(port)
             fmt = Format.parse(inputs[port][0])
             top = 1 if hi_name is None else _find(unit, hi_name)
             if top is None:

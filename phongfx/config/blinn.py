@@ -57,6 +57,9 @@ class BlinnConfig(BlockConfig):
     #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
     #: takes it (:func:`phongfx.config.shader.unit_terms`)
     TERMS = ("diffuse", None, "specular")
+    #: The inputs that depend on the light: one per copy in a shader; the others (N, ``n``)
+    #: enter a shader once and fan out to every copy (:attr:`phongfx.config.ShaderConfig.shared`)
+    PER_LIGHT = ("light", "half")
 
     def validate(self):
         check_format("vec", self.vec, signed=True)

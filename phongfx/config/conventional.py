@@ -44,6 +44,11 @@ class ConventionalConfig(BlinnConfig):
     #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
     #: takes it (:func:`phongfx.config.shader.unit_terms`)
     TERMS = ("diffuse", None, "specular")
+    #: The inputs that depend on the light (:attr:`BlinnConfig.PER_LIGHT`); N, V and ``n``
+    #: enter a shader once, V only when every copy takes it alike (the same ``local_viewer``)
+    PER_LIGHT = ("light",)
+    #: A shared input -> the fields every copy must agree on for it to be shared
+    SHARED_ALIKE = {"view": ("local_viewer",)}
 
     def validate(self):
         super().validate()

@@ -218,11 +218,13 @@ class DatapathConfig(BlockConfig):
         else:
             ports["v"] = (vec, 3)
         for i in range(self.lights):
-            if self.local_light(i):
-                ports.update({f"l{i}_0": (end, 3), f"l{i}_1": (end, 3)})
-            else:
-                ports[f"l{i}"] = (vec, 3)
+            ports.update({name: (end if self.local_light(i) else vec, 3) for name in self.light_inputs(i)})
         return ports
+
+    def light_inputs(self, index):
+        """The input ports of light ``index``: its span ends ``l<i>_0``, ``l<i>_1`` when it is
+        interpolated, else its constant ``l<i>``; every other input is the same for all lights."""
+        return (f"l{index}_0", f"l{index}_1") if self.local_light(index) else (f"l{index}",)
 
     @property
     def outputs(self):

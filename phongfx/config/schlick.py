@@ -30,6 +30,9 @@ class SchlickConfig(BlockConfig):
     #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
     #: takes it: no diffuse output (:func:`phongfx.config.shader.unit_terms`)
     TERMS = (None, None, "spec")
+    #: The inputs that depend on the light: the cosine; ``n`` enters a shader once
+    #: (:attr:`phongfx.config.ShaderConfig.shared`)
+    PER_LIGHT = ("t",)
 
     def validate(self):
         if self.rounding not in ("truncate", "round_half_up"):

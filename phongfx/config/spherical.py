@@ -34,6 +34,9 @@ class SphericalConfig(BlockConfig):
     #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
     #: takes it: the ``diff`` vector's first lane (:func:`phongfx.config.shader.unit_terms`)
     TERMS = ("diff", 0, "spec")
+    #: The inputs that depend on the light (its angles and constants); ``init``, the
+    #: scanline's start, enters a shader once (:attr:`phongfx.config.ShaderConfig.shared`)
+    PER_LIGHT = ("b", "s", "c", "bd", "sd", "cd")
 
     def validate(self):
         theta = check_format("theta", self.theta, signed=True)

@@ -1,7 +1,7 @@
 """Stimulus for the whole shader: each copy's unit stimulus, side by side, and materials.
 
 Every copy of the unit gets its own block's stimulus (seeded per copy), cut to the
-shortest, so directed extremes of each unit reach the blend; the ``material`` input,
+shortest (a shared input, :attr:`~phongfx.config.ShaderConfig.shared`, the first copy's), so directed extremes of each unit reach the blend; the ``material`` input,
 when there is one, takes every code in turn on the directed vectors and random codes
 after them.  The extreme rows are the Lyon datapaths' rows seen at the pixel: with every
 term at full scale the blend saturates or gives the exact sum of its constants, and at
@@ -33,8 +33,10 @@ def _materials(config, count, g, directed=64):
 def _side_by_side(config, parts):
     """One raw input dict of the shader from one raw dict per copy (cut to the shortest)."""
     count = min(len(next(iter(part.values()))) for part in parts)
-    raw = {config.prefix(copy) + name: np.asarray(value)[:count]
-           for copy, part in enumerate(parts) for name, value in part.items()}
+    raw = {}
+    for copy, part in enumerate(parts):
+        for name, value in part.items():  # a shared input takes the first copy's codes
+            raw.setdefault(config.port_name(copy, name), np.asarray(value)[:count])
     return raw, count
 
 

@@ -1,6 +1,6 @@
 import pytest
 
-from phongfx.config import BlendConfig, ConventionalConfig, ShaderConfig, fig7_config
+from phongfx.config import BlendConfig, BlinnConfig, ConventionalConfig, ShaderConfig, fig7_config
 
 
 def _blend(lights=2, **changes):
@@ -18,10 +18,25 @@ def test_defaults_are_figure_7_with_two_lights_and_grey_blend():
 
 def test_one_light_units_take_one_copy_each_with_prefixed_inputs():
     units = (ConventionalConfig(local_light=True), ConventionalConfig())
-    config = ShaderConfig(unit="conventional", units=units, blend=_blend(diff="1.15"))
+    config = ShaderConfig(unit="conventional", units=units, blend=_blend(diff="1.15"), share=False)
     assert config.copies == 2 and config.terms[1] == (1, "diffuse", None, "specular")
     assert {"c0_normal", "c0_light", "c1_normal", "c1_n"} <= set(config.inputs)
-    assert "normal" not in config.inputs
+    assert "normal" not in config.inputs and config.shared == ()
+
+
+def test_what_does_not_depend_on_the_light_enters_once():
+    units = (ConventionalConfig(local_light=True), ConventionalConfig())
+    config = ShaderConfig(unit="conventional", units=units, blend=_blend(diff="1.15"))
+    assert config.shared == ("normal", "view", "n")
+    assert list(config.inputs) == ["normal", "view", "n", "c0_light", "c1_light"]
+    assert config.port_name(1, "normal") == "normal" and config.port_name(1, "light") == "c1_light"
+    # V is shared only when every copy takes it alike (a local viewer in one copy only: not)
+    mixed = config.replace(units=(ConventionalConfig(local_viewer=True), ConventionalConfig()))
+    assert mixed.shared == ("normal", "n") and {"c0_view", "c1_view"} <= set(mixed.inputs)
+    blinn = ShaderConfig(unit="blinn", units=(BlinnConfig(),) * 2, blend=_blend(diff="1.15"))
+    assert list(blinn.inputs) == ["normal", "n", "c0_light", "c0_half", "c1_light", "c1_half"]
+    # one copy (Lyon's datapaths hold every light): nothing changes
+    assert list(ShaderConfig().inputs) == list(ShaderConfig(share=False).inputs) == list(fig7_config().inputs)
 
 
 def test_material_port_comes_from_the_blend():

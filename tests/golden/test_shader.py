@@ -1,6 +1,6 @@
 import numpy as np
 
-from phongfx.config import BlendConfig, ShaderConfig, halfway_config
+from phongfx.config import BlendConfig, ConventionalConfig, ShaderConfig, halfway_config
 from phongfx.core.registry import get_block
 from phongfx.explore.tables.extremes import run_block
 
@@ -51,3 +51,19 @@ def test_shader_raw_gives_the_shader_codes_and_the_diffuse_terms_chunk_by_chunk(
     for name in ("diff0", "diff1"):
         assert np.array_equal(out[name], unit[name])
     assert len(out["r"]) > CHUNK and np.count_nonzero(out["diff0"]) > 100
+
+
+def test_a_shared_input_feeds_every_copy_as_per_copy_inputs_would():
+    grey = ((0.5, 0.5, 0.5),) * 2
+    units = (ConventionalConfig(local_light=True), ConventionalConfig())
+    shared = ShaderConfig(unit="conventional", units=units,
+                          blend=BlendConfig(diff="1.15", diffuse=(grey,), specular=(grey,)))
+    apart = shared.replace(share=False)
+    raw = get_block("shader", config=shared).stimulus(count=300, seed=2)
+    copied = {apart.prefix(copy) + name: raw[shared.port_name(copy, name)]
+              for copy, sub in enumerate(units) for name in sub.inputs}
+    want = get_block("shader", config=apart).golden(copied)
+    got = get_block("shader", config=shared).golden(raw)
+    for name in "rgb":
+        assert np.array_equal(got[name], want[name])
+    assert len(np.unique(got["r"])) > 20

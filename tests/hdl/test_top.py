@@ -32,6 +32,19 @@ def module_ports(text, module):
     return {name: (direction, int(msb) + 1 if msb else 1) for direction, msb, name in declarations}
 
 
+@pytest.mark.parametrize("unit", ["conventional", "blinn"])
+def test_the_normal_enters_a_two_light_top_once(unit):
+    from phongfx.config import BlendConfig, BlinnConfig, ConventionalConfig, ShaderConfig
+
+    grey = ((0.5, 0.5, 0.5),) * 2
+    cls = ConventionalConfig if unit == "conventional" else BlinnConfig
+    config = ShaderConfig(unit=unit, units=(cls(),) * 2, blend=BlendConfig(diff="1.15", diffuse=(grey,), specular=(grey,)))
+    names = [port["name"] for port in port_map(config)]
+    assert names.count("in_normal_x") == 1 and names.count("in_n") == 1
+    assert not [name for name in names if "_normal" in name and name.startswith("in_c")]
+    assert {"in_c0_light_x", "in_c1_light_x"} <= set(names)
+
+
 def test_lirp_ports():
     text = top_verilog(get_block("lirp").component(), "lirp")
     lanes = {f"in_{v}_{axis}": ("input", 12) for v in ("n0", "n1") for axis in "xyz"}

@@ -13,12 +13,13 @@ What differs between methods is their ``compile`` face in the method registry
 
 import numpy as np
 
-from phongfx.config import BlendConfig, ShaderConfig
-from phongfx.config.shader import unit_terms
+from phongfx.config import MAX_PIPELINE, BlendConfig, ShaderConfig
+from phongfx.config.shader import intervals, unit_terms
 from phongfx.core.methods import get_method
 from phongfx.explore.methods import METHODS
 
-__all__ = ["EXTRA", "COEF_DEFAULT", "hooks", "is_datapath", "per_pixel", "rejection", "unit_config", "build",
+__all__ = ["EXTRA", "COEF_DEFAULT", "ARCHITECTURE", "hooks", "is_datapath", "per_pixel", "rejection", "unit_config",
+           "build", "architectures",
            "frame_inputs", "visible", "frame_codes", "own_specular", "block_name", "copies"]
 
 #: Fraction bits of the blend's constants (``coef``) at a method's defaults: their rounding
@@ -70,12 +71,37 @@ def unit_config(method, params, analysis, light=None):
     return hooks(method).fit(method, spec.build(spec.resolve(own)), params, analysis, light)
 
 
-def build(method, params, analysis):
+#: The architecture :func:`build` takes when given none: depth 0, one pixel per clock, the
+#: light-independent inputs shared (:class:`~phongfx.config.ShaderConfig`).
+ARCHITECTURE = {"pipeline": 0, "interval": 1, "share": True}
+
+
+def _architecture(architecture):
+    """``architecture`` with :data:`ARCHITECTURE`'s defaults for what it leaves out; an
+    unknown key is a ValueError naming it."""
+    unknown = sorted(set(architecture or {}) - set(ARCHITECTURE))
+    if unknown:
+        raise ValueError(f"architecture keys must be among {', '.join(ARCHITECTURE)}, not {', '.join(unknown)}")
+    return {**ARCHITECTURE, **(architecture or {})}
+
+
+def build(method, params, analysis, architecture=None):
     """The whole shader of ``method`` at ``params``: its unit (one copy, or one per light
     for a one-light unit, :func:`unit_config`) and the blend of the scene's constants
-    (:class:`~phongfx.config.BlendConfig`: ``coef`` fraction bits, the scene's output bits)."""
+    (:class:`~phongfx.config.BlendConfig`: ``coef`` fraction bits, the scene's output bits).
+
+    ``architecture``: ``{"pipeline": 0..4, "interval": int, "share": bool}`` (missing keys
+    and None: :data:`ARCHITECTURE`), one of :func:`architectures`.  ``pipeline`` is the
+    depth of the unit(s) and of the blend; a unit without a depth (the conventional unit,
+    pipelined by hand; Blinn's, Schlick's and the spherical unit) keeps its own and only the
+    blend takes it.  ``interval`` and ``share`` are the :class:`~phongfx.config.ShaderConfig`
+    fields: the lights computed in ``interval`` clocks, the light-independent inputs once."""
+    arch = _architecture(architecture)
+    depth = arch["pipeline"]
     lights = range(copies(method, analysis))
     units = tuple(unit_config(method, params, analysis, light) for light in lights)
+    if depth:
+        units = tuple(unit.replace(pipeline=depth) if hasattr(unit, "pipeline") else unit for unit in units)
     block = METHODS[method].block
     diff, _, spec = unit_terms(block, units[0])[0]
     outputs = units[0].outputs
@@ -84,8 +110,26 @@ def build(method, params, analysis):
                         bits=analysis.bits, ambient=analysis.ambient,
                         diffuse=analysis.diffuse if diff else _zeros(analysis.diffuse),
                         specular=analysis.specular, gate=diff is not None,
-                        pipeline=getattr(units[0], "pipeline", 0))
-    return ShaderConfig(unit=block, units=units, blend=blend)
+                        pipeline=max(depth, getattr(units[0], "pipeline", 0)))
+    return ShaderConfig(unit=block, units=units, blend=blend, share=arch["share"], interval=arch["interval"])
+
+
+def architectures(method, analysis):
+    """The architectures :func:`build` can give ``method`` for the scene ``analysis``, each
+    a dict of :data:`ARCHITECTURE`'s keys, share always True: every depth ``0..4`` (the
+    blend's, and the unit's where it has one) × every interval of
+    :func:`~phongfx.config.shader.intervals` whose light groups are legal (lights that share
+    one physical unit alike: a point light and a directional one of the conventional unit
+    cannot take turns on one copy).  Interval 1, depth 0 first."""
+    legal = []
+    for interval in intervals(analysis.lights):
+        try:
+            build(method, {}, analysis, {"interval": interval})
+        except ValueError:
+            continue
+        legal.append(interval)
+    return [{"pipeline": depth, "interval": interval, "share": True}
+            for interval in legal for depth in range(MAX_PIPELINE + 1)]
 
 
 def _zeros(nested):
@@ -95,11 +139,14 @@ def _zeros(nested):
 
 def frame_inputs(method, config, geometry, n):
     """Raw shader input codes of one frame with per-pixel shininess ``n`` (visible pixels;
-    every span pixel for the units fed per span): each copy's stream side by side, and
-    the pixel's material."""
+    every span pixel for the units fed per span): each copy's stream side by side, the
+    shared inputs (:attr:`~phongfx.config.ShaderConfig.shared`) once, and the pixel's
+    material."""
     streams = hooks(method).streams(method, config, geometry, n)
-    raw = {config.prefix(copy) + name: value for copy, stream in enumerate(streams)
-           for name, value in stream.items()}
+    raw = {}
+    for copy, stream in enumerate(streams):
+        for name, value in stream.items():  # a shared input (the same in every stream) once
+            raw.setdefault(config.port_name(copy, name), value)
     if "material" in config.inputs:
         raw["material"] = np.asarray(geometry.material, dtype=np.int64)
     return raw

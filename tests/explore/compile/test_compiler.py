@@ -133,7 +133,8 @@ def test_lyon_balls_compile_without_l_or_v_interpolators():
     # the Blinn–Phong baseline: one unit per light, side by side in one shader, costed as one
     baseline = compiled.results["blinn"]["default"]
     blinn = build("blinn", baseline["params"], compiled.analysis)
-    assert blinn.copies == 2 and {"c0_normal", "c1_normal"} <= set(blinn.inputs)
+    assert blinn.copies == 2 and {"normal", "c0_light", "c1_half"} <= set(blinn.inputs)
+    assert not {"c0_normal", "c1_normal"} & set(blinn.inputs)  # the normal enters once
     assert baseline["cost"]["copies"] == 1 and 0 < baseline["max"] < 10
 
 
