@@ -123,7 +123,7 @@ def price(method, params, analysis, architecture, speed, *, target="ecp5", devic
     block = get_block(runs.block_name(method), config=config)
     unit = proxy_estimate(block, target, device)
     clock = proxy_clock(block, target, device)
-    figures = timing(clock["fmax_mhz"], getattr(block, "interval", 1), block.latency, speed, "proxy")
+    figures = timing(clock["fmax_mhz"], getattr(config, "interval", 1), block.latency, speed, "proxy")
     return {"architecture": dict(architecture), "config": config, "unit": unit,
             "cost": unit[COST_UNITS[target][0]], "clock": clock, **figures}
 

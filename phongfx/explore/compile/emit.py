@@ -258,7 +258,7 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
                                  f"levels against {against}, white = {scale:g} levels or more, "
                                  "the colour bar beside"}
     data["top"] = {"module": f"{module}_top", "file": f"verilog/{module}_top.v", "latency": block.latency,
-                   "interval": getattr(block, "interval", 1),
+                   "interval": getattr(config, "interval", 1),
                    "ports": port_map(block.config)}
     if written is not None:
         data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],

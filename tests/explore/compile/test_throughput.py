@@ -170,3 +170,4 @@ def test_a_design_over_its_part_is_refused_and_nothing_is_written(fake, tmp_path
     assert "within the proxy's margin of the LFE5U-45F: DSP 78 ±10% of 72; synthesize to be sure (--synth), " \
            "or --device 85k" in console
     assert json.loads((out / "manifest.json").read_text())["fit"]["status"] == "margin"
+
