@@ -295,14 +295,14 @@ def _fake_synth(name, *, config=None, **options):
 def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
     import phongfx.explore.synth.fpga as synth_module
     monkeypatch.setattr(synth_module, "synth", _fake_synth)
-    best = compile_scene(_torus(), methods=["fig7"], synth=True).best
+    best = compile_scene(_torus(), methods=["fig7"], synth=True, workers=1).best
     vec = best["params"]["vec_frac"]
     assert best["cost"]["lut_eq"] == 100 + vec + 958 * 3 and best["cost"]["fmax_mhz"] == 99.0
 
     def broken(name, **options):
         raise synth_module.SynthError("Yosys did not finish (exit code 1); log x:\nmore")
     monkeypatch.setattr(synth_module, "synth", broken)
-    compiled = compile_scene(_torus(), methods=["fig7"], synth=True)
+    compiled = compile_scene(_torus(), methods=["fig7"], synth=True, workers=1)
     assert compiled.chosen == "fig7" and compiled.cost_model == "ecp5-synth"
     assert compiled.best["cost"] == {"cost": None, "why": "Yosys did not finish (exit code 1)", "log": "x"}
 
