@@ -104,6 +104,14 @@ class PipelinedBlock(wiring.Component):
     def latency(self):
         raise NotImplementedError
 
+    @property
+    def interval(self):
+        """The initiation interval: clock cycles from one input taken to the next, at least
+        (1: an input every clock).  A block that takes turns over its work (a shader sharing
+        one unit between lights) takes an input at most once per ``interval`` cycles, counted
+        in cycles where it moves; one offered sooner is ignored."""
+        return 1
+
     def datapath(self, m, inputs):
         """Build the datapath; return ``{output: FixedValue | FixedVector}``.
 

@@ -24,6 +24,15 @@ The reset (the ``sync`` domain's, synchronous and active high) is not gated by t
 enable: it clears the valid pipeline whatever ``o.ready`` is, and what was in flight
 is dropped.
 
+A block that takes an input at most once per ``interval`` clocks
+(:attr:`~phongfx.hdl.block.PipelinedBlock.interval`, a shader whose lights take turns on one
+unit) gets a counter of the cycles to wait, moved by the same enable::
+
+    i.ready = enable & (wait == 0)
+
+so ``i.ready`` is low while the block is busy with the turns of the last input, although
+its pipeline moves; the reset clears the counter with everything else.
+
 Latency: the block's own, counted in cycles where the pipeline moves.
 """
 
@@ -56,6 +65,7 @@ class Handshake(wiring.Component):
             raise ValueError(f"block must have a latency of at least 1 cycle, not {block.latency}")
         self.block = block
         self.latency = block.latency
+        self.interval = block.interval
         super().__init__({
             "i": In(stream.Signature(payload_layout(block.config.inputs))),
             "o": Out(stream.Signature(payload_layout(checked_outputs(block.config)))),
@@ -65,10 +75,20 @@ class Handshake(wiring.Component):
         m = Module()
         enable = Signal()
         m.submodules.block = EnableInserter(enable)(self.block)
+        ready, valid = enable, self.i.valid
+        if self.interval > 1:
+            # cycles (where the pipeline moves) before the block takes its next input
+            wait = Signal(range(self.interval), name="wait")
+            with m.If(enable & self.i.valid & self.i.ready):
+                m.d.sync += wait.eq(self.interval - 1)
+            with m.Elif(enable & (wait != 0)):
+                m.d.sync += wait.eq(wait - 1)
+            ready = enable & (wait == 0)
+            valid = self.i.valid & ready
         m.d.comb += [
             enable.eq(self.o.ready | ~self.o.valid),
-            self.i.ready.eq(enable),
-            self.block.i.valid.eq(self.i.valid),
+            self.i.ready.eq(ready),
+            self.block.i.valid.eq(valid),
             self.block.i.payload.eq(self.i.payload),
             self.o.valid.eq(self.block.o.valid),
             self.o.payload.eq(self.block.o.payload),

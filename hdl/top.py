@@ -21,12 +21,15 @@ from amaranth.hdl import Elaboratable, Fragment, Module
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
+from phongfx.config import ShaderConfig
+
 from .block import OVERFLOW, PipelinedBlock, checked_outputs, unbuilt
 from .emit import verilog
 from .handshake import Handshake
 from .overflow import overflow_checks
 
-__all__ = ["CONTROL_PORTS", "POWER_UP", "lane_suffix", "port_map", "Top", "header", "top_verilog"]
+__all__ = ["CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line", "header",
+           "top_verilog"]
 
 #: The ports that carry no payload, in header order: ``(name, direction, meaning)``.
 CONTROL_PORTS = (
@@ -46,6 +49,10 @@ POWER_UP = ("Power-up without a reset pulse: every register starts at its reset 
             "SystemVerilog's rules, and Icarus -g2012 then gave out_valid = X for the first cycles), "
             "so out_valid is 0 and in_ready 1 from time 0 under Icarus -g2012 and Verilator.  "
             "Hardware without register initial values (an ASIC) needs an rst pulse first.")
+
+
+#: The keys of :func:`top_verilog`'s ``timing``.
+TIMING_KEYS = ("clock_mhz", "clock_source", "pixel_rate_mpx", "requirement_mpx", "met")
 
 
 def lane_suffix(lane, lanes):
@@ -131,6 +138,7 @@ class Top(wiring.Component):
         self.name = name
         self.overflow = bool(overflow)
         self.latency = block.latency
+        self.interval = block.interval
         members = {}
         for port in self.ports:
             shape = self._shape(port)
@@ -167,20 +175,54 @@ class Top(wiring.Component):
         return m
 
 
-def header(ports, name, latency):
-    """The comment that opens :func:`top_verilog`: what the module is, its timing,
-    handshake, reset and one line per port of ``ports`` (:func:`port_map`)."""
+def timing_line(timing, interval=1, noun="vector"):
+    """The header's sentence on the clock and the rate of ``timing`` (:func:`top_verilog`),
+    None when there is nothing to say."""
+    timing = {key: value for key, value in (timing or {}).items() if value is not None}
+    unknown = sorted(set(timing) - set(TIMING_KEYS))
+    if unknown:
+        raise ValueError(f"timing keys must be among {', '.join(TIMING_KEYS)}, not {', '.join(unknown)}")
+    if not timing:
+        return None
+    parts = []
+    clock = timing.get("clock_mhz")
+    if clock is not None:
+        source = timing.get("clock_source")
+        parts.append(f"clock {clock:.1f} MHz" + (f" ({source})" if source else ""))
+    rate = timing.get("pixel_rate_mpx", None if clock is None else clock / interval)
+    if rate is not None:
+        parts.append(f"{rate:.1f} M{noun}/s" + (f" (one {noun} every {interval} clocks)" if interval > 1 else ""))
+    want = timing.get("requirement_mpx")
+    if want is not None:
+        verdict = {True: "met", False: "MISSED"}.get(timing.get("met"), "not known whether met")
+        if timing.get("met") is False and rate is not None:
+            verdict += f" by {want - rate:.1f} M{noun}/s ({100 * (want - rate) / want:.0f} %)"
+        parts.append(f"requirement {want:.1f} M{noun}/s: {verdict}")
+    return "Timing: " + "; ".join(parts) + "."
+
+
+def header(ports, name, latency, interval=1, timing=None, noun="vector"):
+    """The comment that opens :func:`top_verilog`: what the module is, its latency and
+    initiation interval (``interval`` clocks per ``noun``), its clock and rate (``timing``,
+    :func:`timing_line`), handshake, reset and one line per port of ``ports`` (:func:`port_map`)."""
+    if interval == 1:
+        rate = f"Initiation interval: 1 clock: one {noun} every clock while out_ready is high."
+    else:
+        rate = (f"Initiation interval: {interval} clocks: one {noun} every {interval} clocks while "
+                f"out_ready is high; in_ready is low for the {interval - 1} clock(s) after a {noun} is "
+                f"taken (counting clocks in which the pipeline moves), while the work takes its turns.")
     text = [
         f"{name}_top: the phongfx block {name} behind an AXI-Stream valid/ready handshake.",
         f"Latency: {latency} cycle(s) from the edge that takes a vector (in_valid & in_ready) to its "
         f"result on out_*, counting only cycles in which the pipeline moves (out_ready high or "
         f"out_valid low).",
-        "Throughput: one vector per clock while out_ready is high.",
+        rate,
+        *filter(None, [timing_line(timing, interval, noun)]),
         "Handshake (AXI-Stream): a transfer happens on a rising clk edge where valid and ready are "
         "both high.  While out_valid is high and out_ready low the whole pipeline holds: out_valid "
         "and out_* stay stable and no input is taken.  Nothing is lost or repeated.  in_ready = "
-        "out_ready | ~out_valid depends combinationally on out_ready (never on in_valid); out_valid "
-        "comes from a register.",
+        "out_ready | ~out_valid" + ("" if interval == 1 else ", and'ed with the end of the turns,") +
+        " depends combinationally on out_ready (never on in_valid); out_valid comes from a register.",
         "Reset: rst is synchronous and active high, and not held off by out_ready: it clears "
         "everything in flight (vectors accepted and not yet delivered are dropped, and so is one "
         "offered on an edge where rst is high, whatever in_ready says); out_valid is 0 after the "
@@ -222,7 +264,7 @@ def _wrap(text, width=96):
     return lines + [line]
 
 
-def top_verilog(block_component, name, *, overflow=False):
+def top_verilog(block_component, name, *, overflow=False, timing=None):
     """Verilog of the shipped top of ``block_component``: module ``<name>_top``, header first.
 
     Parameters
@@ -233,6 +275,12 @@ def top_verilog(block_component, name, *, overflow=False):
     overflow : bool
         ``False`` (shipped): built under ``overflow_checks(False)``, no ``out_overflow``.
         ``True``: checks built and ``out_overflow`` added, for simulation only.
+    timing : dict, optional
+        What the header says of the clock beside the latency and the initiation interval
+        (:func:`timing_line`): ``clock_mhz``, ``clock_source`` (how it is known, e.g.
+        ``"proxied: ecp5-clock-proxy"`` or ``"synthesized: nextpnr-ecp5"``),
+        ``pixel_rate_mpx`` (default ``clock_mhz / interval``), ``requirement_mpx``, ``met``;
+        any may be missing.  A shader's rates are in pixels, another block's in vectors.
 
     Returns
     -------
@@ -241,4 +289,6 @@ def top_verilog(block_component, name, *, overflow=False):
         locations relative to the repository (:func:`phongfx.hdl.emit.verilog`).
     """
     top = Top(block_component, name, overflow=overflow)
-    return header(top.ports, name, top.latency) + verilog(top, f"{name}_top", time_zero=True)
+    noun = "pixel" if isinstance(block_component.config, ShaderConfig) else "vector"
+    return (header(top.ports, name, top.latency, top.interval, timing, noun)
+            + verilog(top, f"{name}_top", time_zero=True))

@@ -270,18 +270,19 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
 
     start = time.perf_counter()
     component = handshake_component(block, handshake) if streaming else block.component()
-    latency = component.latency
+    latency, interval = component.latency, component.interval
     compiled = build(component, build_dir=build_dir, design=design, trace=bool(vcd))
     times["build"] = time.perf_counter() - start
     if streaming:
-        return _check_stream(block, inputs, expected, compiled, latency, times, bubbles=bubbles, seed=seed,
+        return _check_stream(block, inputs, expected, compiled, (latency, interval), times, bubbles=bubbles, seed=seed,
                              max_report=max_report, stalls=stalls, reset_at=reset_at,
                              reset_cycles=reset_cycles, vcd=vcd)
 
     start = time.perf_counter()
     count = len(np.asarray(next(iter(inputs.values()))))
     # schedule() loops in Python per vector; back to back its result is just this
-    slots = np.arange(count, dtype=np.int64) if not bubbles else schedule(count, bubbles, seed)
+    slots = np.arange(count, dtype=np.int64) if not bubbles and interval == 1 else \
+        schedule(count, bubbles, seed, interval)
     in_words, want = stream(block, inputs, expected, slots, latency, seed)
     cycles, ni = in_words.shape
     no = want.shape[1]
@@ -313,10 +314,12 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
     return result, times
 
 
-def _check_stream(block, inputs, expected, compiled, latency, times, *, bubbles, seed, max_report, stalls,
+def _check_stream(block, inputs, expected, compiled, timing, times, *, bubbles, seed, max_report, stalls,
                   reset_at, reset_cycles, vcd):
-    """:func:`check_timed`'s stream mode: the plan's decisions in, mode 2 of ``fast_main.cpp``."""
+    """:func:`check_timed`'s stream mode: the plan's decisions in, mode 2 of ``fast_main.cpp``;
+    ``timing`` the component's ``(latency, interval)``."""
     config = block.config
+    latency, interval = timing
     start = time.perf_counter()
     vectors = pack_words(config.inputs, inputs)
     results = pack_words(checked_outputs(config), checked_expected(expected))
@@ -324,14 +327,15 @@ def _check_stream(block, inputs, expected, compiled, latency, times, *, bubbles,
     no = results.shape[1]
     _, in_width = payload_fields(config.inputs)
     plan = plan_stream(count, latency, in_width, stalls=stalls, bubbles=bubbles, reset_at=reset_at,
-                       reset_cycles=reset_cycles, seed=seed, restarts=restart_points(config, inputs))
+                       reset_cycles=reset_cycles, seed=seed, restarts=restart_points(config, inputs),
+                       interval=interval)
     junk = np.frombuffer(b"".join((j << 1).to_bytes(4 * ni, "little") for j in plan.junk), dtype="<u4")
     control = np.zeros(-(-plan.limit // 4) * 4, dtype=np.uint8)
     control[:plan.limit] = plan.control
     times["pack"] = time.perf_counter() - start
 
     header = [_MAGIC, plan.limit, ni, no, max_report, 2, count, len(plan.junk), latency, plan.quiet_from,
-              plan.drain]
+              plan.drain, plan.interval]
     data, split = _execute(compiled, header, [vectors, results, junk, plan.resume.astype("<u4"),
                                               control.view("<u4")], vcd)
     times.update(split)

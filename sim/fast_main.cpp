@@ -107,6 +107,7 @@ struct Stats {
 static Stats stream(Vtop& top, Trace& trace, Report& report, const uint64_t* head, const uint32_t* data) {
     const uint64_t limit = head[1], ni = head[2], no = head[3], count = head[6], nj = head[7];
     const uint64_t latency = head[8], quiet_from = head[9], drain0 = head[10];
+    const uint64_t interval = head[11] ? head[11] : 1;
     const uint32_t* vectors = data;
     const uint32_t* expected = vectors + count * ni;
     const uint32_t* junk = expected + count * no;
@@ -115,7 +116,7 @@ static Stats stream(Vtop& top, Trace& trace, Report& report, const uint64_t* hea
     std::vector<int64_t> ring(latency + 1, -1);
     std::vector<uint32_t> held(no), zero(no, 0), want(no, 0);
     bool holding = false, offering = false, in_reset = false;
-    uint64_t next = 0, delivered = 0, moves = 0, stalls = 0, resets = 0, resent = 0, cycle = 0;
+    uint64_t next = 0, delivered = 0, moves = 0, stalls = 0, resets = 0, resent = 0, cycle = 0, busy = 0;
     int64_t drain = -1;
     while (cycle < limit) {
         const uint8_t ctl = control[cycle];
@@ -156,11 +157,19 @@ static Stats stream(Vtop& top, Trace& trace, Report& report, const uint64_t* hea
             in_reset = true;
             next = delivered = from;
             moves = 0;
+            busy = 0;
             holding = false;
         } else {
             in_reset = false;
             const bool taken = offering && i_ready;
-            if (i_ready) ring[moves++ % ring.size()] = taken ? static_cast<int64_t>(next) : -1;
+            // the pipeline moves where the design is ready, or busy with a vector's turns
+            const bool moving = i_ready || (busy > 0 && (ready || !o_valid));
+            if (moving) ring[moves++ % ring.size()] = taken ? static_cast<int64_t>(next) : -1;
+            if (taken) {
+                busy = interval - 1;
+            } else if (moving && busy > 0) {
+                --busy;
+            }
             if (taken) {
                 ++next;
                 offering = false;

@@ -126,8 +126,8 @@ def check(block, inputs=None, *, expected=None, backend="amaranth", bubbles=0.25
                              stalls=stalls, reset_at=reset_at, reset_cycles=reset_cycles,
                              handshake=handshake, max_report=max_report, **options)
 
-    slots = schedule(count, bubbles, seed)
     component = block.component()
+    slots = schedule(count, bubbles, seed, component.interval)
     latency = component.latency
     cycles = len(slots) + latency
     rng = np.random.default_rng(seed + 1)
@@ -179,7 +179,7 @@ def _check_stream(block, inputs, expected, packed_in, packed_out, *, bubbles, se
     _, in_width = payload_fields(config.inputs)
     plan = plan_stream(len(packed_in), component.latency, in_width, stalls=stalls, bubbles=bubbles,
                        reset_at=reset_at, reset_cycles=reset_cycles, seed=seed,
-                       restarts=restart_points(config, inputs))
+                       restarts=restart_points(config, inputs), interval=component.interval)
     checker = StreamChecker(plan, packed_in, packed_out, max_report)
     start = time.perf_counter()
     run_stream(component, checker, **options)

@@ -53,6 +53,9 @@ class StreamPlan:
         Payloads driven with ``i.valid`` low, ``junk[cycle % len(junk)]``.
     count, latency : int
         Vectors to deliver; the block's latency.
+    interval : int
+        The block's initiation interval: after taking a vector, ``i.ready`` is low for
+        ``interval − 1`` cycles where the pipeline moves (``o.ready`` high or ``o.valid`` low).
     drain : int
         Cycles run after the last delivery, in which nothing more may come out.
     quiet_from : int
@@ -69,6 +72,7 @@ class StreamPlan:
     drain: int
     quiet_from: int
     resume: np.ndarray
+    interval: int = 1
 
     @property
     def limit(self):
@@ -111,7 +115,7 @@ def restart_points(config, inputs):
 
 
 def plan_stream(count, latency, in_width, *, stalls=0.0, bubbles=0.0, reset_at=None, reset_cycles=2,
-                seed=0, restarts=None):
+                seed=0, restarts=None, interval=1):
     """The :class:`StreamPlan` of ``count`` vectors through a block of ``latency`` cycles.
 
     ``stalls`` is the probability that ``o.ready`` is low in a cycle, or a pattern (a
@@ -135,7 +139,7 @@ def plan_stream(count, latency, in_width, *, stalls=0.0, bubbles=0.0, reset_at=N
     replay = int(np.max(index - resume, initial=0))
     # Twice the expected length, so a correct design is never cut short by chance; a
     # wrong one that loses or holds vectors meets the limit and is reported.
-    per_vector = 1 / (1 - stall_fraction) + bubbles / (1 - bubbles)
+    per_vector = interval / (1 - stall_fraction) + bubbles / (1 - bubbles)
     expected = count * per_vector + (latency + 2) / (1 - stall_fraction)
     quiet_from = 0
     if reset_at is not None:
@@ -154,7 +158,7 @@ def plan_stream(count, latency, in_width, *, stalls=0.0, bubbles=0.0, reset_at=N
     rng = np.random.default_rng([seed, 3])
     junk = tuple(int.from_bytes(rng.bytes((in_width + 7) // 8), "little") & ((1 << in_width) - 1)
                  for _ in range(64))
-    return StreamPlan(control, junk, count, latency, drain, quiet_from, resume)
+    return StreamPlan(control, junk, count, latency, drain, quiet_from, resume, interval)
 
 
 class StreamChecker:
@@ -169,7 +173,10 @@ class StreamChecker:
     claims not to, or the reverse, shows its output at the wrong cycle), and the output of
     a cycle is what entered ``latency`` moves before, a vector or a bubble; a reset empties
     it.  A design that moves while honestly ready but ignores ``o.ready`` is caught by the
-    stalled output changing, and by the vectors it loses.  ``records`` holds the first ``max_report``
+    stalled output changing, and by the vectors it loses.  A block of interval ``I`` > 1
+    holds ``i.ready`` low for the ``I − 1`` moves after it takes a vector, moving where
+    ``o.ready`` is high or ``o.valid`` low (its Handshake's enable): the model counts those
+    moves too.  ``records`` holds the first ``max_report``
     mismatches as ``(cycle, kind, index, got_valid, got_payload, want_valid, want_payload)``.
     """
 
@@ -183,6 +190,7 @@ class StreamChecker:
         self.delivered = 0  # the vector the next transfer out must be
         self.held = None  # payload of a valid output that was not taken at the last edge
         self.moves = 0  # edges where the pipeline moved since the last reset
+        self.busy = 0  # moves before the block takes its next vector (its interval)
         self.ring = [-1] * (plan.latency + 1)  # what entered at each of the last moves
         self.in_reset = False
         self.drain = None
@@ -236,13 +244,20 @@ class StreamChecker:
             self.in_reset = True
             self.next = self.delivered = resume
             self.moves = 0
+            self.busy = 0
             self.held = None
         else:
             self.in_reset = False
             taken = self.offering and i_ready
-            if i_ready:
+            # the pipeline moves where the design is ready, or busy with a vector's turns
+            moving = i_ready or (self.busy > 0 and (ready or not o_valid))
+            if moving:
                 self.ring[self.moves % len(self.ring)] = self.next if taken else -1
                 self.moves += 1
+            if taken:
+                self.busy = plan.interval - 1
+            elif moving and self.busy:
+                self.busy -= 1
             if taken:
                 self.next += 1
                 self.offering = False

@@ -250,7 +250,7 @@ def write_testbench(block, raw_inputs, expected, out_dir, name, *, seed=1, stall
     files = {
         f"{name}_top.v": top_verilog(component, name),
         f"tb_{name}.v": verilog_testbench(config, name, count, latency, reset_at=reset_at, seed=seed,
-                                          stall=stall, bubbles=bubbles, vcd=vcd),
+                                          stall=stall, bubbles=bubbles, vcd=vcd, interval=component.interval),
         f"{name}_in.memh": _memh(config.inputs, raw_inputs),
         f"{name}_expected.memh": _memh(config.outputs, expected),
         "run.sh": _run_script(name, vcd),

@@ -75,10 +75,12 @@ def row_of(ports, raw, index):
     return row
 
 
-def schedule(count, bubbles, seed):
+def schedule(count, bubbles, seed, interval=1):
     """Per-cycle index of the vector driven, ``-1`` for a bubble (``valid`` low).
 
-    ``bubbles`` is the probability of a bubble before each vector (0: back to back).
+    ``bubbles`` is the probability of a bubble before each vector (0: back to back);
+    ``interval`` − 1 bubbles follow each vector, for a block that takes one every
+    ``interval`` cycles (:attr:`~phongfx.hdl.block.PipelinedBlock.interval`).
     """
     if not 0 <= bubbles < 1:
         raise ValueError(f"bubbles must be a probability in 0..1 (excluding 1), not {bubbles}")
@@ -88,4 +90,10 @@ def schedule(count, bubbles, seed):
         while bubbles and rng.random() < bubbles:
             slots.append(-1)
         slots.append(index)
-    return np.array(slots, dtype=np.int64)
+    slots = np.array(slots, dtype=np.int64)
+    if interval > 1:
+        vector = slots >= 0
+        spaced = np.full(len(slots) + (interval - 1) * count, -1, dtype=np.int64)
+        spaced[np.arange(len(slots)) + (interval - 1) * (np.cumsum(vector) - vector)] = slots
+        slots = spaced
+    return slots

@@ -67,14 +67,15 @@ def _value(expression, port):
 
 
 def verilog_testbench(config, name, count, latency, *, reset_at, seed=1, stall=0.3, bubbles=0.2, vcd=False,
-                      timeout=None, reset_cycles=RESET_CYCLES):
+                      timeout=None, reset_cycles=RESET_CYCLES, interval=1):
     """The text of ``tb_<name>``, the testbench of ``<name>_top`` (see the module docstring).
 
     ``count`` vectors are read from ``<name>_in.memh`` and ``<name>_expected.memh``;
     ``reset_at`` is the number of results delivered when the mid-stream reset comes
     (below ``count``); ``timeout`` the cycle limit (default: generous for the stalls);
     ``reset_cycles`` the edges with ``rst`` high at the start (0: none, which checks the
-    top from power-up).
+    top from power-up); ``interval`` the top's clocks per vector (its in_ready says when it
+    takes one; only the default time-out counts it).
     """
     if not 0 <= reset_at < count:
         raise ValueError(f"reset_at must be an integer in 0..{count - 1}, not {reset_at}")
@@ -86,7 +87,7 @@ def verilog_testbench(config, name, count, latency, *, reset_at, seed=1, stall=0
     rng_in, rng_out = _seeds(seed)
     if timeout is None:
         # every vector at most twice (the re-sent ones), each waiting for a bubble and a stall
-        moves = (2 * count + 2 * latency + 64) / ((1 - stall) * (1 - bubbles))
+        moves = (2 * count * interval + 2 * latency + 64) / ((1 - stall) * (1 - bubbles))
         timeout = int(4 * moves) + 1000
     width = max(len(p["name"]) for p in ports)
     connections = [".clk(clk)", ".rst(rst)", ".in_valid(in_valid)", ".in_ready(in_ready)",

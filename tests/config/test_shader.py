@@ -67,3 +67,36 @@ def test_replace_sends_unit_settings_to_every_unit_and_pipeline_to_the_blend():
 def test_bad_configs_are_refused(changes, error, message):
     with pytest.raises(error, match=message):
         ShaderConfig(**changes)
+
+
+def test_lights_take_turns_on_fewer_units():
+    four = _blend(lights=4, diffuse=(((0.5,) * 3,) * 4,), specular=(((0.5,) * 3,) * 4,))
+    config = ShaderConfig(units=(fig7_config(lights=4, local_lights=(True, False, True, False)),),
+                          blend=four, interval=2)
+    assert (config.lights, config.per_cycle) == (4, 2)
+    assert config.physical_units[0].lights == 2 and config.physical_units[0].local_lights == (True, False)
+    # turn 1: lights 2 and 3 on the datapath's lights 0 and 1; the rest is the same for both turns
+    assert config.feeds(1)[0]["l0_0"] == "l2_0" and config.feeds(1)[0]["l1"] == "l3"
+    assert config.feeds(1)[0]["n0"] == "n0" and config.inputs == config.replace(interval=1).inputs
+    blinn = ShaderConfig(unit="blinn", units=(BlinnConfig(),) * 4, blend=four.replace(diff="1.15"), interval=2)
+    assert len(blinn.physical_units) == 2
+    assert blinn.feeds(1) == [{"normal": "normal", "light": "c2_light", "half": "c2_half", "n": "n"},
+                              {"normal": "normal", "light": "c3_light", "half": "c3_half", "n": "n"}]
+
+
+@pytest.mark.parametrize("changes, message", [
+    (dict(interval=3), r"^interval must be one of 1, 2, 4 for 4 lights, not 3: 2 lights per cycle are done "
+                       r"in 2 cycles$"),
+    (dict(interval=5), r"^interval \(4 lights\) must be an integer in 1\.\.4, not 5$"),
+    (dict(interval=4), r"^units\[0\] and units\[1\] \(lights 0 and 1\) share one physical unit at "
+                       r"interval 4, so they must be equal: "),
+])
+def test_turns_that_cannot_be_taken_are_refused(changes, message):
+    units = (ConventionalConfig(local_light=True), ConventionalConfig()) * 2
+    blend = _blend(lights=4, diff="1.15", diffuse=(((0.5,) * 3,) * 4,), specular=(((0.5,) * 3,) * 4,))
+    with pytest.raises(ValueError, match=message):
+        ShaderConfig(unit="conventional", units=units, blend=blend, **changes)
+    assert ShaderConfig(unit="conventional", units=units, blend=blend, interval=2).per_cycle == 2
+    with pytest.raises(ValueError, match=r"^lights 0 and 1 share one datapath light at interval 2, so "
+                                         r"local_lights must be equal for them, not True and False$"):
+        ShaderConfig(units=(fig7_config(local_lights=(True, False)),), interval=2)

@@ -1,6 +1,7 @@
 import numpy as np
+import pytest
 
-from phongfx.config import BlendConfig, ConventionalConfig, ShaderConfig, halfway_config
+from phongfx.config import BlendConfig, BlinnConfig, ConventionalConfig, ShaderConfig, fig7_config, halfway_config
 from phongfx.core.registry import get_block
 from phongfx.explore.tables.extremes import run_block
 
@@ -67,3 +68,35 @@ def test_a_shared_input_feeds_every_copy_as_per_copy_inputs_would():
     for name in "rgb":
         assert np.array_equal(got[name], want[name])
     assert len(np.unique(got["r"])) > 20
+
+
+def _lights(count, coloured=True):
+    """Per-light blend constants, different for every light (a light in the wrong turn shows)."""
+    return tuple((0.1 + 0.2 * i, 0.5 - 0.1 * i, 0.3) if coloured else (0.5, 0.5, 0.5) for i in range(count))
+
+
+@pytest.mark.parametrize("name, config, intervals", [
+    ("fig7, 2 lights", ShaderConfig(units=(fig7_config(),), blend=BlendConfig(
+        diffuse=(_lights(2),), specular=(_lights(2)[::-1],))), [2]),
+    # light 2 takes light 0's datapath light in turn 1, the other slot idles
+    ("fig7, 3 point and directional lights", ShaderConfig(
+        units=(fig7_config(lights=3, local_lights=(True, False, True)),),
+        blend=BlendConfig(lights=3, diffuse=(_lights(3),), specular=(_lights(3),))), [2]),
+    ("halfway, 4 lights", ShaderConfig(unit="halfway_datapath", units=(halfway_config(lights=4),),
+                                       blend=BlendConfig(lights=4, diffuse=(_lights(4),), specular=(_lights(4),))),
+     [2, 4]),
+    ("conventional, 4 lights", ShaderConfig(unit="conventional", units=(ConventionalConfig(),) * 4,
+                                            blend=BlendConfig(lights=4, diff="1.15", diffuse=(_lights(4),),
+                                                              specular=(_lights(4),))), [2, 4]),
+    ("blinn, 3 lights, not shared", ShaderConfig(unit="blinn", units=(BlinnConfig(),) * 3, share=False,
+                                                 blend=BlendConfig(lights=3, diff="1.15", diffuse=(_lights(3),),
+                                                                   specular=(_lights(3),))), [2, 3]),
+])
+def test_every_interval_gives_the_codes_of_interval_1(name, config, intervals):
+    raw = get_block("shader", config=config).stimulus(count=400, seed=11)
+    want = get_block("shader", config=config).golden(raw)
+    assert len(np.unique(want["r"])) > 20
+    for interval in intervals:
+        got = get_block("shader", config=config.replace(interval=interval)).golden(raw)
+        for channel in "rgb":
+            assert np.array_equal(got[channel], want[channel]), (interval, channel)

@@ -95,3 +95,57 @@ def test_shared_normal_is_built_once(unit, cls, shared, apart, tmp_path):
     config = _two_lights(unit, cls)
     assert yosys_cells(config, tmp_path / "shared") == shared
     assert yosys_cells(config.replace(share=False), tmp_path / "apart") == apart
+
+
+def _coloured(lights, diff="1.10"):
+    values = tuple((0.1 + 0.2 * i, 0.5 - 0.1 * i, 0.3) for i in range(lights))
+    return BlendConfig(lights=lights, diff=diff, diffuse=(values,), specular=(values[::-1],))
+
+
+SHARED_UNITS = {
+    "conventional, 2 lights": ShaderConfig(unit="conventional", units=(ConventionalConfig(),) * 2,
+                                           blend=_coloured(2, "1.15"), interval=2),
+    "fig7, 2 lights": ShaderConfig(blend=_coloured(2), interval=2),
+    # the datapath's second light idles in turn 1
+    "fig8, 3 lights": ShaderConfig(unit="fig8", units=(fig8_config(lights=3),), blend=_coloured(3), interval=2),
+}
+
+
+def test_turns_add_interval_minus_one_to_the_latency():
+    for config in SHARED_UNITS.values():
+        shared, whole = get_block("shader", config=config), get_block("shader", config=config.replace(interval=1))
+        assert shared.component().interval == config.interval == 2 and whole.component().interval == 1
+        assert shared.latency == whole.latency + 1
+
+
+@pytest.mark.needs_verilator
+@pytest.mark.parametrize("name", list(SHARED_UNITS))
+def test_lights_taking_turns_stall_and_reset_exactly(name):
+    block = get_block("shader", config=SHARED_UNITS[name])
+    check(block, backend="verilator-fast", bubbles=0.2, count=600, seed=3).raise_on_mismatch()
+    result = check(block, backend="verilator-fast", bubbles=0.2, count=600, seed=4, stalls=0.3, reset_at=500)
+    result.raise_on_mismatch()
+    assert result.resets == 1 and result.resent > 0 and result.stall_cycles > 100
+    # one pixel per two clocks at best: the stream takes at least twice as many cycles as pixels
+    assert result.cycles > 2 * result.vectors
+
+
+def test_lights_taking_turns_on_the_amaranth_simulator():
+    block = get_block("shader", config=SHARED_UNITS["fig7, 2 lights"])
+    result = check(block, backend="amaranth", bubbles=0.2, count=40, seed=5, stalls=0.3, reset_at=30)
+    result.raise_on_mismatch()
+    assert result.resets == 1 and result.stall_cycles > 0
+
+
+def test_a_wrapper_that_ignores_the_interval_is_caught():
+    from phongfx.hdl.handshake import Handshake
+
+    class IgnoresInterval(Handshake):
+        def __init__(self, block):
+            super().__init__(block)
+            self.interval = 1  # in_ready high while the block is busy with a pixel's turns
+
+    block = get_block("shader", config=SHARED_UNITS["fig7, 2 lights"])
+    result = check(block, backend="amaranth", bubbles=0.0, count=20, seed=5, stalls=0.1,
+                   handshake=IgnoresInterval)
+    assert result.mismatch_count > 0

@@ -93,7 +93,7 @@ def test_header_lists_every_port_with_its_format(name):
     assert all(line.startswith("//") for line in header.splitlines())
     assert header.startswith(f"// {name}_top: ")
     assert f"Latency: {block.latency} cycle(s)" in header
-    for words in ("Throughput: one vector per clock while out_ready is high", "AXI-Stream",
+    for words in ("Initiation interval: 1 clock: one vector every clock while out_ready is high", "AXI-Stream",
                   "synchronous and active high", "Power-up without a reset pulse",
                   "Sn.m is signed two's complement",
                   "1 sign bit + n integer bits + m fraction bits (1+n+m bits)",
@@ -225,3 +225,24 @@ def test_without_the_time_zero_wake_icarus_starts_at_x(tmp_path):
     block = get_block("lirp")
     ok, text = _power_up(tmp_path, "lirp", verilog(Top(block.component(), "lirp"), "lirp_top"))
     assert not ok and "FAIL cycle 2: out_valid or in_ready is X" in text, text[-3000:]
+
+
+def test_header_gives_the_interval_the_clock_and_the_requirement():
+    from phongfx.config import ShaderConfig
+    from phongfx.hdl.top import timing_line
+
+    block = get_block("shader", config=ShaderConfig(interval=2))
+    text = top_verilog(block.component(), "turns", timing={
+        "clock_mhz": 120.0, "clock_source": "proxied: ecp5-clock-proxy", "requirement_mpx": 75.0, "met": False})
+    words = " ".join(line[2:].strip() for line in text[:text.index("/* Generated")].splitlines())
+    assert f"Latency: {block.latency} cycle(s)" in words
+    assert "Initiation interval: 2 clocks: one pixel every 2 clocks while out_ready is high" in words
+    assert ("Timing: clock 120.0 MHz (proxied: ecp5-clock-proxy); 60.0 Mpixel/s (one pixel every 2 clocks); "
+            "requirement 75.0 Mpixel/s: MISSED by 15.0 Mpixel/s (20 %).") in words
+    assert timing_line({"clock_mhz": 200.0, "clock_source": "synthesized: nextpnr-ecp5", "pixel_rate_mpx": 200.0,
+                        "requirement_mpx": 150.0, "met": True}) == \
+        "Timing: clock 200.0 MHz (synthesized: nextpnr-ecp5); 200.0 Mvector/s; requirement 150.0 Mvector/s: met."
+    assert timing_line({"met": None}) is None
+    with pytest.raises(ValueError, match="^timing keys must be among clock_mhz, clock_source, pixel_rate_mpx, "
+                                         "requirement_mpx, met, not fmax$"):
+        timing_line({"fmax": 3})

@@ -84,3 +84,17 @@ def test_the_datapaths_are_proven(name):
     # about 100-160 s each for the three datapaths (blinn's and conventional's table lookups time out)
     proof = prove(get_block(name))
     assert proof.counts["counterexample"] == 0 and proof.counts["unknown"] == 0
+
+
+@pytest.mark.needs_sby
+def test_a_shader_whose_lights_take_turns_is_proven(tmp_path):
+    # two lights on one Schlick unit: the second light's t comes from the holding register
+    from phongfx.config import BlendConfig, SchlickConfig, ShaderConfig
+
+    dark = ((0, 0, 0),) * 2
+    config = ShaderConfig(unit="schlick", units=(SchlickConfig(),) * 2, interval=2, blend=BlendConfig(
+        diff="", gate=False, diffuse=(dark,), specular=(((0.5, 0.5, 0.5),) * 2,)))
+    assert [port for port, *_ in assumptions(config)] == ["c0_t", "n", "c1_t"]  # n shared: bounded once
+    proof = prove(get_block("shader", config=config), workdir=tmp_path)
+    assert proof.counts == {"proven": 2, "static": 1, "counterexample": 0, "unknown": 0}
+    assert proof.depth == get_block("shader", config=config.replace(interval=1)).latency + 1 + 2

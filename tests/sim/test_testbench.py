@@ -207,3 +207,19 @@ def test_restart_point_of_short_streams():
     one = {port: codes[:1] for port, codes in block.stimulus(count=0).items()}
     assert tb.restart_point(block, one) == 0
     assert np.asarray(one["a"]).shape == (1,)
+
+
+@pytest.mark.needs_verilator
+def test_a_shader_whose_lights_take_turns_passes(tmp_path):
+    # two lights on one datapath light, one pixel every two clocks: in_ready low while busy
+    from phongfx.config import ShaderConfig
+
+    block = get_block("shader", config=ShaderConfig(interval=2))
+    inputs = block.stimulus(count=60, seed=3)
+    inputs = {port: codes[:200] for port, codes in inputs.items()}
+    bench = tb.write_testbench(block, inputs, block.golden(inputs), tmp_path / "turns", "turns")
+    assert "one pixel every 2 clocks" in (tmp_path / "turns" / "turns_top.v").read_text()
+    cycles = check_pass(bench, *tb.run_verilator(bench.directory, "turns"))
+    assert cycles > 2 * bench.vectors
+    if shutil.which("iverilog"):
+        assert check_pass(bench, *tb.run_icarus(bench.directory, "turns")) == cycles
