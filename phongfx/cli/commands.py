@@ -327,7 +327,7 @@ def cmd_figure9(args):
 
 
 #: The options of ``phongfx tables`` that only some tables take, and which.
-_TABLE_OPTIONS = {"target": ("cost", "pipeline"), "library": ("cost", "pipeline", "proxy"), "refit": ("proxy",)}
+_TABLE_OPTIONS = {"target": ("cost", "pipeline"), "library": ("cost", "pipeline", "proxy"), "refit": ("proxy", "clock")}
 
 
 def _table_options(args):

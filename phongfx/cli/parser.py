@@ -200,13 +200,14 @@ def build_parser():
                                          "`tables hast` (Hast et al. Tables 1–2), `tables cost` (synthesis: Figure 7 "
                                          "vs Figure 8 vs the Phong and Blinn–Phong baselines; --target asic for "
                                          "standard cells), `tables proxy` (the area proxy against synthesis), "
-                                         "`tables pipeline` (Fmax against pipeline depth), `tables extremes` "
+                                         "`tables pipeline` (Fmax against pipeline depth), `tables clock` (the clock "
+                                         "proxy against synthesis at every depth), `tables extremes` "
                                          "(every block at its extreme inputs)")
     p.add_argument("table", help=f"which table: {_names(TABLES)}")
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--target", help="cost, pipeline: ecp5 (default) or asic (proxy: always asic)")
     p.add_argument("--library", help="cost, pipeline, proxy with asic: osu018 (default) or osu035")
-    p.add_argument("--refit", action="store_true", help="proxy: also fit the coefficients afresh")
+    p.add_argument("--refit", action="store_true", help="proxy, clock: also fit the coefficients afresh")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=commands.cmd_tables)
     p = sub.add_parser("compile", help="the cheapest datapath meeting a scene's pixel error "

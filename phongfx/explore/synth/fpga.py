@@ -36,11 +36,12 @@ from phongfx.core.cache import versions
 from phongfx.hdl.dsp import DSP_INTERNAL_NS, DSP_MAPPING, DSP_MAPPING_DEPTH, dsp_mapping_of
 
 from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
+from phongfx.explore.synth.devices import device_resources
 from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
                                            run_yosys, tail, tool)
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "DSP_MAPPING_DEPTH", "dsp_mapping_of",
-           "harness", "synth", "markdown", "synth_command", "run_yosys_abc9_fallback"]
+           "harness", "synth", "markdown", "synth_command", "run_yosys_abc9_fallback", "device_resources"]
 
 FLOW_VERSION = "3"  # bump when the scripts or parsing change what a cached result means
 

@@ -29,7 +29,11 @@ bits, registers by their width; one coefficient per kind and library
 (:data:`AREA_COEFFICIENTS`), fitted to the real flow over the registry's blocks
 (``phongfx tables proxy``, which also states the error).
 
-Identical cells (same inputs) count once, as Yosys merges them.  It is a ranking
+The design is read flattened (:func:`~phongfx.explore.synth.netgraph.flatten`), and
+identical cells (same type, parameters and drivers) count once, to a fixpoint, as
+Yosys' ``flatten`` and ``opt_merge`` merge them: the expression trees Amaranth writes
+out again for every use, and the logic of light copies that take the same shared
+inputs (one N for every light) are priced once, as they are built.  It is a ranking
 device, not a synthesis result: the manifest says
 ``"cost_model": "proxy"`` and the ``--synth`` result replaces it.
 """
@@ -37,10 +41,17 @@ device, not a synthesis result: the manifest says
 import math
 import re
 
-__all__ = ["DSP_LUT_EQ", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
+from phongfx.explore.synth.netgraph import flatten
+
+__all__ = ["DSP_LUT_EQ", "RESOURCE_MARGIN", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
            "rtlil_cost", "rtlil_features", "rtlil_of"]
 
 DSP_LUT_EQ = 958
+#: The largest relative error of :func:`rtlil_cost`'s ``lut4`` and ``dsp`` against ECP5
+#: synthesis (``|synthesized / proxy - 1|``, the LUT4s as nextpnr counts them: LUT4 cells
+#: and two per CCU2C carry cell) over the calibration runs of ``phongfx tables clock``:
+#: the margin a device fit keeps around the proxy's counts.
+RESOURCE_MARGIN = {"lut4": 0.5, "dsp": 0.35}
 #: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
 FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
 #: µm² per bit of each feature on each library, fitted by
@@ -64,28 +75,15 @@ _SHIFT = {"$shl", "$shr", "$sshl", "$sshr", "$shift", "$shiftx"}
 
 
 def _cells(text):
-    """(type, parameters, connections) of every distinct cell of every module: cells of
-    one module with the same type, parameters and inputs count once (Yosys' ``opt_merge``)."""
-    cell, module, seen = None, None, set()
-    for line in text.splitlines():
-        words = line.strip().split(None, 2)
-        if not words:
-            continue
-        if words[0] == "module":
-            module = words[1]
-        elif words[0] == "cell":
-            cell = (words[1], {}, {})
-        elif cell is not None and words[0] == "parameter" and len(words) == 3:
-            cell[1][words[1].lstrip("\\")] = words[2]
-        elif cell is not None and words[0] == "connect" and len(words) == 3:
-            cell[2][words[1].lstrip("\\")] = words[2]
-        elif cell is not None and words[0] == "end":
-            inputs = tuple(sorted((k, v) for k, v in cell[2].items() if k not in ("Y", "Q")))
-            key = (module, cell[0], tuple(sorted(cell[1].items())), inputs)
-            if key not in seen:
-                seen.add(key)
-                yield cell
-            cell = None
+    """(type, parameters, connections) of every distinct cell of the flattened design
+    (:func:`~phongfx.explore.synth.netgraph.flatten`): cells of one type with the same
+    parameters and the same drivers count once, to a fixpoint, as Yosys' ``flatten`` and
+    ``opt_merge`` leave them; a connection is its constant text, or ``""`` when not constant."""
+    netlist = flatten(text)
+    for index in netlist.merged():
+        node = netlist.nodes[index]
+        if node.type.startswith("$") and node.type != "$process":
+            yield node.type, node.params, {port: netlist.literal(bits) or "" for port, bits in node.inputs.items()}
 
 
 def _int(params, name, default=0):
@@ -157,7 +155,10 @@ def rtlil_features(text):
 
 
 def rtlil_cost(text):
-    """``{lut_eq, lut, dsp, carry_bits, ff_bits}`` of RTLIL ``text`` (module docstring)."""
+    """``{lut_eq, lut, dsp, carry_bits, ff_bits, lut4}`` of RTLIL ``text`` (module docstring);
+    ``lut4`` counts the LUT4 sites the design fills on ECP5, logic and carry alike (a
+    CCU2C carry cell fills two sites for two bits), what a part's ``lut4`` capacity counts
+    (:func:`~phongfx.explore.synth.fpga.device_resources`)."""
     lut = dsp = carry = ff = 0
     for kind, *n in _parts(text):
         if kind == "mul":
@@ -172,7 +173,8 @@ def rtlil_cost(text):
             lut += n[0] * math.ceil(2 ** n[1] / 16)
         else:
             ff += n[0]
-    return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff}
+    return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff,
+            "lut4": lut + carry}
 
 
 def _coefficients(library):

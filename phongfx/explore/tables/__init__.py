@@ -8,6 +8,7 @@ costs no synthesis import).  The paper tables live with their papers
 * :mod:`.cost`: Lyon's Figure 8 against Figure 7 (and Blinn) in LUTs, DSPs and MHz;
 * :mod:`.pipeline`: Fmax, size and latency against pipeline depth;
 * :mod:`.proxy`: the tool-free area proxy against standard-cell synthesis, and its fit;
+* :mod:`.clock`: the tool-free clock proxy against synthesis at every depth, and its fit;
 * :mod:`.extremes`: every block at the extremes of its inputs, for stability.
 
 Their functions share names (``run_table``, ``markdown``, ...), so they are reached
@@ -27,6 +28,7 @@ TABLES = {
     "cost": "phongfx.explore.tables.cost",           # synthesis: Figure 7 vs Figure 8 vs blinn
     "proxy": "phongfx.explore.tables.proxy",         # the area proxy against standard-cell synthesis
     "pipeline": "phongfx.explore.tables.pipeline",   # synthesis: Fmax against pipeline depth
+    "clock": "phongfx.explore.tables.clock",         # the clock proxy against synthesis, every depth
     "extremes": "phongfx.explore.tables.extremes",   # stability: every block at its extreme inputs
 }
 

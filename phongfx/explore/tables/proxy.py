@@ -22,7 +22,7 @@ from phongfx.core.registry import block_names, get_block
 from phongfx.explore.synth.proxy import AREA_COEFFICIENTS, FEATURES, price, rtlil_features, rtlil_of
 from phongfx.explore.synth.fpga import synth
 
-__all__ = ["TABLES", "POINTS", "DATAPATHS", "fit", "calibration_rows", "proxy_table", "run_table", "markdown",
+__all__ = ["TABLES", "POINTS", "DATAPATHS", "relative_nnls", "fit", "calibration_rows", "proxy_table", "run_table", "markdown",
            "to_json"]
 
 TABLES = ("proxy",)
@@ -42,11 +42,11 @@ POINTS = tuple((name, name, None) for name in block_names()) + tuple(
     (f"{name} vec_frac=7", name, _narrow) for name in DATAPATHS)
 
 
-def fit(features, areas):
-    """Non-negative coefficients, one per :data:`~phongfx.explore.synth.proxy.FEATURES`,
-    minimizing the squared *relative* error of ``features @ c`` against ``areas`` (so that
-    a small block counts as much as a large one); Lawson–Hanson active set."""
-    a = np.asarray(features, dtype=float) / np.asarray(areas, dtype=float)[:, None]
+def relative_nnls(features, targets):
+    """Non-negative ``x`` minimizing the squared *relative* error of ``features @ x``
+    against ``targets`` (so that a small target counts as much as a large one);
+    Lawson–Hanson active set.  Also the clock proxy's fit (:mod:`.clock`)."""
+    a = np.asarray(features, dtype=float) / np.asarray(targets, dtype=float)[:, None]
     b = np.ones(len(a))
     passive = np.zeros(a.shape[1], dtype=bool)
     x = np.zeros(a.shape[1])
@@ -65,7 +65,14 @@ def fit(features, areas):
             step = np.min(x[bad] / (x[bad] - z[bad]))
             x = x + step * (z - x)
             passive &= x > 1e-12
-    return dict(zip(FEATURES, (float(v) for v in x)))
+    return x
+
+
+def fit(features, areas):
+    """Non-negative coefficients, one per :data:`~phongfx.explore.synth.proxy.FEATURES`,
+    minimizing the squared relative error of ``features @ c`` against ``areas``
+    (:func:`relative_nnls`)."""
+    return dict(zip(FEATURES, (float(v) for v in relative_nnls(features, areas))))
 
 
 def calibration_rows(points=POINTS, *, library="osu018", workdir=None, progress=None):

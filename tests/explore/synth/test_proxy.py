@@ -11,7 +11,9 @@ def _mul(name, a, b, a_width, b_width):
 
 
 def test_multipliers_by_dsp_slices_and_constants_by_adders():
-    text = "module \\top\n" + "".join([
+    wires = {"\\x": 12, "\\y": 12, "\\p": 19, "\\q": 36}
+    wires.update({f"${i}_y": 56 for i in range(1, 6)})
+    text = "module \\top\n" + "".join(f"  wire width {w} {name}\n" for name, w in wires.items()) + "".join([
         _mul("$1", "\\x", "\\y", 12, 12),          # one MULT18
         _mul("$2", "\\x", "\\y", 12, 12),          # the same inputs: merged
         _mul("$3", "\\p", "\\q", 19, 36),          # 19 = 18 + 1 (the 1 to logic): 1 x 2 slices

@@ -1,0 +1,228 @@
+"""A tool-free estimate of a block's clock (:func:`proxy_clock`): the longest
+register-to-register path of its flattened RTLIL, priced per cell kind and width.
+
+The compiler has to know, before any synthesis, whether a design at pipeline depth
+``d`` meets a pixel rate; the area proxy (:mod:`.proxy`) says nothing about speed.  A
+clocked design runs at the speed of its slowest stage, and the stages are what the RTL
+says they are: the registers of :func:`~phongfx.hdl.fixed.stage` (and, on ECP5 from
+:data:`~phongfx.hdl.dsp.DSP_MAPPING_DEPTH`, the MULT18X18D's own input and output
+registers, :mod:`phongfx.hdl.dsp`) cut the datapath into combinational stages, and a
+deeper ``pipeline`` moves them.  So the estimate reads the same design the flows
+synthesize (:func:`~phongfx.explore.synth.toolrun.design_rtlil`, flattened by
+:func:`~phongfx.explore.synth.netgraph.flatten`), gives each combinational cell a delay
+(:func:`cell_features` × :data:`COEFFICIENTS`), and takes the longest path from a
+register or input to a register or output (:func:`critical_path`), plus a fixed
+per-stage overhead (clock-to-Q, setup, the first and last route).
+
+The delay of a cell is linear in a few amounts (:data:`FEATURES`): one per variable
+multiplier (an ECP5 DSP, whatever its width up to 18 × 18 bits), the extra DSP tiles of a
+wider product (summed in the fabric), the operand bits of a product (a standard-cell
+array multiplier grows with them), one per carry chain (adders, subtracters,
+comparators; a product by a constant is its shift-and-add tree of adders) with its width
+and its log (ECP5's ripple ``CCU2C`` against the parallel-prefix adders of Yosys'
+generic ``techmap`` on standard cells), and one per LUT level (multiplexers, logic, the
+levels of a variable shift, of a ROM read, of a reduction).  The coefficients per target
+were fitted by ``phongfx tables clock`` (:mod:`phongfx.explore.tables.clock`) to the
+synthesized critical paths of every datapath at every depth, non-negative least squares
+of the relative period error alternated with the choice of the critical path under the
+coefficients of the round before; :data:`ERROR` is the largest relative Fmax error of
+that calibration, the margin the compiler keeps.
+"""
+
+import math
+
+from phongfx.explore.synth.netgraph import flatten
+
+__all__ = ["FEATURES", "COEFFICIENTS", "ERROR", "TARGETS", "cell_features", "critical_path", "clock_rtlil",
+           "proxy_clock", "estimate"]
+
+#: The amounts a cell's delay is linear in (module docstring); ``stage`` is 1 per path.
+FEATURES = ("stage", "mul", "mul_tiles", "mul_bits", "carry", "carry_bits", "carry_log", "lut")
+
+#: ns per unit of each feature, per target (``asic`` is osu018).  Fitted by
+#: ``phongfx tables clock --refit`` (:func:`phongfx.explore.tables.clock.fit`): non-negative
+#: least squares of the relative period error over the calibration points (every datapath
+#: and two shaders at every depth, one synthesis each, nextpnr seed 1 at 150 MHz on the
+#: LFE5U-45F; Yosys + OpenSTA on osu018), the critical path re-chosen under each round's
+#: coefficients until they settle.
+COEFFICIENTS = {
+    "ecp5": {"stage": 4.0, "mul": 4.5, "mul_tiles": 1.5, "mul_bits": 0.0, "carry": 1.0, "carry_bits": 0.05,
+             "carry_log": 0.0, "lut": 0.8},
+    "asic": {"stage": 0.5, "mul": 0.5, "mul_tiles": 0.0, "mul_bits": 0.12, "carry": 0.3, "carry_bits": 0.0,
+             "carry_log": 0.15, "lut": 0.25},
+}
+#: The largest relative Fmax error of the calibration (``phongfx tables clock``), per target.
+ERROR = {"ecp5": 0.5, "asic": 0.5}
+#: The targets :func:`proxy_clock` knows, and the device (library) each was calibrated on.
+TARGETS = {"ecp5": "45k", "asic": "osu018"}
+
+_CARRY = {"$add", "$sub", "$neg", "$alu", "$lt", "$le", "$gt", "$ge"}
+_EQ = {"$eq", "$ne", "$eqx", "$nex", "$reduce_and", "$reduce_or", "$reduce_xor", "$reduce_xnor", "$reduce_bool",
+       "$logic_not", "$logic_and", "$logic_or"}
+_SHIFT = {"$shl", "$shr", "$sshl", "$sshr", "$shift", "$shiftx"}
+_LOGIC = {"$and", "$or", "$xor", "$xnor"}
+_WIRING = {"$not", "$pos", "$buf", "$concat", "$slice"}
+
+
+def _int(params, name, default=0):
+    value = str(params.get(name, "")).strip()
+    return int(value) if value.lstrip("-").isdigit() else default
+
+
+def _tiles(width):
+    return width // 18 + (width % 18 >= 2)
+
+
+def _carry(width):
+    return {"carry": 1, "carry_bits": width, "carry_log": math.log2(max(width, 2))}
+
+
+def _product(a, b):
+    return {"mul": 1, "mul_tiles": max(_tiles(a) * _tiles(b) - 1, 0), "mul_bits": a + b}
+
+
+def _reg(params, name):
+    return str(params.get(name, "NONE")).strip().strip('"') not in ("NONE", "")
+
+
+def cell_features(node, netlist):
+    """The amounts (:data:`FEATURES`) of the delay through combinational ``node`` of
+    ``netlist``; ``{}`` for wiring (a constant shift, a sign extension, an inversion)."""
+    kind, params = node.type, node.params
+    a, b, y = _int(params, "A_WIDTH"), _int(params, "B_WIDTH"), _int(params, "Y_WIDTH")
+    if kind == "$mul":
+        const = [netlist.literal(node.inputs.get(port, [])) for port in ("A", "B")]
+        if const[0] is None and const[1] is None:
+            return _product(a, b)
+        ones = max((c or "'").split("'", 1)[1].count("1") for c in const)
+        depth = math.ceil(math.log2(ones)) if ones > 1 else 0
+        return {k: depth * v for k, v in _carry(y).items()}
+    if kind == "MULT18X18D":
+        return _product(18, 18)
+    if kind in _CARRY:
+        return _carry(max(a, b, y) if kind in ("$add", "$sub", "$neg", "$alu") else max(a, b))
+    if kind in _EQ:
+        return {"lut": max(1, math.ceil(math.log(max(a, b, 2), 4)))}
+    if kind in ("$mux", "$process"):
+        return {"lut": max(1, math.ceil(math.log2(max(_int(params, "CASES", 2), 2))))}
+    if kind in ("$pmux", "$bmux"):
+        return {"lut": max(1, math.ceil(math.log2(_int(params, "S_WIDTH", 1) + 1)))}
+    if kind in _SHIFT:
+        if netlist.literal(node.inputs.get("B", [])) is not None or b == 0:
+            return {}
+        return {"lut": min(b, max(y, 2).bit_length())}
+    if kind in _LOGIC:
+        return {"lut": 1}
+    if kind.startswith("$memrd"):
+        return {"lut": 1 + math.ceil(max(_int(params, "ABITS") - 4, 0) / 2)}
+    return {}
+
+
+def _ends(node):
+    """(launch, capture) amounts of a register ``node``: a DSP with only one side
+    registered still has the multiply on the other side of its registers."""
+    if node.type != "MULT18X18D":
+        return {}, {}
+    inputs = _reg(node.params, "REG_INPUTA_CLK") or _reg(node.params, "REG_INPUTB_CLK")
+    output = _reg(node.params, "REG_OUTPUT_CLK")
+    multiply = _product(18, 18)
+    return (multiply if inputs and not output else {}), (multiply if output and not inputs else {})
+
+
+def _is_register(node):
+    if node.type == "MULT18X18D":
+        params = node.params
+        return any(_reg(params, name) for name in ("REG_INPUTA_CLK", "REG_INPUTB_CLK", "REG_OUTPUT_CLK"))
+    return node.register
+
+
+def _price(amounts, coefficients):
+    return sum(coefficients.get(k, 0.0) * v for k, v in amounts.items())
+
+
+def critical_path(netlist, coefficients):
+    """``(ns, amounts, names)`` of the slowest register-to-register stage of ``netlist``
+    under ``coefficients`` (ns per feature): its delay with the ``stage`` overhead, the
+    summed :data:`FEATURES` along it, and the names of its cells from launch to capture."""
+    nodes = netlist.nodes
+    register = [_is_register(node) for node in nodes]
+    own = [{} if register[i] else cell_features(node, netlist) for i, node in enumerate(nodes)]
+    ends = [_ends(node) if register[i] else ({}, {}) for i, node in enumerate(nodes)]
+    arrival, back = [0.0] * len(nodes), [None] * len(nodes)
+
+    def launch(src):
+        if src < 0:
+            return 0.0
+        return _price(ends[src][0], coefficients) if register[src] else arrival[src]
+
+    for index in netlist.order():
+        if register[index]:
+            continue
+        best = max(netlist.sources(index), key=launch, default=-1)
+        arrival[index] = launch(best) + _price(own[index], coefficients)
+        back[index] = best
+    endpoints = [(i, netlist.sources(i)) for i in range(len(nodes)) if register[i]]
+    endpoints.append((None, netlist.output_sources()))
+    worst = (-1.0, None, -1)
+    for sink, srcs in endpoints:
+        capture = _price(ends[sink][1], coefficients) if sink is not None else 0.0
+        for src in srcs:
+            delay = launch(src) + capture
+            if delay > worst[0]:
+                worst = (delay, sink, src)
+    _, sink, src = worst
+    path, amounts = [], dict.fromkeys(FEATURES, 0.0)
+    amounts["stage"] = 1.0
+    if sink is not None:
+        path.append(nodes[sink].name)
+        for k, v in ends[sink][1].items():
+            amounts[k] += v
+    while src is not None and src >= 0:
+        path.append(nodes[src].name)
+        part = ends[src][0] if register[src] else own[src]
+        for k, v in part.items():
+            amounts[k] += v
+        src = None if register[src] else back[src]
+    path.reverse()
+    return _price(amounts, coefficients), amounts, path
+
+
+def clock_rtlil(block, target):
+    """The RTLIL the flow of ``target`` synthesizes for ``block`` (on ECP5 deep enough, its
+    products mapped onto MULT18X18D cells with their registers: :func:`~phongfx.hdl.dsp.dsp_mapping_of`)."""
+    from phongfx.hdl.dsp import dsp_mapping_of
+
+    from phongfx.explore.synth.toolrun import design_rtlil
+
+    return design_rtlil(block, "top", dsp_mapping_of(block, target))
+
+
+def _describe(amounts, path, ns):
+    parts = [f"{int(amounts[k])} {label}" for k, label in
+             (("mul", "multiplier"), ("carry", "carry chain"), ("lut", "LUT level")) if amounts[k]]
+    ends = f"{path[0]} → {path[-1]}" if path else "input → output"
+    return f"{ends}: {', '.join(parts) or 'wiring only'} ({len(path)} cells), {ns:.2f} ns"
+
+
+def estimate(netlist, target):
+    """:func:`proxy_clock`'s result for a flattened ``netlist`` on ``target``."""
+    ns, amounts, path = critical_path(netlist, COEFFICIENTS[target])
+    return {"fmax_mhz": 1000.0 / ns, "period_ns": ns, "model": f"{target}-clock-proxy",
+            "error": ERROR[target], "path": _describe(amounts, path, ns)}
+
+
+def proxy_clock(block, target="ecp5", device=None):
+    """The estimated clock of ``block`` (a :class:`~phongfx.core.registry.Block`) on
+    ``target``: ``{fmax_mhz, period_ns, model, error, path}``, ``error`` the calibration's
+    largest relative Fmax error (:data:`ERROR`), ``path`` the slowest stage in words.
+
+    ``device`` is accepted for the FPGA part (the ECP5 speed grade is the same on the
+    25k, 45k and 85k: the estimate does not depend on it) or the standard-cell library
+    (``osu018``, the calibrated one)."""
+    if target not in COEFFICIENTS:
+        raise ValueError(f"target must be one of {', '.join(map(repr, COEFFICIENTS))}, not {target!r}")
+    allowed = ("osu018",) if target == "asic" else ("25k", "45k", "85k")
+    if device is not None and device not in allowed:
+        raise ValueError(f"device must be one of {', '.join(allowed)} for the {target} clock proxy, "
+                         f"not {device!r}")
+    return estimate(flatten(clock_rtlil(block, target)), target)

@@ -1,0 +1,77 @@
+"""The tool-free clock proxy (phongfx.explore.synth.clock) and the flattened graph it reads."""
+
+import pytest
+
+from phongfx.core.registry import get_block
+from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, critical_path, proxy_clock
+from phongfx.explore.synth.netgraph import flatten
+
+
+def _cell(kind, name, a, b, y, width):
+    return (f"  cell {kind} {name}\n    parameter \\A_WIDTH {width}\n    parameter \\B_WIDTH {width}\n"
+            f"    parameter \\Y_WIDTH {width + 1}\n    connect \\A {a}\n    connect \\B {b}\n    connect \\Y {y}\n  end\n")
+
+
+def _dff(name, d, q, width):
+    return (f"  cell $dff {name}\n    parameter \\WIDTH {width}\n    parameter \\CLK_POLARITY 1\n"
+            f"    connect \\D {d}\n    connect \\CLK \\clk [0]\n    connect \\Q {q}\n  end\n")
+
+
+#: Two registers a, b; s = a + b; t = s[8:0] + a; register r = t: one stage of two
+#: carry chains (9 and 9 → 10 bits), inside a submodule joined to the top by its ports.
+ADDER_CHAIN = (
+    "module \\top.unit\n  wire width 1 input 0 \\clk\n  wire width 8 input 1 \\x\n  wire width 8 input 2 \\y\n"
+    "  wire width 10 output 3 \\out\n  wire width 8 \\a\n  wire width 8 \\b\n  wire width 9 \\s\n  wire width 10 \\t\n"
+    + _dff("$1", "\\x", "\\a", 8) + _dff("$2", "\\y", "\\b", 8)
+    + _cell("$add", "$3", "\\a", "\\b", "\\s", 8)
+    + _cell("$add", "$4", "\\s [8:0]", "{ 1'0 \\a }", "\\t", 9)
+    + _dff("$5", "\\t", "\\out", 10) + "end\n"
+    "module \\top\n  wire width 1 input 0 \\clk\n  wire width 16 input 1 \\i\n  wire width 10 output 2 \\o\n"
+    "  cell \\top.unit \\unit\n    connect \\clk \\clk [0]\n    connect \\x \\i [7:0]\n    connect \\y \\i [15:8]\n"
+    "    connect \\out \\o\n  end\nend\n")
+
+
+def test_the_flattener_finds_the_adder_chain_between_two_registers():
+    netlist = flatten(ADDER_CHAIN)
+    assert sorted(node.type for node in netlist.nodes) == ["$add", "$add", "$dff", "$dff", "$dff"]
+    coefficients = {"stage": 1.0, "carry": 2.0, "carry_bits": 0.5}
+    ns, amounts, path = critical_path(netlist, coefficients)
+    assert path == ["unit.a", "unit.s", "unit.t", "unit.out"]  # a launches both chains: the longer way
+    assert amounts["carry"] == 2 and amounts["carry_bits"] == 9 + 10 and amounts["mul"] == 0
+    assert ns == pytest.approx(1.0 + 2 * 2.0 + 0.5 * 19)
+
+
+def test_copies_on_the_same_inputs_are_one_copy():
+    """Two instances of the unit fed the same bits merge, registers and adders alike."""
+    twice = ADDER_CHAIN.replace(
+        "    connect \\out \\o\n  end\nend\n",
+        "    connect \\out \\o\n  end\n  cell \\top.unit \\copy\n    connect \\clk \\clk [0]\n"
+        "    connect \\x \\i [7:0]\n    connect \\y \\i [15:8]\n    connect \\out \\p\n  end\nend\n").replace(
+        "  wire width 10 output 2 \\o\n", "  wire width 10 output 2 \\o\n  wire width 10 output 3 \\p\n")
+    netlist = flatten(twice)
+    assert len(netlist.nodes) == 10 and len(netlist.merged()) == 5
+
+
+@pytest.mark.parametrize("target", ["ecp5", "asic"])
+def test_proxy_clock_rises_with_the_pipeline_depth_of_fig7(target):
+    results = [proxy_clock(get_block("fig7", pipeline=depth), target) for depth in range(5)]
+    fmax = [r["fmax_mhz"] for r in results]
+    assert all(a <= b for a, b in zip(fmax, fmax[1:])) and fmax[-1] > 2 * fmax[0]
+    assert results[0]["model"] == f"{target}-clock-proxy" and results[0]["error"] == ERROR[target]
+    assert results[0]["period_ns"] == pytest.approx(1000 / fmax[0])
+    assert "→" in results[0]["path"] and "ns" in results[0]["path"]
+
+
+def test_proxy_clock_refuses_an_unknown_target_or_device():
+    with pytest.raises(ValueError, match="target must be one of 'ecp5', 'asic', not 'ice40'"):
+        proxy_clock(get_block("shape"), "ice40")
+    with pytest.raises(ValueError, match="device must be one of 25k, 45k, 85k for the ecp5 clock proxy, not '12k'"):
+        proxy_clock(get_block("shape"), "ecp5", "12k")
+
+
+def test_every_target_has_every_coefficient():
+    from phongfx.explore.synth.clock import FEATURES
+
+    for target, coefficients in COEFFICIENTS.items():
+        assert set(coefficients) == set(FEATURES) and min(coefficients.values()) >= 0
+        assert 0 < ERROR[target] < 1

@@ -1,0 +1,66 @@
+"""The clock proxy's calibration (phongfx.explore.tables.clock): the points, the fit, the
+table on stand-in synthesis, and the stored margins against the real flows."""
+
+import pytest
+
+from phongfx.core.registry import get_block
+from phongfx.explore.synth import fpga
+from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, critical_path, proxy_clock
+from phongfx.explore.tables import clock as clock_table
+
+
+def test_points_cover_every_datapath_at_every_depth():
+    points = clock_table.points()
+    depths = {}
+    for label, _, config, depth in points:
+        depths.setdefault(label, []).append(depth)
+        if depth is not None:
+            assert getattr(config, "blend", config).pipeline == depth
+    assert depths["fig7"] == depths["shader"] == [0, 1, 2, 3, 4]
+    assert depths["conventional"] == [None]  # no depth: one row
+    assert {"fig8", "halfway_datapath", "blinn", "spherical", "shader blinn×2"} <= set(depths)
+
+
+def test_fit_recovers_the_periods_of_known_coefficients():
+    truth = {k: v for k, v in zip(FEATURES, (0.9, 2.5, 0.0, 0.08, 0.4, 0.0, 0.2, 0.3))}
+    blocks = [get_block(name, pipeline=depth) for name in ("shape", "difference", "diffuse", "lirp")
+              for depth in (0, 2)]
+    netlists = [clock_table._netlist(block, "asic") for block in blocks]
+    periods = [critical_path(netlist, truth)[0] for netlist in netlists]
+    start = dict.fromkeys(FEATURES, 1.0)
+    found = clock_table.fit(netlists, periods, start)
+    assert set(found) == set(FEATURES) and min(found.values()) >= 0
+    for netlist, period in zip(netlists, periods):
+        assert critical_path(netlist, found)[0] == pytest.approx(period, rel=0.02)
+
+
+def _fake_synth(name, *, config, target, device, freq, workdir, progress, seed=1):
+    result = proxy_clock(get_block(name, config), target)
+    return {"fmax_mhz": result["fmax_mhz"] / 1.25, "critical_path": {"from": "a", "to": "b", "ns": 1.0},
+            "lut4": 100, "carry": 50, "dsp": 3}
+
+
+def test_table_rows_errors_and_summary(monkeypatch):
+    monkeypatch.setattr(fpga, "synth", _fake_synth)
+    selected = [p for p in clock_table.points() if p[0] == "fig7" and p[3] in (0, 4)]
+    result = clock_table.clock_table(selected, progress=lambda text: None)
+    assert len(result["rows"]) == 4 and all("netlist" not in row for row in result["rows"])
+    assert all(row["error"] == pytest.approx(0.25) for row in result["rows"])
+    assert result["summary"]["ecp5"] == {"rows": 2, "median": pytest.approx(0.25), "max": pytest.approx(0.25)}
+    ecp5 = [row for row in result["rows"] if row["target"] == "ecp5"]
+    assert ecp5[0]["lut4"] == 200 and ecp5[0]["dsp"] == 3 and ecp5[0]["proxy_dsp"] == 39
+    assert result["resources"]["dsp"]["max"] == pytest.approx(1 - 3 / 39)
+    text = clock_table.markdown(result)
+    assert "| fig7 | 4 |" in text and "+25.0%" in text and "median error 25.0%" in text
+
+
+@pytest.mark.slow
+def test_stored_margins_hold_on_fig7_against_the_real_flows():
+    """The stored coefficients give the rows proxy_clock gives, within the stored margin."""
+    selected = [p for p in clock_table.points() if p[0] == "fig7" and p[3] in (0, 4)]
+    rows = clock_table.calibration_rows(selected, progress=lambda text: None)
+    for row in rows:
+        block = get_block("fig7", pipeline=row["depth"])
+        assert row["proxy_mhz"] == pytest.approx(proxy_clock(block, row["target"])["fmax_mhz"])
+        assert abs(row["error"]) <= ERROR[row["target"]]
+    assert set(COEFFICIENTS) == {row["target"] for row in rows}
