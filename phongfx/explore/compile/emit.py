@@ -207,7 +207,8 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
     module = _identifier(f"{compiled.spec.name}_{method}")
     text = verilog(block.component(), module, emit_src=False)  # only to name the instances
     timing = timing_of(best["cost"])
-    shipped = top_verilog(block.component(), module, timing={**timing, "requirement_mpx": compiled.speed.mpx})
+    header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
+    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx})
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
     done, result, written, sheets = set(), None, None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
