@@ -4,6 +4,8 @@ fit, on a small two-light scene with fake area and clock proxies (and a fake syn
 
 import json
 import math
+import os
+import re
 
 import pytest
 
@@ -12,32 +14,12 @@ from phongfx.explore.compile import run as runs
 from phongfx.explore.compile.compiler import compile_scene
 from phongfx.scene.file import parse_scene
 
-TWO_LIGHTS = """
-name = "pair"
-[[lights]]
-direction = [1, 1, 1]
-intensity = 0.7
-[[lights]]
-direction = [-1, 0.5, 1]
-intensity = 0.3
-[materials.shiny]
-kd = 0.6
-ks = 0.4
-n = 16
-[[objects]]
-type = "torus"
-material = "shiny"
-polygons = 288
-[output]
-width = 24
-height = 24
-[requirement]
-max_error_levels = 1.0
-{speed}
-[domain]
-samples = 1000
-final_samples = 2000
-"""
+SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes")
+#: scenes/two-lights.toml, one small frame; ``{speed}`` goes in its [requirement] (its last table)
+TWO_LIGHTS = (re.sub(r"count = 4", "count = 1", re.sub(r"(width|height) = 96", r"\1 = 24",
+                                                       open(os.path.join(SCENES, "two-lights.toml")).read()))
+              .replace("{", "{{").replace("}", "}}")
+              + "{speed}\n[domain]\nsamples = 1000\nfinal_samples = 2000\n")
 
 #: The fake architectures: depths 0..4, one pixel per clock or every two.
 ARCHITECTURES = [{"pipeline": d, "interval": i, "share": True} for d in range(5) for i in (1, 2)]
