@@ -77,6 +77,17 @@ def _cost(cost, synth=False):
     return f"LUT-eq {value:.0f}{model}"
 
 
+def _speed(cost, asked):
+    """`` [depth 2, interval 2: 50 Mpixel/s]`` of a method's cost when a speed was asked, or
+    why none of its architectures meets it."""
+    if not asked or "pixel_rate_mpx" not in cost:
+        return ""
+    a = cost["architecture"]
+    verdict = (", over the part" if cost.get("why_not") == "fit"
+               else "" if cost.get("met", True) else ", the fastest, too slow")
+    return f" [depth {a['pipeline']}, interval {a['interval']}: {cost['pixel_rate_mpx']:g} Mpixel/s{verdict}]"
+
+
 def _saving(cost, other):
     if cost.get("cost") is None or not other.get("cost"):
         return ""
@@ -205,10 +216,12 @@ def cmd_compile(args):
                     testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
         print(f"  {name:12s} rejected: {reason}")
+    asked = data["requirement"].get("mpixels_per_second") or data["requirement"].get("clock_mhz")
     for name, r in data["methods"].items():
         default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'], args.synth)}"
         if r["feasible"]:
-            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({_where(r)}; {default})")
+            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])}{_speed(r['cost'], asked)} at {r['params']} "
+                  f"({_where(r)}; {default})")
             if r.get("why_not_chosen"):
                 print(f"  {'':12s}   not chosen: {r['why_not_chosen']}")
         else:
