@@ -299,8 +299,8 @@ def cmd_compile(args):
               f"assuming {'; '.join(proof['assumptions'])})")
     top = data["top"]
     print(f"shipped top: {args.output}/{top['file']} ({top['module']}, {len(top['ports'])} ports, "
-          f"latency {top['latency']}, one pixel every {top.get('interval', 1)} clock"
-          f"{'s' if top.get('interval', 1) > 1 else ''})")
+          f"latency {top['latency']}"
+          + (f", one pixel every {top['interval']} clocks)" if top.get("interval", 1) > 1 else ")"))
     if "testbench" in data:
         print(f"testbench: {args.output}/testbench ({data['testbench']['vectors']} vectors of frame "
               f"{data['testbench']['frame']}; run: sh {args.output}/testbench/run.sh)")
