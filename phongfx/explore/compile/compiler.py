@@ -171,15 +171,16 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
             progress(f"{name} searched")
     # the default widths are costed always (the manifest's "saved against the defaults"),
     # the searched ones only when they meet the requirement; an infeasible method's
-    # defaults by the proxy only, since its synthesis (minutes) cannot change the choice
+    # defaults by the proxy only and at the default architecture, since neither its
+    # synthesis (minutes) nor its architecture can change the choice
     designs = [(name, where, synth and r["feasible"]) for name, r in out.results.items()
                for where in ((r["default"], r) if r["feasible"] else (r["default"],))]
     options = {"target": target, "device": device, "freq": freq, "seed": seed, "scheduler": scheduler,
                "workers": workers, "progress": progress}
     if progress:
         progress(f"pricing {len(designs)} designs' architectures")
-    costs = price_designs([(name, where["params"], by_synth) for name, where, by_synth in designs],
-                          scene.analysis, speed, **options)
+    costs = price_designs([(name, where["params"], by_synth, not out.results[name]["feasible"])
+                           for name, where, by_synth in designs], scene.analysis, speed, **options)
     for (_, where, _), found in zip(designs, costs):
         where["cost"] = found
 

@@ -122,8 +122,9 @@ def _summary(priced):
 
 def price_designs(designs, analysis, speed, *, target="ecp5", device=None, freq=150, seed=1, progress=None,
                   scheduler=None, workers=None):
-    """The cost dict of each design of ``designs`` (``(method, params, by_synth)``), at its
-    cheapest architecture meeting ``speed`` (an :class:`~.architecture.Speed`), in order.
+    """The cost dict of each design of ``designs`` (``(method, params, by_synth)``, or with a
+    fourth item True: priced at :data:`~.architecture.DEFAULT` only), at its cheapest
+    architecture meeting ``speed`` (an :class:`~.architecture.Speed`), in order.
 
     Every architecture :func:`~.architecture.candidates` proposes is priced by the proxies
     (and, on an FPGA, fitted to the part: :mod:`phongfx.explore.compile.fit`); a design not
@@ -136,10 +137,11 @@ def price_designs(designs, analysis, speed, *, target="ecp5", device=None, freq=
     ``fastest``; a tool failure gives :func:`costed`'s failure dict."""
     proxy_where = _where(target, device, freq, seed, False)
     results, jobs = [], []
-    for method, params, by_synth in designs:
+    for method, params, by_synth, *only_default in designs:
+        offered = architectures.candidates(method, analysis, architectures.Speed() if any(only_default) else speed)
         try:
             priced = [architectures.price(method, params, analysis, a, speed, target=target, device=device)
-                      for a in architectures.candidates(method, analysis, speed)]
+                      for a in offered]
         except (ValueError, SynthError) as error:
             results.append(_failure(error))
             continue
