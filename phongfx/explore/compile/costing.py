@@ -165,6 +165,8 @@ def price_designs(designs, analysis, speed, *, target="ecp5", device=None, freq=
     if not jobs:
         return results
     from phongfx.explore.synth.parallel import synth_all
+    if len(jobs) == 1 and scheduler is None:
+        workers = 1  # one candidate: in this process, without starting a cluster
     done = iter(synth_all(jobs, scheduler=scheduler, workers=workers, progress=progress))
     synth_where = _where(target, device, freq, seed, True)
     for index, out in enumerate(results):
