@@ -1,7 +1,6 @@
 """Configuration of a whole shader: a shading unit and the blend of its terms to r, g, b."""
 
 from dataclasses import dataclass
-from functools import cached_property
 
 from .base import BlockConfig, check_int
 from .blend import BlendConfig
@@ -153,7 +152,7 @@ class ShaderConfig(BlockConfig):
         """``(copy, diffuse port, lane, specular port)`` of each light, in the blend's order."""
         return [(copy, *term) for copy, config in enumerate(self.units) for term in unit_terms(self.unit, config)]
 
-    @cached_property
+    @property
     def shared(self):
         """The unit inputs that enter the shader once, unprefixed, and fan out to every copy:
         with ``share`` and several copies, those the unit class does not name in ``PER_LIGHT``
@@ -183,7 +182,7 @@ class ShaderConfig(BlockConfig):
         """Lights computed per clock cycle: ``ceil(lights / interval)``."""
         return -(-self.lights // self.interval)
 
-    @cached_property
+    @property
     def physical_units(self):
         """The configs of the unit copies the hardware builds: ``units`` at interval 1; at a
         larger one the first :attr:`per_cycle` copies of a one-light unit, or the datapath
