@@ -24,7 +24,7 @@ import sys
 
 from .context import scoped
 
-__all__ = ["overflow_checks", "overflow_flags", "collecting_overflow", "report_overflow", "report_static",
+__all__ = ["overflow_checks", "overflow_checking", "overflow_flags", "collecting_overflow", "report_overflow", "report_static",
            "overflow_probes", "add_probe", "probing", "caller"]
 
 #: The flags of the block being elaborated (None: checks off, or no block).
@@ -41,6 +41,11 @@ def overflow_checks(enabled):
     overflow flags: simulation wants them, synthesis must not pay for them."""
     with scoped(_CHECKS, bool(enabled)):
         yield
+
+
+def overflow_checking():
+    """Whether blocks elaborated now build overflow checks (:func:`overflow_checks`)."""
+    return _CHECKS.get()
 
 
 @contextlib.contextmanager

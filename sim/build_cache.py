@@ -1,8 +1,9 @@
 """The on-disk cache of Verilator builds, shared by both Verilator back ends.
 
 Builds are cached in ``<root>/<key>``: the key hashes the design as Amaranth hands it
-to Yosys (RTLIL, without source locations), the simulated top's text, and the
-versions of every tool that turns it into an executable, and ``<root>`` is
+to Yosys (RTLIL, without source locations; remembered per design identity, so a known
+design is not elaborated to find it), the simulated top's text, and the versions of
+every tool that turns it into an executable, and ``<root>`` is
 ``build_dir``, else the per-user cache's ``verilator/`` folder (:func:`cache_root`,
 :mod:`phongfx.core.cache`).  A build is made in a private directory and renamed into
 place when complete (:func:`phongfx.core.cache.make_entry`), so concurrent runs never
@@ -26,12 +27,13 @@ import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
-from phongfx.core.cache import folder, make_entry, versions
+from phongfx.core.cache import folder, make_entry, remembered_key, versions
 from phongfx.hdl.block import unbuilt
 from phongfx.hdl.dsp import MODEL as DSP_MODEL
 from phongfx.hdl.dsp import dsp_target
 from phongfx.hdl.emit import verilog
 from phongfx.hdl.handshake import Handshake
+from phongfx.hdl.identity import design_identity
 
 __all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "seed_runtime",
            "keep_runtime", "cached_build"]
@@ -140,44 +142,39 @@ def log_tail(path, lines=_LOG_TAIL):
 def _key(component, module, top_text, waves):
     """Cache key of a build.
 
-    It hashes the RTLIL rather than the Verilog: the Verilog is a deterministic
-    function of it and the Amaranth and Yosys versions (both in the key), and
-    producing it takes Yosys about a second, which a cache hit should not pay.
+    It hashes the RTLIL rather than the Verilog: the Verilog is a deterministic function of
+    it and the Amaranth and Yosys versions (both in the key), and producing it takes Yosys
+    about a second, which a cache hit should not pay.  Converting a Figure 7 datapath to
+    RTLIL still takes 1.9 s (of a cached ``phongfx sim fig7``'s 2.9 s), so a block's design
+    (or a :class:`~phongfx.hdl.handshake.Handshake` around one) is keyed once per identity
+    (:func:`~phongfx.hdl.identity.design_identity`: classes, config, the elaboration settings
+    and the digest of the hardware's sources) and the key remembered
+    (:func:`~phongfx.core.cache.remembered_key`).
     """
+    identity = None
     config = getattr(component, "config", None)
     if config is not None:
         # the simulated design is this component's, built from an equal one
         unbuilt(component)
-        # a block's design is a function of its class and its (frozen) config: convert once
-        return _config_key(type(component), config, module, top_text, waves)
-    if isinstance(component, Handshake) and getattr(component.block, "config", None) is not None:
-        # so is a Handshake's, of its own class and its block's
+        identity = design_identity(type(component), config, module)
+    elif isinstance(component, Handshake) and getattr(component.block, "config", None) is not None:
         unbuilt(component)
         unbuilt(component.block)
-        return _handshake_key(type(component), type(component.block), component.block.config, module,
-                              top_text, waves)
-    return _design_key(component, module, top_text, waves)
+        identity = design_identity((type(component), type(component.block)), component.block.config, module)
 
+    def make_key():
+        from amaranth.back import rtlil
 
-def _design_key(component, module, top_text, waves):
-    from amaranth.back import rtlil
+        return _text_key(rtlil.convert(component, name=module, emit_src=False), top_text, waves)
 
-    return _text_key(rtlil.convert(component, name=module, emit_src=False), top_text, waves)
+    parts = None if identity is None else [identity, top_text, f"waves={bool(waves)}", *BUILD_ARGS,
+                                            *_tool_versions()]
+    return remembered_key(parts, make_key)
 
 
 def _text_key(design, top_text, waves):
     """Cache key of a build of ``design`` (RTLIL or Verilog text) under ``top_text``."""
     return digest([design, top_text, f"waves={bool(waves)}", *BUILD_ARGS, *_tool_versions()])
-
-
-@functools.lru_cache(maxsize=64)
-def _config_key(cls, config, module, top_text, waves):
-    return _design_key(cls(config), module, top_text, waves)
-
-
-@functools.lru_cache(maxsize=64)
-def _handshake_key(cls, block_class, config, module, top_text, waves):
-    return _design_key(cls(block_class(config)), module, top_text, waves)
 
 
 def cached_build(component, module, top, top_text, compile_, *, root, waves=False, executable=None,

@@ -280,9 +280,7 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
 
     start = time.perf_counter()
     count = len(np.asarray(next(iter(inputs.values()))))
-    # schedule() loops in Python per vector; back to back its result is just this
-    slots = np.arange(count, dtype=np.int64) if not bubbles and interval == 1 else \
-        schedule(count, bubbles, seed, interval)
+    slots = schedule(count, bubbles, seed, interval)
     in_words, want = stream(block, inputs, expected, slots, latency, seed)
     cycles, ni = in_words.shape
     no = want.shape[1]

@@ -13,20 +13,30 @@ result is complete, so a reader never sees half a result and two processes makin
 same entry both end up with one whole copy.  A run that fails or is interrupted leaves
 no partial folder: one that raised is kept, visibly, as ``failed/<key>`` (its logs, the
 paths in the error already pointing there), one that was interrupted is removed.
+
+A key hashes the elaborated design (its RTLIL), which takes seconds to make for a datapath:
+:func:`remembered_key` keeps, in ``keys/``, the key each design identity (its
+classes, config and the digest of the sources that make hardware) was found to have, so a
+known design is keyed without being elaborated.
 """
 
 import functools
+import hashlib
 import os
 import shutil
 import tempfile
 from pathlib import Path
 
-__all__ = ["ENVIRONMENT", "TOOLS", "root", "folder", "versions", "make_entry", "usage", "clear"]
+from phongfx.core.files import atomic_write
+
+__all__ = ["ENVIRONMENT", "TOOLS", "root", "folder", "versions", "make_entry", "remembered_key", "usage", "clear"]
 
 #: The environment variable that moves the cache.
 ENVIRONMENT = "PHONGFX_CACHE"
-#: The subfolders, one per tool (:func:`folder` takes these names).
-TOOLS = ("verilator", "synth", "sta", "prove", "compile")
+#: The subfolders, one per tool (:func:`folder` takes these names); ``proxy/`` holds the
+#: tool-free estimates (:mod:`phongfx.explore.synth.estimates`), ``keys/`` the keys
+#: :func:`remembered_key` learnt.
+TOOLS = ("verilator", "synth", "sta", "prove", "compile", "proxy", "keys")
 #: Where the run folders of failed entries are kept for their logs.
 FAILED = "failed"
 
@@ -119,6 +129,37 @@ def make_entry(directory, key, complete, make):
             shutil.rmtree(final, ignore_errors=True)
             work.rename(final)
     return final, value
+
+
+#: Keys :func:`remembered_key` found in this process, by the hash of their identity.
+_KNOWN = {}
+
+
+def remembered_key(identity, make_key):
+    """The key of a cache entry whose design is named by ``identity`` (strings: everything
+    ``make_key`` depends on, the design by its identity rather than its text; None when it
+    has none): ``make_key()`` the first time, then read back from the cache's
+    ``keys/<hash of identity>`` (and this process' memory) without calling it.
+
+    ``make_key`` hashes the design's elaborated text (seconds for a datapath), so entries
+    keep their keys across edits that do not change the design; ``identity`` changes on any
+    edit of the sources (:func:`phongfx.hdl.identity.design_identity`), so an edited design
+    is keyed afresh, never by what its predecessor was keyed by.  The key does not depend on
+    the folder of entries, so one record serves every folder."""
+    if identity is None:
+        return make_key()
+    name = hashlib.sha256("\0".join(identity).encode()).hexdigest()[:32]
+    if name not in _KNOWN:
+        path = folder("keys") / name
+        try:
+            key = path.read_text().strip()
+        except OSError:
+            key = ""
+        if not key:
+            key = make_key()
+            atomic_write(path, lambda tmp: Path(tmp).write_text(key + "\n"))
+        _KNOWN[name] = key
+    return _KNOWN[name]
 
 
 def _size(path):

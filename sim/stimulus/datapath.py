@@ -8,7 +8,7 @@ hardware), ``v`` or ``v0``/``v1``, ``l<i>`` or ``l<i>_0``/``l<i>_1``.
 
 import numpy as np
 
-from . import AXES, codes, concat, random_codes, rng, unit_vectors
+from . import AXES, codes, concat, normalized, random_codes, rng, unit_vectors
 from .extreme import Extreme, equal
 
 __all__ = ["stimulus", "encode", "extremes"]
@@ -77,7 +77,7 @@ def stimulus(config, count=1000, seed=0):
     def pairs(size):
         start = unit_vectors(size, g)
         end = start + 0.5 * unit_vectors(size, g)
-        return start, end / np.linalg.norm(end, axis=-1, keepdims=True)
+        return start, normalized(end)
 
     u0, u1 = pairs(count)
     shininess = np.exp(g.uniform(0, np.log(top), count))
@@ -98,7 +98,7 @@ def stimulus(config, count=1000, seed=0):
         tilt = 2.5 / np.sqrt(top)
         for mirror in halfway:
             near = mirror + unit_vectors(count // 4, g) * g.uniform(0, tilt, count // 4)[:, None]
-            near /= np.linalg.norm(near, axis=-1, keepdims=True)
+            near = normalized(near)
             directed.append(encode(config, near, near, np.zeros(len(near)), np.full(len(near), top),
                                    z, z, lights, lights))
     return concat(*directed, raw)

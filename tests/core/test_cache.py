@@ -19,7 +19,7 @@ def test_the_folder_is_the_environment_variable_else_the_platforms(home, monkeyp
     assert root() == home.resolve() and folder("verilator") == home.resolve() / "verilator"
     monkeypatch.delenv("PHONGFX_CACHE")
     assert str(root()) == platformdirs.user_cache_dir("phongfx", appauthor=False)
-    with pytest.raises(ValueError, match="^tool must be one of verilator, synth, sta, prove, compile, not 'x'$"):
+    with pytest.raises(ValueError, match="^tool must be one of verilator, synth, sta, prove, compile, proxy, keys, not 'x'$"):
         folder("x")
 
 
@@ -95,4 +95,24 @@ def test_size_text():
 
     assert [size_text(n) for n in (0, 999, 1000, 123_456_789, 5 * 10**12)] == [
         "0 B", "999 B", "1.0 kB", "123.5 MB", "5000.0 GB"]
-    assert cache.TOOLS == ("verilator", "synth", "sta", "prove", "compile")
+    assert cache.TOOLS == ("verilator", "synth", "sta", "prove", "compile", "proxy", "keys")
+
+
+def test_a_remembered_key_is_made_once_per_identity_then_read_back(home, monkeypatch):
+    from phongfx.core.cache import remembered_key
+
+    calls = []
+
+    def make(key):
+        return lambda: calls.append(key) or key
+
+    assert remembered_key(["design A", "flow 1"], make("k-a")) == "k-a"
+    assert remembered_key(["design A", "flow 1"], make("other")) == "k-a" and calls == ["k-a"]
+    (record,) = folder("keys").iterdir()
+    assert record.read_text() == "k-a\n" and len(record.name) == 32
+    monkeypatch.setattr(cache, "_KNOWN", {})  # a new process: read back from the file
+    assert remembered_key(["design A", "flow 1"], make("other")) == "k-a" and calls == ["k-a"]
+    # another identity (an edited source, another flow) is keyed afresh; None is never remembered
+    assert remembered_key(["design A", "flow 2"], make("k-b")) == "k-b"
+    assert remembered_key(None, make("k-c")) == "k-c" and remembered_key(None, make("k-d")) == "k-d"
+    assert calls == ["k-a", "k-b", "k-c", "k-d"] and len(list(folder("keys").iterdir())) == 2

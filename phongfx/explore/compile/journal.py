@@ -32,13 +32,10 @@ def source_digest():
     import phongfx.golden
     import phongfx.hdl
     import phongfx.sim
+    from phongfx.hdl.identity import folder_digest
 
-    h = hashlib.sha256()
     roots = {Path(m.__file__).parent for m in (phongfx, phongfx.golden, phongfx.hdl, phongfx.sim)}
-    for root in sorted(roots):
-        for path in sorted(root.rglob("*.py")):
-            h.update(str(path.relative_to(root)).encode() + b"\0" + path.read_bytes())
-    return h.hexdigest()
+    return hashlib.sha256("\n".join(f"{root.name}:{folder_digest(root)}" for root in sorted(roots)).encode()).hexdigest()
 
 
 def _update(h, value):

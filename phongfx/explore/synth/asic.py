@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from phongfx.core.cache import versions
-from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
+from phongfx.explore.synth.toolrun import (SynthError, cached_run, flow_key, harness, read_json, run,
                                            run_yosys, tail, tool)
 
 __all__ = ["Library", "LIBRARIES", "DEFAULT_LIBRARY", "library_file", "asic_synth", "parse_timing"]
@@ -233,12 +233,10 @@ def asic_synth(block, module, *, library=DEFAULT_LIBRARY, freq=150, workdir=None
     SynthError
         If Yosys, OpenSTA or the library is missing, or a tool fails or leaves an incomplete report.
     """
-    from phongfx.sim.build_cache import digest
-
     source = library_file(library)
     progress = progress or (lambda stage: None)
-    key = digest(["asic", FLOW_VERSION, block.name, repr(block.config), library,
-                  _file_digest(str(source), source.stat().st_mtime_ns), design_rtlil(block, module),
-                  *_tool_versions()])
+    key = flow_key(block, module, None,
+                   ["asic", FLOW_VERSION, block.name, repr(block.config), library,
+                    _file_digest(str(source), source.stat().st_mtime_ns)], list(_tool_versions()))
     result = cached_run(workdir, key, lambda work: _flow(block, module, library, source, work, progress), cache="sta")
     return {**result, "freq": freq, "met": bool(result["fmax_mhz"] >= freq)}

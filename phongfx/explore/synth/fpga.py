@@ -37,7 +37,7 @@ from phongfx.hdl.dsp import DSP_INTERNAL_NS, DSP_MAPPING, DSP_MAPPING_DEPTH, dsp
 
 from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
 from phongfx.explore.synth.devices import device_resources
-from phongfx.explore.synth.toolrun import (SynthError, cached_run, design_rtlil, harness, read_json, run,
+from phongfx.explore.synth.toolrun import (SynthError, cached_run, flow_key, harness, read_json, run,
                                            run_yosys, tail, tool)
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "DSP_MAPPING_DEPTH", "dsp_mapping_of",
@@ -92,10 +92,9 @@ def _tool_versions(target):
 
 
 def _key(block, module, target, device, freq, seed):
-    from phongfx.sim.build_cache import digest
-
-    return digest([FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)),
-                   str(seed), design_rtlil(block, module, dsp_mapping_of(block, target)), *_tool_versions(target)])
+    return flow_key(block, module, dsp_mapping_of(block, target),
+                    [FLOW_VERSION, block.name, repr(block.config), target, device, repr(float(freq)), str(seed)],
+                    list(_tool_versions(target)))
 
 
 def _count(cells, names):

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from phongfx.core.cache import versions
 from phongfx.explore.synth.fpga import TARGETS, dsp_mapping_of, run_yosys_abc9_fallback, synth_command
-from phongfx.explore.synth.toolrun import SynthError, cached_run, design_rtlil, read_json
+from phongfx.explore.synth.toolrun import SynthError, cached_run, flow_key, read_json
 
 __all__ = ["NETLIST_TARGETS", "synth_netlist", "cell_models", "check_netlist"]
 
@@ -77,8 +77,6 @@ def synth_netlist(block, target="ecp5", device=None, workdir=None):
         class, with its ports), ``module``, ``cells`` (count by type), ``target``,
         ``device``, ``cached``, ``directory``.
     """
-    from phongfx.sim.build_cache import digest
-
     _check_target(target)
     devices = TARGETS[target].devices
     device = TARGETS[target].default_device if device is None else device
@@ -88,8 +86,8 @@ def synth_netlist(block, target="ecp5", device=None, workdir=None):
 
     module = type(unbuilt(block.component())).__name__.lower()
     dsp = dsp_mapping_of(block, target)
-    key = digest(["netlist", FLOW_VERSION, block.name, repr(block.config), target, device,
-                  design_rtlil(block, module, dsp), *_tool_versions()])
+    key = flow_key(block, module, dsp,
+                   ["netlist", FLOW_VERSION, block.name, repr(block.config), target, device], list(_tool_versions()))
 
     def flow(work):
         from phongfx.hdl.dsp import dsp_mapping

@@ -200,10 +200,17 @@ def proxy_area(block, library="osu018"):
 def proxy_estimate(block, target, library=None):
     """The tool-free cost of ``block`` on ``target`` as the compiler and the sweeps record
     it: ``{"area_um2"}`` on ``"asic"`` (``library``, default ``osu018``), else
-    :func:`proxy_cost`'s ``lut_eq`` with its parts; ``model`` says it is a proxy."""
+    :func:`proxy_cost`'s ``lut_eq`` with its parts; ``model`` says it is a proxy.  Kept per
+    design identity (:func:`~phongfx.explore.synth.estimates.cached_estimate`), so a known
+    design is priced without being elaborated."""
+    from phongfx.explore.synth.estimates import cached_estimate
+
     if target == "asic":
-        return {"area_um2": proxy_area(block, library or "osu018"), "model": "asic-proxy"}
-    return {**proxy_cost(block), "model": f"{target}-proxy"}
+        library = library or "osu018"
+        _coefficients(library)  # a bad library is refused before anything is cached
+        return cached_estimate("area", block, target, library,
+                               lambda: {"area_um2": proxy_area(block, library), "model": "asic-proxy"})
+    return cached_estimate("area", block, target, None, lambda: {**proxy_cost(block), "model": f"{target}-proxy"})
 
 
 def rtlil_of(block):

@@ -14,11 +14,11 @@ leaves nothing and a failed one leaves its logs in ``failed/<key>``.
 import json
 from pathlib import Path
 
-from phongfx.core.cache import folder, make_entry
+from phongfx.core.cache import folder, make_entry, remembered_key
 from phongfx.sim.tools import SynthError, run, run_yosys, tail, tool
 
 __all__ = ["SynthError", "RESULT", "tool", "run", "run_yosys", "tail", "read_json", "harness", "design_rtlil",
-           "cached_run"]
+           "flow_key", "cached_run"]
 
 #: The file written last in a run folder: its presence means a complete run.
 RESULT = "result.json"
@@ -76,6 +76,22 @@ def design_rtlil(block, module, dsp=None):
 
     with overflow_checks(False), dsp_mapping(dsp):
         return rtlil.convert(block.component(), name=module, emit_src=False)
+
+
+def flow_key(block, module, dsp, head, tail):
+    """The cache key of a flow's run of ``block``: the digest of the strings ``head``, the
+    design's :func:`design_rtlil` and ``tail``, remembered per design identity
+    (:func:`phongfx.core.cache.remembered_key`) so that a known design is not elaborated to
+    find its run."""
+    from phongfx.hdl.dsp import dsp_mapping
+    from phongfx.hdl.identity import design_identity
+    from phongfx.hdl.overflow import overflow_checks
+    from phongfx.sim.build_cache import digest
+
+    with overflow_checks(False), dsp_mapping(dsp):
+        identity = design_identity(block.component_class, block.config, module)
+    parts = None if identity is None else [*head, identity, *tail]
+    return remembered_key(parts, lambda: digest([*head, design_rtlil(block, module, dsp), *tail]))
 
 
 def cached_run(workdir, key, flow, cache="synth"):

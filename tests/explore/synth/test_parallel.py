@@ -2,7 +2,9 @@
 returned, progress that ticks while a job sleeps, in this process and on a Dask local cluster,
 and a real pair of small syntheses giving the same numbers in parallel as one after another."""
 
+import os
 import re
+import signal
 import sys
 import time
 
@@ -96,3 +98,18 @@ def test_real_pair_in_parallel_matches_serial(tmp_path):
     stages = {m.group(1) for m in map(re.compile(r"^candidate \d of 2 \(lirp seed \d\): (\w+), \d+ s$").match,
                                       lines) if m}
     assert {"verilog", "yosys", "nextpnr", "done"} <= stages
+
+
+def _interrupt_on_tick(line):
+    """Ctrl-C, as a terminal sends it (to the main thread), once a job has slept a second."""
+    if "sleeping" in line and not line.endswith(" 0 s"):
+        os.kill(os.getpid(), signal.SIGINT)
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_ctrl_c_cancels_the_jobs(workers, by_value):
+    jobs = [{"name": "lirp", "seconds": 3.0}, {"name": "shape", "seconds": 60.0}, {"name": "root", "seconds": 60.0}]
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        synth_all(jobs, workers=workers, progress=_interrupt_on_tick, synth=fake_synth, tick=0.25)
+    assert time.monotonic() - start < 45  # the 60 s jobs were not waited for

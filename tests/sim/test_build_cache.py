@@ -1,0 +1,62 @@
+"""The Verilator build cache (phongfx.sim.build_cache): a known design is keyed without being
+elaborated, to the same key as when its RTLIL was hashed; an edit of the hardware's sources keys
+it afresh."""
+
+import pytest
+from amaranth.back import rtlil
+
+from phongfx.core import cache
+from phongfx.core.registry import get_block
+from phongfx.hdl import identity
+from phongfx.hdl.handshake import Handshake
+from phongfx.sim.build_cache import cached_build
+
+
+@pytest.fixture
+def conversions(tmp_path, monkeypatch):
+    """A cache of the test's own, forgotten keys, and the list of RTLIL conversions made."""
+    monkeypatch.setenv("PHONGFX_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setattr(cache, "_KNOWN", {})
+    made = []
+    convert = rtlil.convert
+
+    def counted(*args, **kwargs):
+        made.append(kwargs.get("name"))
+        return convert(*args, **kwargs)
+
+    monkeypatch.setattr(rtlil, "convert", counted)
+    return made
+
+
+def _fake_compile(work, source, log):
+    (work / "top").write_text("#!/bin/sh\n")
+    log.write_text("built\n")
+
+
+def _build(component, root):
+    return cached_build(component, "lirp", "top", "// top\n", _fake_compile, root=root)
+
+
+def test_a_known_design_is_not_elaborated_to_find_its_build(conversions, tmp_path, monkeypatch):
+    root = tmp_path / "builds"
+    first = _build(get_block("lirp").component(), root)
+    assert first.built and conversions == ["lirp"]  # the key, once (the Verilog is Yosys' own path)
+    again = _build(get_block("lirp").component(), root)
+    assert not again.built and again.directory == first.directory and conversions == ["lirp"]
+    monkeypatch.setattr(cache, "_KNOWN", {})  # a new process reads the key back from the cache
+    assert _build(get_block("lirp").component(), root).directory == first.directory
+    assert conversions == ["lirp"]
+    # the key is the one the RTLIL gives, so builds made before identities existed still serve
+    fresh = _build(Handshake(get_block("lirp").component()), root)
+    assert fresh.directory != first.directory and conversions == ["lirp", "lirp"]
+
+
+def test_a_source_edit_keys_the_design_afresh(conversions, tmp_path, monkeypatch):
+    root = tmp_path / "builds"
+    first = _build(get_block("lirp").component(), root)
+    monkeypatch.setattr(identity, "source_digest", lambda: "edited")
+    second = _build(get_block("lirp").component(), root)
+    # elaborated again (the remembered key is not trusted); the same RTLIL finds the same build
+    assert conversions == ["lirp", "lirp"] and second.directory == first.directory and not second.built
+    changed = _build(get_block("lirp", pipeline=1).component(), root)
+    assert changed.directory != first.directory and changed.built
