@@ -8,7 +8,8 @@ largest relative error against synthesis over the registry's datapaths) is the m
 a design over the part even with its counts lowered by that error is certainly over
 (``"over"``: refused, with the smallest part that holds it); one within the margin of the
 part's size is ``"margin"`` (shipped with a warning: synthesis, ``--synth``, settles it);
-the rest ``"fits"``.  Synthesized, nextpnr has placed it, or said it does not fit.
+the rest ``"fits"``.  Synthesized, nextpnr has placed it, or said it does not fit; its
+LUT4 sites are Yosys' LUT4 cells and two per CCU2C carry cell.
 """
 
 from phongfx.explore.synth.fpga import TARGETS
@@ -62,7 +63,9 @@ def smallest_device(need, target, margins):
 
 
 def _proxy_need(unit):
-    return {"lut4": unit.get("lut", 0), "dsp": unit.get("dsp", 0), "bram_bits": 0}
+    """The proxy's counts: its LUT4 sites (logic and carry alike, as a part's capacity counts
+    them), DSPs; ROMs are priced as LUTs, so no block RAM."""
+    return {"lut4": unit.get("lut4", unit.get("lut", 0)), "dsp": unit.get("dsp", 0), "bram_bits": 0}
 
 
 def by_proxy(unit, target, device):
@@ -83,5 +86,6 @@ def by_synthesis(result, target, device):
     the bare block's, the harness aside); None on standard cells."""
     if target not in TARGETS:
         return None
-    need = {"lut4": result.get("lut4", 0), "dsp": result.get("dsp", 0), "bram_bits": result.get("bram_bits", 0)}
+    need = {"lut4": result.get("lut4", 0) + 2 * result.get("carry", 0), "dsp": result.get("dsp", 0),
+            "bram_bits": result.get("bram_bits", 0)}  # a CCU2C carry cell fills two LUT4 sites
     return check(need, target, device, {}, "synthesis")
