@@ -142,6 +142,9 @@ def timing_line(timing):
     """``  architecture: depth 2, interval 1, shared inputs; 120 MHz by the clock proxy, ...``"""
     from phongfx.explore.compile.architecture import describe
 
+    if timing.get("fmax_mhz") is None:
+        return (f"  architecture: {describe(timing['architecture'])}; clock not estimated (no clock proxy for this "
+                f"target: --synth measures it); latency {timing['latency']} cycles")
     source = "synthesized" if timing["clock_source"] == "synthesis" else "by the clock proxy"
     error = f" (±{timing['clock_error']:.0%})" if timing.get("clock_error") else ""
     asked = timing.get("requirement_mpx")
@@ -154,7 +157,7 @@ def timing_line(timing):
 
 def timing_missed(timing, method):
     """The stderr line of a chosen design whose clock misses what was asked, or None."""
-    if timing.get("met", True):
+    if timing.get("met") is not False:
         return None
     return (f"phongfx: TIMING NOT MET: {method} reaches {timing['fmax_mhz']:g} MHz "
             f"({'synthesized' if timing['clock_source'] == 'synthesis' else 'by the clock proxy'}), "

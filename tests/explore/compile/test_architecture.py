@@ -83,3 +83,11 @@ def test_a_design_over_its_part_names_the_numbers_and_the_smallest_part(parts):
     assert fit.by_proxy({"lut": 12000, "dsp": 39}, "ecp5", None)["status"] == "fits"
     assert fit.by_proxy({"lut": 12000, "dsp": 39}, "asic", "osu018") is None
     assert fit.by_synthesis({"lut4": 9000, "dsp": 59, "bram_bits": 0}, "ecp5", "45k")["status"] == "fits"
+
+
+def test_without_a_clock_proxy_nothing_asked_is_met_and_a_rate_asked_is_unknown():
+    free = timing(None, 1, 20, Speed(), "proxy")
+    assert free["met"] is True and free["fmax_mhz"] is None and free["pixel_rate_mpx"] is None
+    asked = timing(None, 2, 20, Speed(40), "proxy")
+    assert asked["met"] is None and asked["clock_required_mhz"] == 80
+    assert pick([{"cost": 1, "architecture": {}, **asked}]) == (None, {"cost": 1, "architecture": {}, **asked})
