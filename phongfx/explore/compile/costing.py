@@ -145,9 +145,11 @@ def price_designs(designs, analysis, speed, *, target="ecp5", device=None, freq=
         except (ValueError, SynthError) as error:
             results.append(_failure(error))
             continue
-        for p in priced:
-            p["fit"] = fits.by_proxy(p["unit"], target, device)
-            p["fits"] = p["fit"] is None or p["fit"]["status"] != "over"
+        try:
+            priced = _fitted(priced, method, params, analysis, speed, target, device, not any(only_default))
+        except (ValueError, SynthError) as error:
+            results.append(_failure(error))
+            continue
         chosen, fastest = architectures.pick(priced)
         out = _proxy_cost(chosen or fastest, proxy_where, len(priced))
         if chosen is None:
@@ -173,6 +175,20 @@ def price_designs(designs, analysis, speed, *, target="ecp5", device=None, freq=
         if "proposed" in out:
             results[index] = _synthesized_choice(out, [next(done) for _ in out["proposed"]], speed, synth_where)
     return results
+
+
+def _fitted(priced, method, params, analysis, speed, target, device, widen):
+    """``priced`` with each architecture's fit to the part; when none fits and ``widen``,
+    every architecture of the method priced and fitted instead (fewer units taking turns
+    can fit a part that the units side by side do not, at any speed when none is asked)."""
+    for p in priced:
+        p["fit"] = fits.by_proxy(p["unit"], target, device)
+        p["fits"] = p["fit"] is None or p["fit"]["status"] != "over"
+    if any(p["fits"] for p in priced) or not widen or speed.asked:
+        return priced
+    more = [architectures.price(method, params, analysis, a, speed, target=target, device=device)
+            for a in runs.architectures(method, analysis) if a != architectures.DEFAULT]
+    return priced + _fitted(more, method, params, analysis, speed, target, device, False)
 
 
 def _synthesized_choice(pending, found, speed, where):

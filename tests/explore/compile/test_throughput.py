@@ -153,3 +153,13 @@ def test_a_design_over_its_part_is_refused_and_nothing_is_written(fake, tmp_path
            "or --device 85k" in console
     assert json.loads((out / "manifest.json").read_text())["fit"]["status"] == "margin"
 
+
+
+def test_a_part_too_small_for_units_side_by_side_takes_one_unit_in_turns(fake, monkeypatch):
+    import phongfx.explore.synth.fpga as fpga
+    monkeypatch.setattr(fpga, "device_resources", lambda target, device: {
+        "part": "small", "lut4": 24288, "dsp": 45, "bram_blocks": 56, "bram_bits": 56 * 18432})
+    # no speed asked: two units' 78 DSPs are over its 45 even less 10%, one unit's 39 fit
+    cost = _compile(device="25k").best["cost"]
+    assert cost["architecture"] == {"pipeline": 0, "interval": 2, "share": True}
+    assert cost["fit"]["status"] == "fits" and cost["dsp"] == 39 and cost["pixel_rate_mpx"] == 20
