@@ -158,6 +158,7 @@ def _key(component, module, top_text, waves):
         unbuilt(component)
         identity = design_identity(type(component), config, module)
     elif isinstance(component, Handshake) and getattr(component.block, "config", None) is not None:
+        # so is a Handshake's, of its own class and its block's
         unbuilt(component)
         unbuilt(component.block)
         identity = design_identity((type(component), type(component.block)), component.block.config, module)
@@ -165,11 +166,21 @@ def _key(component, module, top_text, waves):
     def make_key():
         from amaranth.back import rtlil
 
-        return _text_key(rtlil.convert(component, name=module, emit_src=False), top_text, waves)
+        return _text_key(rtlil.convert(_twin(component), name=module, emit_src=False), top_text, waves)
 
     parts = None if identity is None else [identity, top_text, f"waves={bool(waves)}", *BUILD_ARGS,
                                             *_tool_versions()]
     return remembered_key(parts, make_key)
+
+
+def _twin(component):
+    """A fresh design equal to ``component`` (a block's, or a Handshake around one), converted
+    for its key so that the one to build stays unelaborated; ``component`` itself otherwise."""
+    if getattr(component, "config", None) is not None:
+        return type(component)(component.config)
+    if isinstance(component, Handshake) and getattr(component.block, "config", None) is not None:
+        return type(component)(type(component.block)(component.block.config))
+    return component
 
 
 def _text_key(design, top_text, waves):

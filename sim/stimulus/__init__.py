@@ -60,12 +60,13 @@ def lengths(v):
     return np.sqrt((x * x + y * y) + z * z)[..., None]
 
 
-def normalized(v):
+def normalized(v, in_place=False):
     """Each row of ``v`` divided by its :func:`lengths`, column by column (the same numbers
-    as a broadcast division, without its 3-long inner loop)."""
+    as a broadcast division, without its 3-long inner loop); ``in_place``: into ``v`` itself
+    (a fresh float64 array of the caller's), which spares touching a new one."""
     v = np.asarray(v, dtype=np.float64)
     length = lengths(v)[..., 0]
-    out = np.empty_like(v)
+    out = v if in_place else np.empty_like(v)
     for axis in range(3):
         np.divide(v[..., axis], length, out=out[..., axis])
     return out
@@ -73,7 +74,7 @@ def normalized(v):
 
 def unit_vectors(count, generator):
     """``count`` float unit vectors, uniform on the sphere."""
-    return normalized(generator.normal(size=(count, 3)))
+    return normalized(generator.normal(size=(count, 3)), in_place=True)
 
 
 def at_angle(alpha, generator):

@@ -77,7 +77,7 @@ def stimulus(config, count=1000, seed=0):
     def pairs(size):
         start = unit_vectors(size, g)
         end = start + 0.5 * unit_vectors(size, g)
-        return start, normalized(end)
+        return start, normalized(end, in_place=True)
 
     u0, u1 = pairs(count)
     shininess = np.exp(g.uniform(0, np.log(top), count))
@@ -98,7 +98,7 @@ def stimulus(config, count=1000, seed=0):
         tilt = 2.5 / np.sqrt(top)
         for mirror in halfway:
             near = mirror + unit_vectors(count // 4, g) * g.uniform(0, tilt, count // 4)[:, None]
-            near = normalized(near)
+            near = normalized(near, in_place=True)
             directed.append(encode(config, near, near, np.zeros(len(near)), np.full(len(near), top),
                                    z, z, lights, lights))
     return concat(*directed, raw)

@@ -17,6 +17,7 @@ Ctrl-C cancels the jobs not finished.  A run cut short leaves no cache entry: a 
 renamed into the cache only once whole (:func:`phongfx.core.cache.make_entry`).
 """
 
+import os
 import threading
 import time
 import uuid
@@ -144,7 +145,7 @@ def synth_all(jobs, *, scheduler=None, workers=None, progress=None, synth=None, 
         A Dask scheduler's address; default a ``LocalCluster`` on this machine.
     workers : int, optional
         Worker processes of the local cluster (default: one per job, at most one per core);
-        1 runs the jobs in this process, one after another, without Dask.
+        1 without a ``scheduler`` runs the jobs in this process, one after another, without Dask.
     progress : callable, optional
         ``progress(text)``: a line as each job starts, changes stage and ends, and every
         ``tick`` seconds (:data:`TICK_SECONDS`) one per running job:
@@ -152,6 +153,8 @@ def synth_all(jobs, *, scheduler=None, workers=None, progress=None, synth=None, 
     synth : callable, optional
         Instead of :func:`~phongfx.explore.synth.fpga.synth` (same signature; picklable when
         run on Dask).
+    tick : float
+        The seconds between two progress lines of a running job (:data:`TICK_SECONDS`).
 
     Raises
     ------
@@ -161,8 +164,6 @@ def synth_all(jobs, *, scheduler=None, workers=None, progress=None, synth=None, 
     KeyboardInterrupt
         After cancelling the jobs not finished.
     """
-    import os
-
     _check(jobs, workers)
     jobs = list(jobs)
     synth = synth or _default_synth()
