@@ -18,9 +18,11 @@ maps it, in the unit of :mod:`phongfx.explore.tables.cost` (LUT-eq = LUT4 + 958�
 * ROMs (``$memrd``): ``ceil(words/16)`` LUT4s per data bit (a LUT4 holds 16 bits);
 * registers are counted (``ff_bits``) but priced 0, as LUT-eq prices them.
 
-Checked against ECP5 synthesis of the defaults: the DSP counts of Figure 7 (39),
-the spherical unit (4) match; the Blinn–Phong baseline's 26 against 20 synthesized;
-LUTs run high (Yosys folds much of the rounding and saturation logic).
+Checked against ECP5 synthesis (``phongfx tables clock``): the DSP counts match on every
+datapath and shader at its defaults (Figure 7 39, the Blinn–Phong unit 20, two Blinn–Phong
+copies 40, the spherical unit 4); LUTs run high (Yosys trims the unused bits of wide
+intermediate results and folds much of the rounding and saturation logic), by the
+margin of :data:`RESOURCE_MARGIN`.
 
 On standard cells (:func:`proxy_area`) every bit costs area, so the estimate counts bits
 by kind (:func:`rtlil_features`): a variable multiplier by the product of its operand
@@ -43,26 +45,31 @@ import re
 
 from phongfx.explore.synth.netgraph import flatten
 
-__all__ = ["DSP_LUT_EQ", "RESOURCE_MARGIN", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
+__all__ = ["DSP_LUT_EQ", "LUT4_WEIGHTS", "RESOURCE_MARGIN", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
            "rtlil_cost", "rtlil_features", "rtlil_of"]
 
 DSP_LUT_EQ = 958
+#: LUT4 sites per counted bit (:func:`rtlil_cost`'s ``lut4``): the logic and carry bits of
+#: the RTL over-count what Yosys keeps (it trims unused high bits and folds constants), so
+#: these are fitted (``phongfx tables clock --refit``, non-negative least squares of the
+#: relative error) to the LUT4 sites of the ECP5 calibration runs.
+LUT4_WEIGHTS = {"lut": 0.362, "carry_bits": 0.833}
 #: The largest relative error of :func:`rtlil_cost`'s ``lut4`` and ``dsp`` against ECP5
-#: synthesis (``|synthesized / proxy - 1|``, the LUT4s as nextpnr counts them: LUT4 cells
-#: and two per CCU2C carry cell) over the calibration runs of ``phongfx tables clock``:
-#: the margin a device fit keeps around the proxy's counts.
-RESOURCE_MARGIN = {"lut4": 0.5, "dsp": 0.35}
+#: synthesis (``|synthesized / proxy - 1|``, the LUT4 sites as nextpnr counts them: LUT4
+#: cells and two per CCU2C carry cell) over the calibration runs of ``phongfx tables
+#: clock`` of 1,000 LUT4 sites or more: the margin a device fit keeps around the counts.
+RESOURCE_MARGIN = {"lut4": 0.15, "dsp": 0.0}
 #: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
 FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
 #: µm² per bit of each feature on each library, fitted by
 #: :func:`phongfx.explore.tables.proxy.fit` to the standard-cell flow (``phongfx tables proxy``).
-#: The fit puts the area on multipliers and registers: adders, comparators and
-#: multiplexers as the RTL writes them predict little, since Yosys trims the unused bits
-#: of wide intermediate results (the root unit's 2,916 adder bits synthesize smaller
-#: than the difference unit's 465), so the non-negative fit gives them 0.
+#: The fit puts the area on multipliers, registers and multiplexers (now that the copies
+#: of an expression Amaranth writes out again count once, as Yosys merges them); adders
+#: and comparators as the RTL writes them predict little, since Yosys trims the unused
+#: bits of wide intermediate results, so the non-negative fit gives them 0.
 AREA_COEFFICIENTS = {
-    "osu018": {"mul_bits": 159.8, "add_bits": 0.0, "cmp_bits": 0.0, "mux_bits": 0.0, "logic_bits": 0.0,
-               "rom_bits": 1.5, "ff_bits": 225.8},
+    "osu018": {"mul_bits": 166.6, "add_bits": 0.0, "cmp_bits": 0.0, "mux_bits": 47.2, "logic_bits": 0.0,
+               "rom_bits": 8.5, "ff_bits": 182.5},
 }
 # The OSU cells are drawn to scalable (lambda) rules, so every osu035 cell is 4 times its
 # osu018 twin in area and the same design maps to 4.0 times the area (measured: fig7
@@ -156,9 +163,10 @@ def rtlil_features(text):
 
 def rtlil_cost(text):
     """``{lut_eq, lut, dsp, carry_bits, ff_bits, lut4}`` of RTLIL ``text`` (module docstring);
-    ``lut4`` counts the LUT4 sites the design fills on ECP5, logic and carry alike (a
+    ``lut4`` estimates the LUT4 sites the design fills on ECP5, logic and carry alike (a
     CCU2C carry cell fills two sites for two bits), what a part's ``lut4`` capacity counts
-    (:func:`~phongfx.explore.synth.fpga.device_resources`)."""
+    (:func:`~phongfx.explore.synth.fpga.device_resources`): the logic and carry bits
+    weighted by :data:`LUT4_WEIGHTS`."""
     lut = dsp = carry = ff = 0
     for kind, *n in _parts(text):
         if kind == "mul":
@@ -174,7 +182,7 @@ def rtlil_cost(text):
         else:
             ff += n[0]
     return {"lut_eq": lut + DSP_LUT_EQ * dsp, "lut": lut, "dsp": dsp, "carry_bits": carry, "ff_bits": ff,
-            "lut4": lut + carry}
+            "lut4": round(LUT4_WEIGHTS["lut"] * lut + LUT4_WEIGHTS["carry_bits"] * carry)}
 
 
 def _coefficients(library):

@@ -29,8 +29,8 @@ from phongfx.explore.synth.netgraph import flatten
 from phongfx.explore.synth.proxy import RESOURCE_MARGIN, rtlil_cost, rtlil_of
 from phongfx.explore.tables.proxy import relative_nnls
 
-__all__ = ["TABLES", "NAMES", "DEPTHS", "TARGETS", "FREQ", "SEED", "points", "calibration_rows", "fit",
-           "summary", "resource_errors", "clock_table", "run_table", "markdown", "to_json"]
+__all__ = ["TABLES", "NAMES", "DEPTHS", "TARGETS", "FREQ", "SEED", "MARGIN_FROM_LUT4", "points",
+           "calibration_rows", "fit", "summary", "resource_errors", "fit_lut4", "clock_table", "run_table", "markdown", "to_json"]
 
 TABLES = ("clock",)
 #: Every unit the compiler can choose; a unit without a depth has one row.
@@ -108,7 +108,8 @@ def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=N
             if target != "asic":
                 cost = rtlil_cost(rtlil_of(block))
                 row.update({"lut4": result["lut4"] + 2 * result["carry"], "dsp": result["dsp"],
-                            "proxy_lut4": cost["lut4"], "proxy_dsp": cost["dsp"]})
+                            "proxy_lut4": cost["lut4"], "proxy_dsp": cost["dsp"], "proxy_lut": cost["lut"],
+                            "proxy_carry_bits": cost["carry_bits"]})
             rows.append(row)
     return rows
 
@@ -144,15 +145,38 @@ def summary(rows):
     return result
 
 
-def resource_errors(rows):
-    """The area proxy's largest ``|synthesized / proxy − 1|`` on ``lut4`` and ``dsp`` over the
-    FPGA rows, and the median of each."""
+#: The smallest design (synthesized LUT4 sites) whose LUT4 error sets the margin: a device
+#: fit is a question for large designs, and a small one's error is a large share of little.
+MARGIN_FROM_LUT4 = 1000
+
+
+def resource_errors(rows, weights=None):
+    """The area proxy's ``|synthesized / proxy − 1|`` on ``lut4`` and ``dsp`` over the FPGA
+    rows of :data:`MARGIN_FROM_LUT4` sites or more: ``max`` and ``median`` of each, and the
+    largest over every row (``max_all``); ``weights`` (``{"lut", "carry_bits"}``) price the
+    LUT4 sites afresh instead of the stored ones."""
     fpga = [row for row in rows if "lut4" in row]
     result = {}
     for key in ("lut4", "dsp"):
-        errors = [abs(row[key] / row[f"proxy_{key}"] - 1) for row in fpga if row[f"proxy_{key}"]]
-        result[key] = {"max": max(errors, default=0.0), "median": statistics.median(errors) if errors else 0.0}
+        errors = []
+        for row in fpga:
+            proxy = row[f"proxy_{key}"]
+            if key == "lut4" and weights is not None:
+                proxy = weights["lut"] * row["proxy_lut"] + weights["carry_bits"] * row["proxy_carry_bits"]
+            if proxy:
+                errors.append((row["lut4"] >= MARGIN_FROM_LUT4, abs(row[key] / proxy - 1)))
+        large = [e for big, e in errors if big]
+        result[key] = {"max": max(large, default=0.0), "median": statistics.median(large) if large else 0.0,
+                       "max_all": max((e for _, e in errors), default=0.0)}
     return result
+
+
+def fit_lut4(rows):
+    """LUT4 sites per logic bit and per carry bit (``{"lut", "carry_bits"}``) that fit the
+    synthesized LUT4 sites of the FPGA ``rows`` (:func:`~phongfx.explore.tables.proxy.relative_nnls`)."""
+    fpga = [row for row in rows if "lut4" in row]
+    found = relative_nnls([[row["proxy_lut"], row["proxy_carry_bits"]] for row in fpga], [row["lut4"] for row in fpga])
+    return {"lut": round(float(found[0]), 3), "carry_bits": round(float(found[1]), 3)}
 
 
 def clock_table(selected=None, *, workdir=None, refit=False, progress=None):
@@ -174,6 +198,9 @@ def clock_table(selected=None, *, workdir=None, refit=False, progress=None):
                 ns = critical_path(row["netlist"], found)[0]
                 refitted.append({"target": target, "error": (1000 / ns) / row["fmax_mhz"] - 1})
         result["refit_summary"] = summary(refitted)
+        if any("lut4" in row for row in rows):
+            result["refit_lut4"] = fit_lut4(rows)
+            result["refit_resources"] = resource_errors(rows, result["refit_lut4"])
     result["rows"] = [{k: v for k, v in row.items() if k != "netlist"} for row in rows]
     return result
 
@@ -207,14 +234,18 @@ def markdown(result):
                          f"{row['proxy_path']} |")
         lines.append("")
     res = result["resources"]
-    lines.append(f"Area proxy on ECP5: LUT4 error median {res['lut4']['median']:.1%}, largest {res['lut4']['max']:.1%}; "
-                 f"DSP median {res['dsp']['median']:.1%}, largest {res['dsp']['max']:.1%} (stored margins "
-                 f"{_coefficients(result['resource_margin'])}).")
+    lines.append(f"Area proxy on ECP5, designs of {MARGIN_FROM_LUT4} LUT4 sites or more: LUT4 error median "
+                 f"{res['lut4']['median']:.1%}, largest {res['lut4']['max']:.1%} ({res['lut4']['max_all']:.1%} over "
+                 f"every design); DSP median {res['dsp']['median']:.1%}, largest {res['dsp']['max']:.1%} (stored "
+                 f"margins {_coefficients(result['resource_margin'])}).")
     if "refit" in result:
         for target, values in result["refit"].items():
             numbers = result["refit_summary"][target]
             lines.append(f"* Refitted now, {target}: {_coefficients(values)} (median {numbers['median']:.1%}, "
                          f"largest {numbers['max']:.1%}).")
+        if "refit_lut4" in result:
+            lines.append(f"* LUT4 sites per bit refitted now: {_coefficients(result['refit_lut4'])} (largest error "
+                         f"{result['refit_resources']['lut4']['max']:.1%}).")
     return "\n".join(lines) + "\n"
 
 

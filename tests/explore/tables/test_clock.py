@@ -37,7 +37,7 @@ def test_fit_recovers_the_periods_of_known_coefficients():
 def _fake_synth(name, *, config, target, device, freq, workdir, progress, seed=1):
     result = proxy_clock(get_block(name, config), target)
     return {"fmax_mhz": result["fmax_mhz"] / 1.25, "critical_path": {"from": "a", "to": "b", "ns": 1.0},
-            "lut4": 100, "carry": 50, "dsp": 3}
+            "lut4": 1500, "carry": 50, "dsp": 3}
 
 
 def test_table_rows_errors_and_summary(monkeypatch):
@@ -48,7 +48,7 @@ def test_table_rows_errors_and_summary(monkeypatch):
     assert all(row["error"] == pytest.approx(0.25) for row in result["rows"])
     assert result["summary"]["ecp5"] == {"rows": 2, "median": pytest.approx(0.25), "max": pytest.approx(0.25)}
     ecp5 = [row for row in result["rows"] if row["target"] == "ecp5"]
-    assert ecp5[0]["lut4"] == 200 and ecp5[0]["dsp"] == 3 and ecp5[0]["proxy_dsp"] == 39
+    assert ecp5[0]["lut4"] == 1600 and ecp5[0]["dsp"] == 3 and ecp5[0]["proxy_dsp"] == 39
     assert result["resources"]["dsp"]["max"] == pytest.approx(1 - 3 / 39)
     text = clock_table.markdown(result)
     assert "| fig7 | 4 |" in text and "+25.0%" in text and "median error 25.0%" in text
