@@ -304,7 +304,10 @@ def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
     monkeypatch.setattr(synth_module, "synth", broken)
     compiled = compile_scene(_torus(), methods=["fig7"], synth=True, workers=1)
     assert compiled.chosen == "fig7" and compiled.cost_model == "ecp5-synth"
-    assert compiled.best["cost"] == {"cost": None, "why": "Yosys did not finish (exit code 1)", "log": "x"}
+    failed = compiled.best["cost"]
+    assert {k: failed[k] for k in ("cost", "why", "log")} == {"cost": None, "why": "Yosys did not finish (exit code 1)",
+                                                               "log": "x"}
+    assert failed["proxy"]["architecture"] == {"pipeline": 0, "interval": 1, "share": True}  # what it proposed
 
 
 def test_the_conventional_unit_meets_phong_where_blinn_cannot():
