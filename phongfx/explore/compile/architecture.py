@@ -139,13 +139,16 @@ def price(method, params, analysis, architecture, speed, *, target="ecp5", devic
 
 def pick(priced):
     """``(chosen, fastest)`` of priced architectures: the cheapest that meets the speed
-    (the faster of equal costs), else None; and the one of the highest pixel rate (the
-    cheaper of equal rates), what the design reaches at best."""
+    (the faster of equal costs, then the shallower), else None; and the one of the highest
+    pixel rate (the cheaper of equal rates), what the design reaches at best."""
     if not priced:
         return None, None
-    fastest = min(priced, key=lambda p: (-(p["pixel_rate_mpx"] or 0), p["cost"]))
+    def depth(p):  # of equal cost and rate, the shallower: fewer registers and cycles of latency
+        return p["architecture"].get("pipeline", 0)
+
+    fastest = min(priced, key=lambda p: (-(p["pixel_rate_mpx"] or 0), p["cost"], depth(p)))
     meeting = [p for p in priced if p["met"] and p.get("fits", True)]
-    chosen = min(meeting, key=lambda p: (p["cost"], -(p["pixel_rate_mpx"] or 0))) if meeting else None
+    chosen = min(meeting, key=lambda p: (p["cost"], -(p["pixel_rate_mpx"] or 0), depth(p))) if meeting else None
     return chosen, fastest
 
 
