@@ -91,3 +91,8 @@ def test_without_a_clock_proxy_nothing_asked_is_met_and_a_rate_asked_is_unknown(
     asked = timing(None, 2, 20, Speed(40), "proxy")
     assert asked["met"] is None and asked["clock_required_mhz"] == 80
     assert pick([{"cost": 1, "architecture": {}, **asked}]) == (None, {"cost": 1, "architecture": {}, **asked})
+
+
+def test_of_equal_cost_and_rate_the_shallower_is_picked():
+    deep, shallow = _priced(1000, 60, depth=3), _priced(1000, 60, depth=0)
+    assert pick([deep, shallow]) == (shallow, shallow)
