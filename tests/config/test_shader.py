@@ -49,6 +49,10 @@ def test_replace_sends_unit_settings_to_every_unit_and_pipeline_to_the_blend():
     config = ShaderConfig().replace(pipeline=2, vec_frac=12)
     assert config.units[0].pipeline == 2 and config.units[0].vec_frac == 12
     assert config.blend.pipeline == 2
+    # the conventional unit is pipelined by hand: it has no depth to take, the blend takes it
+    units = (ConventionalConfig(),) * 2
+    conventional = ShaderConfig(unit="conventional", units=units, blend=_blend(diff="1.15")).replace(pipeline=3)
+    assert conventional.units == units and conventional.blend.pipeline == 3
 
 
 @pytest.mark.parametrize("changes, error, message", [
