@@ -41,18 +41,21 @@ FEATURES = ("stage", "mul", "mul_tiles", "mul_bits", "carry", "carry_bits", "car
 
 #: ns per unit of each feature, per target (``asic`` is osu018).  Fitted by
 #: ``phongfx tables clock --refit`` (:func:`phongfx.explore.tables.clock.fit`): non-negative
-#: least squares of the relative period error over the calibration points (every datapath
-#: and two shaders at every depth, one synthesis each, nextpnr seed 1 at 150 MHz on the
-#: LFE5U-45F; Yosys + OpenSTA on osu018), the critical path re-chosen under each round's
-#: coefficients until they settle.
+#: least squares of the relative period error over the calibration points synthesized
+#: (nextpnr seed 1 at 150 MHz on the LFE5U-45F: 14 points, every datapath at depth 0,
+#: Figure 7 at 0..4, Figure 8 at 0, 2 and 4; Yosys + OpenSTA on osu018: 11 points), the
+#: critical path re-chosen under each round's coefficients until they settle.  On ECP5 the
+#: fit puts the time on the DSP multiply, the carry chains and the LUT levels, with little
+#: fixed overhead; on osu018 on a fixed overhead, the operand bits of the array
+#: multipliers and the LUT (gate) levels.
 COEFFICIENTS = {
-    "ecp5": {"stage": 4.0, "mul": 4.5, "mul_tiles": 1.5, "mul_bits": 0.0, "carry": 1.0, "carry_bits": 0.05,
-             "carry_log": 0.0, "lut": 0.8},
-    "asic": {"stage": 0.5, "mul": 0.5, "mul_tiles": 0.0, "mul_bits": 0.12, "carry": 0.3, "carry_bits": 0.0,
-             "carry_log": 0.15, "lut": 0.25},
+    "ecp5": {"stage": 0.262, "mul": 6.812, "mul_tiles": 0.0, "mul_bits": 0.0,
+             "carry": 0.0, "carry_bits": 0.064, "carry_log": 0.117, "lut": 0.646},
+    "asic": {"stage": 4.813, "mul": 0.0, "mul_tiles": 0.0, "mul_bits": 0.084,
+             "carry": 0.0, "carry_bits": 0.005, "carry_log": 0.0, "lut": 0.651},
 }
 #: The largest relative Fmax error of the calibration (``phongfx tables clock``), per target.
-ERROR = {"ecp5": 0.5, "asic": 0.5}
+ERROR = {"ecp5": 0.13, "asic": 0.11}
 #: The targets :func:`proxy_clock` knows, and the device (library) each was calibrated on.
 TARGETS = {"ecp5": "45k", "asic": "osu018"}
 

@@ -53,12 +53,12 @@ DSP_LUT_EQ = 958
 #: the RTL over-count what Yosys keeps (it trims unused high bits and folds constants), so
 #: these are fitted (``phongfx tables clock --refit``, non-negative least squares of the
 #: relative error) to the LUT4 sites of the ECP5 calibration runs.
-LUT4_WEIGHTS = {"lut": 0.362, "carry_bits": 0.833}
+LUT4_WEIGHTS = {"lut": 0.396, "carry_bits": 0.745}
 #: The largest relative error of :func:`rtlil_cost`'s ``lut4`` and ``dsp`` against ECP5
 #: synthesis (``|synthesized / proxy - 1|``, the LUT4 sites as nextpnr counts them: LUT4
 #: cells and two per CCU2C carry cell) over the calibration runs of ``phongfx tables
 #: clock`` of 1,000 LUT4 sites or more: the margin a device fit keeps around the counts.
-RESOURCE_MARGIN = {"lut4": 0.15, "dsp": 0.0}
+RESOURCE_MARGIN = {"lut4": 0.16, "dsp": 0.0}
 #: The bit counts :func:`rtlil_features` returns, in the order of the coefficients.
 FEATURES = ("mul_bits", "add_bits", "cmp_bits", "mux_bits", "logic_bits", "rom_bits", "ff_bits")
 #: µm² per bit of each feature on each library, fitted by
