@@ -25,7 +25,16 @@ def add_arguments(p):
                    help="what cost means: ecp5 (default) or ice40 LUT-eq, asic area in µm²")
     p.add_argument("--device", help="FPGA part (ecp5 25k/45k/85k, ice40 up5k/hx8k/hx1k)")
     p.add_argument("--library", help="standard cells for --target asic: osu018 (default) or osu035")
-    p.add_argument("--freq", type=float, default=150, help="clock given to synthesis in MHz (default 150)")
+    p.add_argument("--freq", type=float, default=150,
+                   help="clock given to synthesis in MHz (default 150; --clock when given)")
+    p.add_argument("--throughput", type=float, metavar="MPX",
+                   help="pixel rate the core must sustain, Mpixel/s, instead of the scene's "
+                        "requirement.mpixels_per_second (or width × height × fps)")
+    p.add_argument("--clock", type=float, metavar="MHZ",
+                   help="the clock the core will run at, MHz: the design must reach it, its pixel rate is "
+                        "clock / interval (default: each design at its own Fmax)")
+    p.add_argument("--workers", type=int, help="with --synth: worker processes (default: all cores; 1: in-process)")
+    p.add_argument("--scheduler", help="with --synth: Dask scheduler address, or 'local' for a LocalCluster")
     p.add_argument("--seed", type=int, default=1, help="nextpnr's placement seed (default 1)")
     p.add_argument("--max-error", type=float, metavar="LEVELS",
                    help="instead of the scene's requirement.max_error_levels (display levels, > 0)")
@@ -66,6 +75,17 @@ def _cost(cost, synth=False):
     if cost.get("unit") == "µm²":
         return f"area {value:,.0f} µm²{model}"
     return f"LUT-eq {value:.0f}{model}"
+
+
+def _speed(cost, asked):
+    """`` [depth 2, interval 2: 50 Mpixel/s]`` of a method's cost when a speed was asked, or
+    why none of its architectures meets it."""
+    if not asked or "pixel_rate_mpx" not in cost:
+        return ""
+    a = cost["architecture"]
+    verdict = (", over the part" if cost.get("why_not") == "fit"
+               else "" if cost.get("met", True) else ", the fastest, too slow")
+    return f" [depth {a['pipeline']}, interval {a['interval']}: {cost['pixel_rate_mpx']:g} Mpixel/s{verdict}]"
 
 
 def _saving(cost, other):
@@ -118,18 +138,65 @@ def _bound(certificate):
     return "none" if value is None else f"{value:.3g} levels"
 
 
+def timing_line(timing):
+    """``  architecture: depth 2, interval 1, shared inputs; 120 MHz by the clock proxy, ...``"""
+    from phongfx.explore.compile.architecture import describe
+
+    if timing.get("fmax_mhz") is None:
+        return (f"  architecture: {describe(timing['architecture'])}; clock not estimated (no clock proxy for this "
+                f"target: --synth measures it); latency {timing['latency']} cycles")
+    source = "synthesized" if timing["clock_source"] == "synthesis" else "by the clock proxy"
+    error = f" (±{timing['clock_error']:.0%})" if timing.get("clock_error") else ""
+    asked = timing.get("requirement_mpx")
+    verdict = (f" against {asked:g} Mpixel/s asked" if asked else "") + (
+        "" if timing.get("clock_required_mhz") is None else ": met" if timing["met"] else ": NOT MET")
+    return (f"  architecture: {describe(timing['architecture'])}; clock {timing['clock_mhz']:g} MHz {source}{error}, "
+            f"{timing['pixel_rate_mpx']:g} Mpixel/s{verdict}; latency {timing['latency']} cycles "
+            f"({timing['latency_ns']:g} ns)")
+
+
+def timing_missed(timing, method):
+    """The stderr line of a chosen design whose clock misses what was asked, or None."""
+    if timing.get("met") is not False:
+        return None
+    return (f"phongfx: TIMING NOT MET: {method} reaches {timing['fmax_mhz']:g} MHz "
+            f"({'synthesized' if timing['clock_source'] == 'synthesis' else 'by the clock proxy'}), "
+            f"{timing['pixel_rate_mpx']:g} Mpixel/s; it needs {timing['clock_required_mhz']:g} MHz: missed by "
+            f"{timing['missed_by_mhz']:g} MHz ({timing['missed_by_percent']:g}%)")
+
+
+def fit_lines(fit):
+    """How the chosen design fits its FPGA part: one line, and a warning within the proxy's margin."""
+    if not fit:
+        return []
+    names = {"lut4": "LUT4", "dsp": "DSP", "bram_bits": "block RAM bits"}
+    used = ", ".join(f"{names[k]} {r['need']:,} of {r['available']:,}" for k, r in fit["resources"].items()
+                     if r["need"] or k != "bram_bits")
+    lines = [f"  fits the {fit['part']} ({fit['source']}): {used}"]
+    if fit["status"] == "margin":
+        near = ", ".join(f"{names[k]} {fit['resources'][k]['need']:,} ±{fit['resources'][k]['margin']:.0%} of "
+                         f"{fit['resources'][k]['available']:,}" for k in fit["over"])
+        lines = [f"  within the proxy's margin of the {fit['part']}: {near}; synthesize to be sure (--synth)"
+                 + (f", or --device {fit['smallest_device']}" if fit.get("smallest_device") else "")]
+    return lines
+
+
 def cmd_compile(args):
     from tqdm import tqdm
 
     from phongfx.certify import certify
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.compile.emit import emit
-    from phongfx.scene.file import load_scene, with_requirement
+    from phongfx.explore.compile.architecture import Speed
+    from phongfx.scene.file import load_scene, with_requirement, with_throughput
     methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
     device = target_device(args.target, args.device, args.library)
     spec = load_scene(args.scene)
     if args.max_error is not None:
         spec = with_requirement(spec, args.max_error)
+    if args.throughput is not None:
+        spec = with_throughput(spec, args.throughput)
+    Speed(spec.requirement.mpixels_per_second, args.clock)  # a bad --clock fails before the search
     check_folder(args.output)
     with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
               bar_format="{desc}: {n} steps {elapsed}") as bar:
@@ -141,15 +208,23 @@ def cmd_compile(args):
                                  journal=folder("compile"),
                                  prove=args.prove, prove_timeout=args.prove_timeout,
                                  samples=args.samples, final_samples=args.final_samples,
-                                 certifier=certify, certified=args.certified)
+                                 certifier=certify, certified=args.certified, clock=args.clock,
+                                 scheduler=args.scheduler, workers=args.workers)
+        if compiled.refused and compiled.refused["why"] == "fit":
+            for line in compiled.refused["text"]:
+                print(f"phongfx: refused: {line}", file=sys.stderr)
+            print(f"phongfx: nothing written to {args.output}", file=sys.stderr)
+            return 1
         data = emit(compiled, args.output, check=not args.no_check, progress=progress,
                     testbench=args.testbench, vcd=args.vcd)
     for name, reason in data["rejected"].items():
         print(f"  {name:12s} rejected: {reason}")
+    asked = data["requirement"].get("mpixels_per_second") or data["requirement"].get("clock_mhz")
     for name, r in data["methods"].items():
         default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'], args.synth)}"
         if r["feasible"]:
-            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])} at {r['params']} ({_where(r)}; {default})")
+            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])}{_speed(r['cost'], asked)} at {r['params']} "
+                  f"({_where(r)}; {default})")
             if r.get("why_not_chosen"):
                 print(f"  {'':12s}   not chosen: {r['why_not_chosen']}")
         else:
@@ -157,6 +232,10 @@ def cmd_compile(args):
             for why in r.get("why", []):
                 print(f"  {'':12s}   {why}")
     print(f"cost model: {data['cost_model']}; wrote {args.output}/manifest.json")
+    if data["chosen"] is None and data.get("refused"):
+        for line in data["refused"]["text"]:
+            print(f"phongfx: {line}; see {args.output}/manifest.json", file=sys.stderr)
+        return 1
     if data["chosen"] is None:
         print(f"phongfx: no method meets max_error_levels = {spec.requirement.max_error_levels} "
               f"against {spec.requirement.against} on {spec.name}; see {args.output}/manifest.json",
@@ -177,6 +256,10 @@ def cmd_compile(args):
           f"at out_r/g/b, "
           f"mean {error['mean']:.4f} ({witness['unrounded']:.3f} against the unrounded reference), "
           f"{_cost(data['cost'])}, latency {data['latency']}")
+    if data["timing"].get("architecture"):  # not when every synthesis of the design failed
+        print(timing_line(data["timing"]))
+    for line in fit_lines(data.get("fit")):
+        print(line)
     for step in data["witness_rounds"]:
         print(f"  {step['method']} at {step['params']}: witness {step['witness_levels']} levels, "
               + (f"searched again with {step['hard_points']} hard points" if step["action"] == "searched again"
@@ -219,14 +302,18 @@ def cmd_compile(args):
               f"assuming {'; '.join(proof['assumptions'])})")
     top = data["top"]
     print(f"shipped top: {args.output}/{top['file']} ({top['module']}, {len(top['ports'])} ports, "
-          f"latency {top['latency']})")
+          f"latency {top['latency']}"
+          + (f", one pixel every {top['interval']} clocks)" if top.get("interval", 1) > 1 else ")"))
     if "testbench" in data:
         print(f"testbench: {args.output}/testbench ({data['testbench']['vectors']} vectors of frame "
               f"{data['testbench']['frame']}; run: sh {args.output}/testbench/run.sh)")
+    missed = timing_missed(data["timing"], data["chosen"])
+    if missed:
+        print(missed, file=sys.stderr)
     check = data["rtl_check"]
     if check is None:
-        return 0
+        return 1 if missed else 0
     print(f"RTL check frame {check['frame']}: {check['pixels']} pixels, {check['cycles']} cycles "
           f"({check['stalls']:.0%} out_ready stalls, a reset at cycle {check['reset_at_cycle']}), "
           f"{check['mismatches']} mismatches, {check['seconds']:.2f} s")
-    return exit_on_mismatch(check["mismatches"], f"; see {args.output}/manifest.json")
+    return exit_on_mismatch(check["mismatches"], f"; see {args.output}/manifest.json") or (1 if missed else 0)

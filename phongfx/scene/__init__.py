@@ -5,7 +5,8 @@
 * :mod:`.mesh`: triangle meshes (UV spheres, tori, the 200-frame rotation of Hast et al.)
   and a vectorized scanline rasterizer yielding spans with unit normals at their ends;
 * :mod:`.obj`: the Wavefront OBJ reader;
-* :mod:`.file`: scene files (TOML) for the scene compiler, validated;
+* :mod:`.file`: scene files (TOML) for the scene compiler, validated; :mod:`.requirement`
+  their ``[requirement]``: the error allowed and the pixel rate;
 * :mod:`.geometry`: one frame of a scene file as the datapaths see it (span ends of N,
   L and V, interpolation amounts);
 * :mod:`.domain`: a scene's input domain, every input its hardware can meet while the scene

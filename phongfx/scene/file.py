@@ -16,9 +16,10 @@ from .domain import parse_options
 from .lyon import Scene
 from .mesh import torus, uv_sphere
 from .obj import ObjError, load_obj
+from .requirement import Requirement, max_error, parse_requirement, throughput
 
-__all__ = ["SceneError", "SceneSpec", "with_requirement", "Camera", "Light", "Material", "SceneObject", "Frames",
-           "Output", "Requirement", "load_scene", "parse_scene", "OBJECT_TYPES"]
+__all__ = ["SceneError", "SceneSpec", "with_requirement", "with_throughput", "Camera", "Light", "Material",
+           "SceneObject", "Frames", "Output", "Requirement", "load_scene", "parse_scene", "OBJECT_TYPES"]
 
 N_MAX = 8000
 _TOP = ("name", "camera", "lights", "materials", "objects", "frames", "output", "requirement",
@@ -86,12 +87,6 @@ class Output:
     width: int = 128
     height: int = 128
     bits: int = 8
-
-
-@dataclass(frozen=True)
-class Requirement:
-    max_error_levels: float = 1.0
-    against: str = "phong"
 
 
 @dataclass(frozen=True)
@@ -352,25 +347,24 @@ def parse_scene(source, name=None, base_dir=".", path=None):
     output = Output(r.integer(output.get("width", size.get("width", 128)), "output.width", 8, 4096),
                     r.integer(output.get("height", size.get("height", 128)), "output.height", 8, 4096),
                     r.integer(output.get("bits", 8), "output.bits", 1, 16))
-    req = r.table(data.get("requirement", {}), "requirement", ("max_error_levels", "against"))
-    against = req.get("against", "phong")
-    if against not in ("phong", "self"):
-        r.fail(f"requirement.against must be \"phong\" or \"self\", not {against!r}")
-    requirement = Requirement(_max_error(r, req.get("max_error_levels", 1.0), "requirement.max_error_levels"),
-                              against)
+    requirement = parse_requirement(r, data.get("requirement", {}))
     return SceneSpec(scene_name, None if path is None else os.fspath(path), camera, lights,
                      materials, objects, frames, output, requirement, options)
-
-
-def _max_error(r, value, field):
-    return r.number(value, field, 0, 65535, open_lo=True)
 
 
 def with_requirement(spec, max_error_levels):
     """``spec`` with ``requirement.max_error_levels`` replaced (``phongfx compile --max-error``),
     checked as the file's own value is."""
-    value = _max_error(_Reader("--max-error"), max_error_levels, "max_error_levels")
+    value = max_error(_Reader("--max-error"), max_error_levels, "max_error_levels")
     return dataclasses.replace(spec, requirement=dataclasses.replace(spec.requirement, max_error_levels=value))
+
+
+def with_throughput(spec, mpixels_per_second):
+    """``spec`` with its pixel rate requirement replaced (``phongfx compile --throughput``),
+    checked as the file's own ``requirement.mpixels_per_second`` is."""
+    value = throughput(_Reader("--throughput"), mpixels_per_second, "throughput")
+    return dataclasses.replace(spec, requirement=dataclasses.replace(spec.requirement, mpixels_per_second=value,
+                                                                     display=None))
 
 
 def load_scene(path):

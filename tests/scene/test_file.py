@@ -171,6 +171,23 @@ BAD = [
      r"^t: requirement\.against must be \"phong\" or \"self\", not 'fig7'$"),
     (_set(("requirement",), {"max_error_levels": 0}),
      r"^t: requirement\.max_error_levels must be a number in \(0, 65535\], not 0$"),
+    (_set(("requirement",), {"mpixels_per_second": 0}),
+     r"^t: requirement\.mpixels_per_second must be a number in \(0, 100000\], not 0$"),
+    (_set(("requirement",), {"mpixels_per_second": 2e6}),
+     r"^t: requirement\.mpixels_per_second must be a number in \(0, 100000\], not 2000000\.0$"),
+    (_set(("requirement",), {"mpixels_per_second": 40, "fps": 60}),
+     r"^t: requirement must give the pixel rate either as mpixels_per_second or as the display's width, "
+     r"height and fps, not both: \['mpixels_per_second', 'fps'\]$"),
+    (_set(("requirement",), {"width": 640, "height": 480}),
+     r"^t: requirement\.fps is missing: width, height and fps together give the pixel rate of the display "
+     r"driven \(given: width, height\)$"),
+    (_set(("requirement",), {"width": 0, "height": 480, "fps": 60}),
+     r"^t: requirement\.width must be an integer in 1\.\.16384, not 0$"),
+    (_set(("requirement",), {"width": 640, "height": 480, "fps": 0}),
+     r"^t: requirement\.fps must be a number in \(0, 1000\], not 0$"),
+    (_set(("requirement",), {"pixels": 3}),
+     r"^t: requirement: unknown key 'pixels'; allowed: max_error_levels, against, mpixels_per_second, width, "
+     r"height, fps$"),
 ]
 
 
@@ -223,3 +240,23 @@ def test_the_scene_page_shows_the_example_scenes_whole():
         options = page.split(include, 1)[1].split("\n\n", 1)[0]
         assert all(option.strip().split(":")[1] in ("language", "caption")
                    for option in options.splitlines() if option.strip()), options
+
+
+def test_the_pixel_rate_is_given_or_the_display_s():
+    assert _parse(lambda d: None).requirement.mpixels_per_second is None
+    rate = _parse(_set(("requirement",), {"mpixels_per_second": 40})).requirement
+    assert rate.mpixels_per_second == 40.0 and rate.display is None
+    assert rate.as_dict() == {"max_error_levels": 1.0, "against": "phong", "mpixels_per_second": 40.0}
+    vga = _parse(_set(("requirement",), {"width": 640, "height": 480, "fps": 60})).requirement
+    assert vga.mpixels_per_second == pytest.approx(18.432) and vga.display == (640, 480, 60.0)
+    assert vga.as_dict()["display"] == {"width": 640, "height": 480, "fps": 60.0}
+
+
+def test_the_command_line_s_throughput_replaces_the_file_s():
+    from phongfx.scene.file import with_throughput
+    vga = _parse(_set(("requirement",), {"width": 640, "height": 480, "fps": 60}))
+    faster = with_throughput(vga, 150)
+    assert faster.requirement.mpixels_per_second == 150.0 and faster.requirement.display is None
+    assert faster.requirement.max_error_levels == vga.requirement.max_error_levels
+    with pytest.raises(SceneError, match=r"^--throughput: throughput must be a number in \(0, 100000\], not -1$"):
+        with_throughput(vga, -1)

@@ -11,6 +11,7 @@ from phongfx.core.registry import get_block
 
 from . import run as runs
 from . import witness as witnesses
+from .architecture import config_of, eligible, rank_key
 from .costing import TIE_MARGIN, tie
 from .search import measured_passes, search_widths
 
@@ -29,16 +30,18 @@ def _proven(scene, result, timeout, progress):
     from phongfx.sim.prove import prove
 
     name = result["method"]
-    block = get_block(runs.block_name(name), config=runs.build(name, result["params"], scene.analysis))
+    block = get_block(runs.block_name(name), config=config_of(result, scene.analysis))
     proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
     result["overflow_proof"] = proof.as_dict()
     return not proof.counts.get("counterexample")
 
 
 def _ranked(results):
-    """The feasible results by cost; an uncosted design (its synthesis failed) last."""
-    feasible = [r for r in results.values() if r["feasible"]]
-    return sorted(feasible, key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
+    """The feasible results that meet the speed and fit the part
+    (:func:`~phongfx.explore.compile.architecture.eligible`) by cost; a synthesized design
+    that misses its clock after those that meet it; an uncosted one (its synthesis failed) last."""
+    feasible = [r for r in results.values() if r["feasible"] and eligible(r["cost"])]
+    return sorted(feasible, key=lambda r: rank_key(r["cost"]))
 
 
 def _witness(scene, name, params, domain, progress):
@@ -145,7 +148,7 @@ def certain(out, scene, cost, certifier, progress):
                                           "bound_levels": result["certificate"].bound_levels}
         if result["certificate"].certified:
             found[name] = result
-    ranked = sorted(found.values(), key=lambda r: (r["cost"]["cost"] is None, r["cost"]["cost"] or 0))
+    ranked = sorted((r for r in found.values() if eligible(r["cost"])), key=lambda r: rank_key(r["cost"]))
     if not ranked:
         out.certainty["why"] = "no method has a certified design within the requirement"
         out.chosen = out.witness = None

@@ -38,17 +38,24 @@ Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (
 (:func:`phongfx.explore.synth.fpga.synth`, cached) with ``synth=True``, else the tool-free
 proxies :func:`phongfx.explore.synth.proxy.proxy_cost` (LUT-eq) and
 :func:`phongfx.explore.synth.proxy.proxy_area` (µm², fitted to the standard-cell flow).
+A design's cost is that of its cheapest architecture (pipeline depth, initiation interval,
+shared inputs: :mod:`phongfx.explore.compile.architecture`) whose clock reaches ``clock``
+and whose pixel rate meets the scene's ``requirement.mpixels_per_second`` and, on an FPGA,
+that fits the part (:mod:`phongfx.explore.compile.fit`); the error does not depend on the
+architecture, so the widths are searched once.  A design no architecture of which meets
+the speed is not chosen; when none is, :attr:`Compiled.refused` says why and what the
+fastest reaches.
 """
 
 import dataclasses
 from dataclasses import dataclass, field
 
 from phongfx.explore.methods import METHODS
-from phongfx.explore.progress import Candidates
 
 from . import run as runs
+from .architecture import Speed, refusal
 from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, certain, choose
-from .costing import COST_UNITS, costed
+from .costing import COST_UNITS, price_designs
 from .infeasible import hint
 from .measure import SceneEval, meets
 from .points import DomainPoints
@@ -75,6 +82,8 @@ class Compiled:
     certificate: object = None          # phongfx.certify's bound of the chosen design, when computed
     certainty: dict = None              # certified=True: the sampled choice and what certainty costs
     rounds: list = field(default_factory=list)  # each witness over the requirement and what it did
+    speed: Speed = Speed()              # the pixel rate and clock asked
+    refused: dict = None                # nothing chosen for speed or fit: refusal(...)
 
     @property
     def best(self):
@@ -105,7 +114,8 @@ def scene_domain(spec, geometries, samples=None, final_samples=None):
 
 def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, seed=1,
                   progress=None, geometries=None, journal=None, prove=False, prove_timeout=600,
-                  samples=None, final_samples=None, certifier=None, certified=False):
+                  samples=None, final_samples=None, certifier=None, certified=False, clock=None,
+                  scheduler=None, workers=None):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
     :param methods: keys of :data:`~phongfx.explore.methods.METHODS` to consider (default
@@ -115,8 +125,14 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         ``"asic"`` (µm²); with ``device`` (the part, or the library on ``"asic"``, default
         ``osu018``), ``freq`` (the clock given to the tools, MHz) and ``seed`` (nextpnr's
         placement seed).
+    :param clock: the clock (MHz) the core will run at: the chosen architecture must reach it,
+        its pixel rate is ``clock / interval``, and synthesis is given it instead of ``freq``;
+        None: each design at its own Fmax.  The pixel rate asked is the scene's
+        ``requirement.mpixels_per_second`` (:func:`phongfx.scene.file.with_throughput`).
+    :param scheduler: where ``synth`` runs its candidates in parallel (a Dask scheduler
+        address; None: a local cluster of ``workers`` processes).
     :param progress: called with a short description of each step; each synthesis as
-        "synthesizing candidate i of N (method, widths) T s" and its flow's stages.
+        "candidate i of N (label): stage, T s".
     :param journal: a folder where every measured width point is kept, so that a rerun of
         the same scene (and code) skips them (:mod:`phongfx.explore.compile.journal`).
     :param prove: prove the chosen design's ``overflow="error"`` claims
@@ -136,12 +152,15 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     names = check_methods(methods)
     if target not in COST_UNITS:
         raise ValueError(f"target must be one of {', '.join(COST_UNITS)}, not {target!r}")
+    speed = Speed(spec.requirement.mpixels_per_second, clock)  # checked before the minutes of search
     scene = SceneEval(spec, geometries, journal=journal)
     domain = scene_domain(spec, scene.geometries, samples, final_samples)
     if progress:
         progress(f"drawing {domain.samples:,} domain points")
     scene.measure_domain(DomainPoints(spec, domain))
-    out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy", domain=domain)
+    freq = clock or freq
+    out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy", domain=domain,
+                   speed=speed)
     for name in names:
         reason = runs.rejection(name, spec, scene.analysis, scene.geometries)
         if reason:
@@ -152,17 +171,22 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
             progress(f"{name} searched")
     # the default widths are costed always (the manifest's "saved against the defaults"),
     # the searched ones only when they meet the requirement; an infeasible method's
-    # defaults by the proxy only, since its synthesis (minutes) cannot change the choice
+    # defaults by the proxy only and at the default architecture, since neither its
+    # synthesis (minutes) nor its architecture can change the choice
     designs = [(name, where, synth and r["feasible"]) for name, r in out.results.items()
                for where in ((r["default"], r) if r["feasible"] else (r["default"],))]
-    steps = Candidates(sum(by_synth for *_, by_synth in designs), progress or (lambda text: None))
+    options = {"target": target, "device": device, "freq": freq, "seed": seed, "scheduler": scheduler,
+               "workers": workers, "progress": progress}
+    if progress:
+        progress(f"pricing {len(designs)} designs' architectures")
+    costs = price_designs([(name, where["params"], by_synth, not out.results[name]["feasible"])
+                           for name, where, by_synth in designs], scene.analysis, speed, **options)
+    for (_, where, _), found in zip(designs, costs):
+        where["cost"] = found
 
-    def cost(name, params, by_synth, stage=None):
-        return costed(name, runs.build(name, params, scene.analysis), by_synth and synth,
-                      target=target, device=device, freq=freq, seed=seed, progress=stage)
+    def cost(name, params, by_synth):
+        return price_designs([(name, params, by_synth and synth)], scene.analysis, speed, **options)[0]
 
-    for name, where, by_synth in designs:
-        where["cost"] = cost(name, where["params"], by_synth, steps.next(name, where["params"]) if by_synth else None)
     choose(out, scene, cost, prove, prove_timeout, progress)
     if certifier is not None and out.chosen is not None:
         if progress:
@@ -170,5 +194,6 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         out.certificate = certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis)
         if certified and not out.certificate.certified:
             certain(out, scene, cost, certifier, progress)
-    out.hint = hint(out)
+    out.refused = refusal(out)
+    out.hint = None if out.refused else hint(out)
     return out

@@ -32,6 +32,7 @@ from phongfx.core.registry import get_block
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
+from .architecture import config_of, timing_of
 
 __all__ = ["formats", "submodules", "manifest", "emit"]
 
@@ -120,8 +121,7 @@ def manifest(compiled, module=None, instances=None, check=None):
     """The manifest dict (module docstring of :mod:`phongfx.explore.compile.emit`)."""
     spec, best = compiled.spec, compiled.best
     out = {"scene": spec.name, "path": spec.path,
-           "requirement": {"max_error_levels": spec.requirement.max_error_levels,
-                           "against": spec.requirement.against},
+           "requirement": {**spec.requirement.as_dict(), "clock_mhz": compiled.speed.clock_mhz},
            "analysis": compiled.analysis.as_dict(), "cost_model": compiled.cost_model,
            "evaluation": {"frames": len(compiled.scene.geometries), "renders": len(compiled.scene.renders),
                           "shininess_variants": compiled.scene.shininess_variants,
@@ -133,15 +133,17 @@ def manifest(compiled, module=None, instances=None, check=None):
            "certificate": compiled.certificate and compiled.certificate.as_dict(),
            "certainty": compiled.certainty,
            "witness_rounds": compiled.rounds,
-           "chosen": compiled.chosen, "tie": compiled.tie, "hint": compiled.hint,
+           "chosen": compiled.chosen, "tie": compiled.tie, "hint": compiled.hint, "refused": compiled.refused,
            "rejected": dict(compiled.rejected),
            "methods": {name: {k: r[k] for k in _METHOD_KEYS if k in r} for name, r in compiled.results.items()},
            "conventional_baseline": _baseline(compiled, "conventional"),
            "blinn_baseline": _baseline(compiled, "blinn")}
     if best is not None:
-        config = runs.build(best["method"], best["params"], compiled.analysis)
+        config = config_of(best, compiled.analysis)
         block = get_block(runs.block_name(best["method"]), config=config)
         out.update({"block": block.name, "module": module, "widths": best["params"],
+                    "architecture": best["cost"].get("architecture"), "timing": timing_of(best["cost"]),
+                    "fit": best["cost"].get("fit"),
                     "blocks": instances, "block_counts": _kinds(instances or []),
                     "formats": formats(config), "config": dataclasses.asdict(config),
                     "latency": block.latency, "ports": _ports(config),
@@ -200,11 +202,13 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
                      lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
         return data
     method, scene = best["method"], compiled.scene
-    config = runs.build(method, best["params"], compiled.analysis)
+    config = config_of(best, compiled.analysis)
     block = get_block(runs.block_name(method), config=config)
     module = _identifier(f"{compiled.spec.name}_{method}")
     text = verilog(block.component(), module, emit_src=False)  # only to name the instances
-    shipped = top_verilog(block.component(), module)
+    timing = timing_of(best["cost"])
+    header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
+    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx})
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
     done, result, written, sheets = set(), None, None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
@@ -255,6 +259,7 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
                                  f"levels against {against}, white = {scale:g} levels or more, "
                                  "the colour bar beside"}
     data["top"] = {"module": f"{module}_top", "file": f"verilog/{module}_top.v", "latency": block.latency,
+                   "interval": getattr(config, "interval", 1),
                    "ports": port_map(block.config)}
     if written is not None:
         data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],

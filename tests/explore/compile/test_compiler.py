@@ -295,16 +295,19 @@ def _fake_synth(name, *, config=None, **options):
 def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
     import phongfx.explore.synth.fpga as synth_module
     monkeypatch.setattr(synth_module, "synth", _fake_synth)
-    best = compile_scene(_torus(), methods=["fig7"], synth=True).best
+    best = compile_scene(_torus(), methods=["fig7"], synth=True, workers=1).best
     vec = best["params"]["vec_frac"]
     assert best["cost"]["lut_eq"] == 100 + vec + 958 * 3 and best["cost"]["fmax_mhz"] == 99.0
 
     def broken(name, **options):
         raise synth_module.SynthError("Yosys did not finish (exit code 1); log x:\nmore")
     monkeypatch.setattr(synth_module, "synth", broken)
-    compiled = compile_scene(_torus(), methods=["fig7"], synth=True)
+    compiled = compile_scene(_torus(), methods=["fig7"], synth=True, workers=1)
     assert compiled.chosen == "fig7" and compiled.cost_model == "ecp5-synth"
-    assert compiled.best["cost"] == {"cost": None, "why": "Yosys did not finish (exit code 1)", "log": "x"}
+    failed = compiled.best["cost"]
+    assert {k: failed[k] for k in ("cost", "why", "log")} == {"cost": None, "why": "Yosys did not finish (exit code 1)",
+                                                               "log": "x"}
+    assert failed["proxy"]["architecture"] == {"pipeline": 0, "interval": 1, "share": True}  # what it proposed
 
 
 def test_the_conventional_unit_meets_phong_where_blinn_cannot():
@@ -407,9 +410,8 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
     import phongfx.sim.prove as proofs
     tried = []
 
-    def fake(block, **options):  # the cheapest shader "has" a counterexample; the next is proven
-        method = block.config.unit
-        tried.append(method)
+    def fake(block, **options):  # the cheaper shader "has" a counterexample; the next is proven
+        tried.append(block.config.unit)
         bad = len(tried) == 1
         claim = proofs.Claim("Lirp", "S3.20 -> S1.10", "counterexample" if bad else "proven")
         out = proofs.Proof(block.name, [claim], ["0 <= a <= 1"], "yices", 4)

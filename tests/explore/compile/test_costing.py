@@ -54,13 +54,17 @@ def test_synthesis_reports_each_candidate_and_the_manifest_keys(monkeypatch):
     monkeypatch.setattr(synth_module, "synth", fake)
     lines = []
     compiled = compile_scene(parse_scene(TORUS, name="tiny"), methods=["fig7", "conventional"], synth=True,
-                             seed=3, progress=lines.append)
-    synth_lines = [line for line in lines if line.startswith("synthesizing")]
-    assert synth_lines[0].startswith("synthesizing candidate 1 of 4 (fig7, vec_frac=")
-    assert synth_lines[1].startswith("synthesizing candidate 1 of 4 (fig7,") and ": yosys" in synth_lines[1]
-    assert synth_lines[-1].startswith("synthesizing candidate 4 of 4 (conventional,") and seen == [3] * 4
+                             seed=3, progress=lines.append, workers=1)
+    # both methods' searched and default widths, at the one architecture of no speed asked,
+    # synthesized together
+    synth_lines = [line for line in lines if line.startswith("candidate")]
+    assert synth_lines[0].startswith("candidate 1 of 4 (fig7, depth 0, interval 1, shared inputs, vec_frac=")
+    assert any(line.startswith("candidate 1 of 4 (fig7,") and ": yosys" in line for line in synth_lines)
+    assert synth_lines[-1].startswith("candidate 4 of 4 (conventional,") and seen == [3] * 4
     cost = compiled.best["cost"]
     assert cost["part"] == "LFE5U-25F" and cost["seed"] == 3 and cost["freq"] == 150
+    assert cost["clock_source"] == "synthesis" and cost["fmax_mhz"] == 80 and cost["pixel_rate_mpx"] == 80
+    assert cost["met"] is True and cost["architecture"] == {"pipeline": 0, "interval": 1, "share": True}
     assert cost["utilisation"]["MULT18X18D"]["percent"] == pytest.approx(7.14)
     # the same fake cost for both: a tie, flagged
     assert compiled.tie["runner_up"] in ("fig7", "conventional") and compiled.tie["margin"] == 0
