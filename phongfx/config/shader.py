@@ -64,7 +64,7 @@ class ShaderConfig(BlockConfig):
     light's inputs at once, at most one pixel per ``interval`` clocks, and blends once all
     groups are done: the same codes as at interval 1.  Lights that share a physical unit
     must have equal configs (the same unit config; for a datapath, the same local flag).
-    ``interval`` must be one of :func:`intervals`.  Two lights of the conventional unit at
+    ``interval`` must be one of :func:`~phongfx.config.shader.intervals`.  Two lights of the conventional unit at
     interval 2 on ECP5: 2,510 LUT4 and 24 DSPs, 41.3 MHz (20.6 Mpixel/s), against 3,573, 42
     and 37.5 MHz (37.5 Mpixel/s) at interval 1 (LUT-eq −42 %).
     """
