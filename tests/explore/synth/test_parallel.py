@@ -106,8 +106,20 @@ def _interrupt_on_tick(line):
         os.kill(os.getpid(), signal.SIGINT)
 
 
+@pytest.fixture
+def interruptible():
+    """SIGINT at Python's own handler and unblocked in this thread for the test: an xdist
+    worker may have inherited it ignored or blocked (a pool or a Dask nanny of an earlier
+    test in the same worker), and then the Ctrl-C the test sends would never arrive."""
+    handler = signal.signal(signal.SIGINT, signal.default_int_handler)
+    mask = signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+    yield
+    signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    signal.signal(signal.SIGINT, handler)
+
+
 @pytest.mark.parametrize("workers", [1, 2])
-def test_ctrl_c_cancels_the_jobs(workers, by_value):
+def test_ctrl_c_cancels_the_jobs(workers, by_value, interruptible):
     jobs = [{"name": "lirp", "seconds": 3.0}, {"name": "shape", "seconds": 60.0}, {"name": "root", "seconds": 60.0}]
     start = time.monotonic()
     with pytest.raises(KeyboardInterrupt):
