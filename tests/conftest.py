@@ -98,3 +98,34 @@ def asic_tools():
         if os.geteuid() == 0 and shutil.which("apt-get"):
             pytest.fail(f"{message}, though apt-get could install them (run make)")
         pytest.skip(f"{message}; apt-get install opensta qflow-tech-osu018 qflow-tech-osu035")
+
+
+#: The IHP SG13G2 files the standard-cell tests use (never the project at run time).
+SG13G2_FILES = ("sg13g2_stdcell_typ_1p20V_25C.lib", "sg13g2_stdcell_slow_1p08V_125C.lib",
+                "sg13g2_stdcell_fast_1p32V_m40C.lib", "sg13g2_stdcell.v", "sg13g2_udp.v")
+
+
+def _checkouts(root):
+    """``root`` and, for a git worktree, the main checkout it was made from."""
+    yield root
+    marker = root / ".git"
+    if marker.is_file() and marker.read_text().startswith("gitdir:"):
+        gitdir = Path(marker.read_text().split(":", 1)[1].strip())
+        if gitdir.parent.name == "worktrees":
+            yield gitdir.parent.parent.parent
+
+
+@pytest.fixture(scope="session")
+def sg13g2():
+    """The folder of IHP SG13G2's standard-cell Liberty files and Verilog models: env
+    ``PHONGFX_SG13G2``, else ``../shared/pdk/ihp-sg13g2`` beside the checkout.  Absent, the
+    test is skipped saying where to get them."""
+    root = Path(__file__).resolve().parents[1]
+    candidates = [Path(os.environ["PHONGFX_SG13G2"])] if os.environ.get("PHONGFX_SG13G2") else []
+    candidates += [checkout.parent / "shared" / "pdk" / "ihp-sg13g2" for checkout in _checkouts(root)]
+    for folder in candidates:
+        if all((folder / name).is_file() for name in SG13G2_FILES):
+            return folder
+    pytest.skip(f"IHP SG13G2 standard cells not found (looked in {', '.join(map(str, candidates))}): get "
+                f"{', '.join(SG13G2_FILES)} from github.com/IHP-GmbH/IHP-Open-PDK, "
+                f"ihp-sg13g2/libs.ref/sg13g2_stdcell/{{lib,verilog}}/, and set PHONGFX_SG13G2 to their folder")

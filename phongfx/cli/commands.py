@@ -249,14 +249,23 @@ def cmd_render_frames(args):
     return exit_on_mismatch(result["mismatches"])
 
 
-def target_device(target, device, library):
-    """The device of ``synth``: for ``asic`` the library (``--library``, or ``--device`` as
-    its synonym), for an FPGA the part; a library given for an FPGA is an error."""
+def target_device(target, device, library, liberty=None):
+    """The device of ``synth``: for ``asic`` the library (``--library``, ``--device`` as its
+    synonym, or ``--liberty FILE``: any Liberty file), for an FPGA the part; a library or a
+    Liberty file given for an FPGA is an error, and so is a Liberty file that cannot be used."""
     if target != "asic":
-        if library is not None:
-            raise ValueError(f"--library applies to --target asic only, not to {target!r} "
-                             f"(use --device for an FPGA part)")
+        for option, value in (("--library", library), ("--liberty", liberty)):
+            if value is not None:
+                raise ValueError(f"{option} applies to --target asic only, not to {target!r} "
+                                 f"(use --device for an FPGA part)")
         return device
+    if liberty is not None:
+        from phongfx.explore.synth.liberty import read_liberty
+
+        if device is not None or library is not None:
+            raise ValueError(f"--liberty {liberty!r} and --{'library' if library else 'device'} "
+                             f"{library or device!r} both name the cells; give one")
+        return read_liberty(liberty).path  # a missing or bad file fails here, before any work
     if device is not None and library is not None and device != library:
         raise ValueError(f"--device {device!r} and --library {library!r} disagree; give one")
     return library or device
@@ -267,7 +276,11 @@ def cmd_synth(args):
 
     from phongfx.explore.synth.fpga import markdown, synth
     block = configured_block(args.name, args.set)
-    device = target_device(args.target, args.device, args.library)
+    device = target_device(args.target, args.device, args.library, args.liberty)
+    if args.corner and args.target != "asic":
+        raise ValueError(f"--corner applies to --target asic only, not to {args.target!r}")
+    for corner in args.corner or ():
+        target_device("asic", None, None, corner)  # a missing or bad file fails before the synthesis
     with tqdm(total=3, desc=f"synth {args.name}", disable=args.quiet or args.json,
               bar_format="{desc}: {n}/{total} steps {elapsed}") as bar:
         def progress(step):
@@ -275,7 +288,15 @@ def cmd_synth(args):
             bar.update(1)
         result = synth(args.name, config=block.config, target=args.target, device=device,
                        freq=args.freq, seed=args.seed, workdir=args.workdir, progress=progress)
+    if args.corner:
+        from phongfx.explore.synth.asic import time_at
+
+        result["corners"] = [time_at(result, corner) for corner in args.corner]
     print(json.dumps(result, indent=2, default=str) if args.json else markdown([result]), end="")
+    for timed in result.get("corners", ()) if not args.json else ():
+        path = timed["critical_path"]
+        print(f"* the same netlist at {timed['library']} ({timed['corner']}): Fmax {timed['fmax_mhz']:.1f} MHz, "
+              f"worst path {path['from']} → {path['to']}, {path['ns']:.2f} ns")
     return 0
 
 
@@ -327,7 +348,8 @@ def cmd_figure9(args):
 
 
 #: The options of ``phongfx tables`` that only some tables take, and which.
-_TABLE_OPTIONS = {"target": ("cost", "pipeline"), "library": ("cost", "pipeline", "proxy"), "refit": ("proxy", "clock")}
+_TABLE_OPTIONS = {"target": ("cost", "pipeline"), "library": ("cost", "pipeline", "proxy"),
+                  "liberty": ("cost", "pipeline", "proxy", "clock"), "refit": ("proxy", "clock")}
 
 
 def _table_options(args):
@@ -339,9 +361,18 @@ def _table_options(args):
         if args.table not in tables:
             raise ValueError(f"--{option} applies to tables {', '.join(tables)} only, not to {args.table!r}")
         options[option] = value
-    if "library" in options and args.table != "proxy":
+    if "liberty" in options:
+        if "library" in options:
+            raise ValueError(f"--liberty {options['liberty']!r} and --library {options['library']!r} both name "
+                             f"the cells; give one")
+        options["library"] = target_device("asic", None, None, options.pop("liberty"))
+        if args.table in ("cost", "pipeline"):
+            options.setdefault("target", "asic")
+    if "library" in options and args.table == "clock":
+        options["device"] = options.pop("library")
+    elif "library" in options and args.table != "proxy":
         if options.get("target", "ecp5") != "asic":
-            raise ValueError("--library applies to --target asic only")
+            raise ValueError("--library and --liberty apply to --target asic only")
         options["device"] = options.pop("library")
     if options.get("target") not in (None, "ecp5", "asic"):
         raise ValueError(f"--target must be 'ecp5' or 'asic' for tables, not {options['target']!r}")

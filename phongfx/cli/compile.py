@@ -25,6 +25,8 @@ def add_arguments(p):
                    help="what cost means: ecp5 (default) or ice40 LUT-eq, asic area in µm²")
     p.add_argument("--device", help="FPGA part (ecp5 25k/45k/85k, ice40 up5k/hx8k/hx1k)")
     p.add_argument("--library", help="standard cells for --target asic: osu018 (default) or osu035")
+    p.add_argument("--liberty", metavar="FILE", help="standard cells for --target asic from any Liberty file "
+                                                     "(a foundry's library): mapped and timed at its corner")
     p.add_argument("--freq", type=float, default=150,
                    help="clock given to synthesis in MHz (default 150; --clock when given)")
     p.add_argument("--throughput", type=float, metavar="MPX",
@@ -190,7 +192,7 @@ def cmd_compile(args):
     from phongfx.explore.compile.architecture import Speed
     from phongfx.scene.file import load_scene, with_requirement, with_throughput
     methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
-    device = target_device(args.target, args.device, args.library)
+    device = target_device(args.target, args.device, args.library, args.liberty)
     spec = load_scene(args.scene)
     if args.max_error is not None:
         spec = with_requirement(spec, args.max_error)

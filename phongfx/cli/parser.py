@@ -150,6 +150,11 @@ def build_parser():
     p.add_argument("--target", default="ecp5", help=f"{_names(ALL_TARGETS)} (default ecp5)")
     p.add_argument("--device", help="part size: ecp5 25k/45k/85k (default 45k), ice40 up5k/hx8k/hx1k")
     p.add_argument("--library", help=f"standard cells for --target asic: {_names(LIBRARIES)} (default osu018)")
+    p.add_argument("--liberty", metavar="FILE", help="standard cells for --target asic from any Liberty file "
+                                                     "(a foundry's library): mapped and timed at its corner")
+    p.add_argument("--corner", metavar="FILE", action="append",
+                   help="with --target asic: also time the same netlist on this Liberty file, another corner of "
+                        "the same cells (repeatable)")
     p.add_argument("--freq", type=float, default=150, help="target clock in MHz (default 150)")
     p.add_argument("--seed", type=int, default=1, help="placer seed")
     p.add_argument("--workdir", default=None,
@@ -207,6 +212,8 @@ def build_parser():
     p.add_argument("--json", action="store_true", help="print JSON instead of Markdown")
     p.add_argument("--target", help="cost, pipeline: ecp5 (default) or asic (proxy: always asic)")
     p.add_argument("--library", help="cost, pipeline, proxy with asic: osu018 (default) or osu035")
+    p.add_argument("--liberty", metavar="FILE", help="cost, pipeline, proxy, clock: standard cells from any "
+                                                     "Liberty file instead (implies --target asic)")
     p.add_argument("--refit", action="store_true", help="proxy, clock: also fit the coefficients afresh")
     p.add_argument("--out", help="folder for the plots (default build/TABLE)")
     p.set_defaults(run=commands.cmd_tables)

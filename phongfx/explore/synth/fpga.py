@@ -35,7 +35,7 @@ from pathlib import Path
 from phongfx.core.cache import versions
 from phongfx.hdl.dsp import DSP_INTERNAL_NS, DSP_MAPPING, DSP_MAPPING_DEPTH, dsp_mapping_of
 
-from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth
+from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth, is_liberty_path
 from phongfx.explore.synth.devices import device_resources
 from phongfx.explore.synth.toolrun import (SynthError, cached_run, flow_key, harness, read_json, run,
                                            run_yosys, tail, tool)
@@ -161,7 +161,7 @@ def _check(target, device, freq, seed):
     if target not in ALL_TARGETS:
         raise ValueError(f"target must be one of {', '.join(map(repr, ALL_TARGETS))}, not {target!r}")
     devices = LIBRARIES if target == "asic" else TARGETS[target].devices
-    if device is not None and device not in devices:
+    if device is not None and device not in devices and not (target == "asic" and is_liberty_path(device)):
         what = "library" if target == "asic" else "device"
         raise ValueError(f"{what} must be one of {', '.join(map(repr, devices))} for {target}, "
                          f"not {device!r}")

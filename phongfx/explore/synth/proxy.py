@@ -186,9 +186,15 @@ def rtlil_cost(text):
 
 
 def _coefficients(library):
-    if library not in AREA_COEFFICIENTS:
-        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))}, not {library!r}")
-    return AREA_COEFFICIENTS[library]
+    from phongfx.explore.synth.asic import library_name
+
+    name = library_name(library)
+    if name not in AREA_COEFFICIENTS:
+        where = "" if name == library else f" (Liberty file {library})"
+        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))} for the area proxy, "
+                         f"not {name!r}{where}: fit its coefficients with `phongfx tables proxy --liberty FILE "
+                         f"--refit` and add them to AREA_COEFFICIENTS")
+    return AREA_COEFFICIENTS[name]
 
 
 def price(features, library="osu018"):
@@ -214,7 +220,9 @@ def proxy_estimate(block, target, library=None):
     from phongfx.explore.synth.estimates import cached_estimate
 
     if target == "asic":
-        library = library or "osu018"
+        from phongfx.explore.synth.asic import library_name
+
+        library = library_name(library)
         _coefficients(library)  # a bad library is refused before anything is cached
         return cached_estimate("area", block, target, library,
                                lambda: {"area_um2": proxy_area(block, library), "model": "asic-proxy"})

@@ -24,7 +24,8 @@ from phongfx.config import MAX_PIPELINE, BlendConfig, ShaderConfig
 from phongfx.core.registry import get_block
 
 from phongfx.explore.progress import Candidates
-from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, clock_netlist, critical_path
+from phongfx.explore.synth.clock import (COEFFICIENTS, ERROR, FEATURES, LIBRARY_COEFFICIENTS, LIBRARY_ERROR,
+                                        clock_netlist, critical_path)
 from phongfx.explore.synth.proxy import RESOURCE_MARGIN, rtlil_cost, rtlil_of
 from phongfx.explore.tables.proxy import relative_nnls
 
@@ -73,6 +74,24 @@ def points(depths=DEPTHS):
     return result
 
 
+def _where(target, device):
+    """The name a calibration is filed under: the target, or on ``asic`` a library other than
+    osu018 by its :func:`~phongfx.explore.synth.asic.library_name`."""
+    from phongfx.explore.synth.asic import library_name
+
+    if target != "asic" or device in (None, "osu018"):
+        return target
+    return library_name(device)
+
+
+def _stored(where):
+    """The stored coefficients and error margin of calibration ``where``, or osu018's
+    coefficients (a starting point for a fit) and no margin."""
+    if where in COEFFICIENTS:
+        return COEFFICIENTS[where], ERROR[where]
+    return LIBRARY_COEFFICIENTS.get(where, COEFFICIENTS["asic"]), LIBRARY_ERROR.get(where)
+
+
 def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=None):
     """One row per point of ``selected`` (default :func:`points`) and target: ``label``,
     ``block``, ``depth``, ``target``, the synthesized ``fmax_mhz`` and ``critical_path``,
@@ -95,8 +114,9 @@ def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=N
             result = synth(name, config=config, target=target, device=device, freq=FREQ, workdir=workdir,
                            progress=stage, **options)
             netlist = clock_netlist(block, target)
-            ns, amounts, path = critical_path(netlist, COEFFICIENTS[target])
-            row = {"label": label, "block": name, "depth": depth, "target": target, "device": device,
+            where = _where(target, device)
+            ns, amounts, path = critical_path(netlist, _stored(where)[0])
+            row = {"label": label, "block": name, "depth": depth, "target": target, "device": device, "where": where,
                    "fmax_mhz": result["fmax_mhz"], "critical_path": result.get("critical_path"),
                    "proxy_mhz": 1000 / ns, "amounts": amounts, "proxy_path": f"{path[0]} → {path[-1]}",
                    "error": (1000 / ns) / result["fmax_mhz"] - 1, "netlist": netlist}
@@ -132,10 +152,11 @@ def fit(netlists, periods, start, rounds=12):
 
 
 def summary(rows):
-    """Per target: ``rows``, ``median`` and ``max`` of the absolute relative Fmax error."""
+    """Per target (or library: a row's ``where``): ``rows``, ``median`` and ``max`` of the
+    absolute relative Fmax error."""
     result = {}
-    for target in dict.fromkeys(row["target"] for row in rows):
-        errors = [abs(row["error"]) for row in rows if row["target"] == target]
+    for target in dict.fromkeys(row.get("where", row["target"]) for row in rows):
+        errors = [abs(row["error"]) for row in rows if row.get("where", row["target"]) == target]
         result[target] = {"rows": len(errors), "median": statistics.median(errors), "max": max(errors)}
     return result
 
@@ -174,20 +195,22 @@ def fit_lut4(rows):
     return {"lut": round(float(found[0]), 3), "carry_bits": round(float(found[1]), 3)}
 
 
-def clock_table(selected=None, *, workdir=None, refit=False, progress=None):
+def clock_table(selected=None, *, targets=TARGETS, workdir=None, refit=False, progress=None):
     """The calibration: ``rows`` (without their netlists), the stored ``coefficients`` and
     ``error`` margins, the ``summary`` per target, the area proxy's ``resources`` errors
     against the stored :data:`~phongfx.explore.synth.proxy.RESOURCE_MARGIN`; with
     ``refit``, ``refit`` coefficients per target and the ``refit_summary`` they give."""
-    rows = calibration_rows(selected, workdir=workdir, progress=progress)
-    result = {"table": "clock", "freq": FREQ, "seed": SEED, "coefficients": COEFFICIENTS, "error": ERROR,
+    rows = calibration_rows(selected, targets=targets, workdir=workdir, progress=progress)
+    wheres = dict.fromkeys(row["where"] for row in rows)
+    result = {"table": "clock", "freq": FREQ, "seed": SEED,
+              "coefficients": {w: _stored(w)[0] for w in wheres}, "error": {w: _stored(w)[1] for w in wheres},
               "summary": summary(rows), "resources": resource_errors(rows), "resource_margin": RESOURCE_MARGIN}
     if refit:
         result["refit"], refitted = {}, []
-        for target in dict.fromkeys(row["target"] for row in rows):
-            mine = [row for row in rows if row["target"] == target]
+        for target in wheres:
+            mine = [row for row in rows if row["where"] == target]
             found = fit([row["netlist"] for row in mine], [1000 / row["fmax_mhz"] for row in mine],
-                        COEFFICIENTS[target])
+                        _stored(target)[0])
             result["refit"][target] = found
             for row in mine:
                 ns = critical_path(row["netlist"], found)[0]
@@ -200,11 +223,17 @@ def clock_table(selected=None, *, workdir=None, refit=False, progress=None):
     return result
 
 
-def run_table(name, out_dir=None, refit=False, progress=None):
-    """The table called ``name`` (``"clock"``); nothing is written to ``out_dir``."""
+def run_table(name, out_dir=None, refit=False, progress=None, device=None):
+    """The table called ``name`` (``"clock"``); nothing is written to ``out_dir``.  With
+    ``device`` (a library name or Liberty file) only the standard-cell flow on it is measured."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
-    return clock_table(refit=refit, progress=progress)
+    targets = TARGETS if device is None else (("asic", device),)
+    return clock_table(targets=targets, refit=refit, progress=progress)
+
+
+def _margin(error):
+    return "not calibrated: osu018's coefficients" if error is None else f"stored margin {error:.0%}"
 
 
 def _coefficients(values):
@@ -217,11 +246,11 @@ def markdown(result):
              f"osu018 pre-layout)", ""]
     for target, numbers in result["summary"].items():
         lines += [f"## {target}: {numbers['rows']} points, median error {numbers['median']:.1%}, "
-                  f"largest {numbers['max']:.1%} (stored margin {result['error'][target]:.0%})", "",
+                  f"largest {numbers['max']:.1%} ({_margin(result['error'][target])})", "",
                   f"Coefficients (ns): {_coefficients(result['coefficients'][target])}", "",
                   "| point | depth | synthesized MHz | proxy MHz | error | synthesized path | proxy path |",
                   "|---|---:|---:|---:|---:|---|---|"]
-        for row in (r for r in result["rows"] if r["target"] == target):
+        for row in (r for r in result["rows"] if r.get("where", r["target"]) == target):
             path = row["critical_path"] or {}
             depth = "–" if row["depth"] is None else row["depth"]
             lines.append(f"| {row['label']} | {depth} | {row['fmax_mhz']:.1f} | {row['proxy_mhz']:.1f} | "
@@ -229,7 +258,8 @@ def markdown(result):
                          f"{row['proxy_path']} |")
         lines.append("")
     res = result["resources"]
-    lines.append(f"Area proxy on ECP5, designs of {MARGIN_FROM_LUT4} LUT4 sites or more: LUT4 error median "
+    if any("lut4" in row for row in result["rows"]):
+        lines.append(f"Area proxy on ECP5, designs of {MARGIN_FROM_LUT4} LUT4 sites or more: LUT4 error median "
                  f"{res['lut4']['median']:.1%}, largest {res['lut4']['max']:.1%} ({res['lut4']['max_all']:.1%} over "
                  f"every design); DSP median {res['dsp']['median']:.1%}, largest {res['dsp']['max']:.1%} (stored "
                  f"margins {_coefficients(result['resource_margin'])}).")
