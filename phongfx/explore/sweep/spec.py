@@ -67,7 +67,7 @@ def _check_scenes(value, where, known, base_dir="."):
 
 
 def _check_synth(value, where):
-    from phongfx.explore.synth.asic import LIBRARIES
+    from phongfx.explore.synth.asic import LIBRARIES, is_liberty_path
     from phongfx.explore.synth.fpga import ALL_TARGETS, TARGETS
     if not isinstance(value, dict):
         raise SweepSpecError(f"{where} must be a table with keys {', '.join(_SYNTH_KEYS)}, "
@@ -81,11 +81,19 @@ def _check_synth(value, where):
     if isinstance(freq, bool) or not isinstance(freq, (int, float)) or not 0 < freq <= 1000:
         raise SweepSpecError(f"{where}.freq must be a number of MHz in (0, 1000], not {freq!r}")
     options = {"target": target, "freq": freq}
-    if "device" in value:  # on asic the device is the standard-cell library
+    if "device" in value:  # on asic the standard-cell library: a name or a Liberty file's path
         devices = LIBRARIES if target == "asic" else TARGETS[target].devices
-        if value["device"] not in devices:
-            raise SweepSpecError(f"{where}.device must be one of {', '.join(devices)} for {target}, "
+        liberty = target == "asic" and is_liberty_path(value["device"])
+        if value["device"] not in devices and not liberty:
+            raise SweepSpecError(f"{where}.device must be one of {', '.join(devices)}"
+                                 f"{' or a Liberty file' if target == 'asic' else ''} for {target}, "
                                  f"not {value['device']!r}")
+        if liberty:
+            from phongfx.explore.synth.liberty import LibertyError, read_liberty
+            try:
+                read_liberty(value["device"])
+            except LibertyError as error:
+                raise SweepSpecError(f"{where}.device: {error}") from None
         options["device"] = value["device"]
     if "seed" in value:
         if not is_int(value["seed"]) or value["seed"] < 0:

@@ -73,21 +73,26 @@ DEFAULT_LIBRARY = "osu018"
 
 
 def is_liberty_path(library):
-    """Whether ``library`` names a Liberty file rather than one of :data:`LIBRARIES`."""
-    return isinstance(library, (str, Path)) and str(library) not in LIBRARIES
+    """Whether ``library`` names a Liberty file rather than one of :data:`LIBRARIES`: a
+    :class:`~pathlib.Path`, or a string with a folder, ending in ``.lib``, or naming a file
+    (a bare unknown name stays an unknown library)."""
+    if isinstance(library, Path):
+        return True
+    return (isinstance(library, str) and library not in LIBRARIES
+            and ("/" in library or library.endswith(".lib") or Path(library).is_file()))
 
 
 def library_file(library):
     """Path of ``library``'s Liberty file (a name of :data:`LIBRARIES` or a path), or a
     :class:`SynthError` naming the package or the file and what is wrong with it."""
-    if not isinstance(library, (str, Path)) or not str(library):
-        raise ValueError(f"library must be one of {', '.join(map(repr, LIBRARIES))} or a Liberty file's path, "
-                         f"not {library!r}")
     if is_liberty_path(library):
         try:
             return Path(read_liberty(library).path)
         except LibertyError as error:
             raise SynthError(str(error)) from None
+    if library not in LIBRARIES:
+        raise ValueError(f"library must be one of {', '.join(map(repr, LIBRARIES))} or a Liberty file's path, "
+                         f"not {library!r}")
     path = Path(LIBRARIES[library].path)
     if not path.is_file():
         raise SynthError(f"the {library} Liberty file is missing ({path}): install Debian's "
@@ -108,7 +113,7 @@ def library_name(library):
     as it is, a Liberty file's path as the library name inside it
     (``sg13g2_stdcell_typ_1p20V_25C``); None as :data:`DEFAULT_LIBRARY`."""
     library = DEFAULT_LIBRARY if library is None else library
-    return str(library) if str(library) in LIBRARIES else library_facts(library).name
+    return library_facts(library).name if is_liberty_path(library) else library
 
 
 def _sta():

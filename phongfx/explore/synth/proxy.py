@@ -186,14 +186,14 @@ def rtlil_cost(text):
 
 
 def _coefficients(library):
-    from phongfx.explore.synth.asic import library_name
+    from phongfx.explore.synth.asic import is_liberty_path, library_name
 
-    name = library_name(library)
+    name = library_name(library) if is_liberty_path(library) else library
     if name not in AREA_COEFFICIENTS:
         where = "" if name == library else f" (Liberty file {library})"
-        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))} for the area proxy, "
-                         f"not {name!r}{where}: fit its coefficients with `phongfx tables proxy --liberty FILE "
-                         f"--refit` and add them to AREA_COEFFICIENTS")
+        raise ValueError(f"library must be one of {', '.join(map(repr, AREA_COEFFICIENTS))}, not {name!r}"
+                         + (f"{where}: fit its area proxy with `phongfx tables proxy --liberty FILE --refit`"
+                            if where else ""))
     return AREA_COEFFICIENTS[name]
 
 
@@ -220,9 +220,9 @@ def proxy_estimate(block, target, library=None):
     from phongfx.explore.synth.estimates import cached_estimate
 
     if target == "asic":
-        from phongfx.explore.synth.asic import library_name
+        from phongfx.explore.synth.asic import is_liberty_path, library_name
 
-        library = library_name(library)
+        library = library_name(library) if is_liberty_path(library) else (library or "osu018")
         _coefficients(library)  # a bad library is refused before anything is cached
         return cached_estimate("area", block, target, library,
                                lambda: {"area_um2": proxy_area(block, library), "model": "asic-proxy"})
