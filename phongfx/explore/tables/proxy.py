@@ -19,7 +19,7 @@ import numpy as np
 
 from phongfx.core.registry import block_names, get_block
 
-from phongfx.explore.synth.proxy import AREA_COEFFICIENTS, FEATURES, price, rtlil_features, rtlil_of
+from phongfx.explore.synth.proxy import AREA_COEFFICIENTS, FEATURES, rtlil_features, rtlil_of
 from phongfx.explore.synth.fpga import synth
 
 __all__ = ["TABLES", "POINTS", "DATAPATHS", "relative_nnls", "fit", "calibration_rows", "proxy_table", "run_table", "markdown",
@@ -75,10 +75,23 @@ def fit(features, areas):
     return dict(zip(FEATURES, (float(v) for v in relative_nnls(features, areas))))
 
 
-def calibration_rows(points=POINTS, *, library="osu018", workdir=None, progress=None):
+def _price(features, coefficients):
+    return float(sum(coefficients[k] * features[k] for k in FEATURES))
+
+
+def _stored(library):
+    """The stored coefficients of ``library`` (a name or Liberty file), None if it has none."""
+    from phongfx.explore.synth.asic import library_name
+
+    return AREA_COEFFICIENTS.get(library_name(library))
+
+
+def calibration_rows(points=POINTS, *, library="osu018", workdir=None, progress=None, coefficients=None):
     """One row per point: ``label``, ``block``, its :func:`rtlil_features`, the synthesized
-    ``area_um2`` and ``fmax_mhz``, the ``proxy_um2`` of the stored coefficients and the
-    ``error`` (proxy / synthesis − 1)."""
+    ``area_um2`` and ``fmax_mhz``, the ``proxy_um2`` of ``coefficients`` (default: the
+    stored ones; a library without any gets none, nor an ``error``) and the ``error``
+    (proxy / synthesis − 1)."""
+    coefficients = coefficients or _stored(library)
     rows = []
     for index, (label, name, config) in enumerate(points):
         if progress is not None:
@@ -86,11 +99,18 @@ def calibration_rows(points=POINTS, *, library="osu018", workdir=None, progress=
         block = get_block(name, config(name) if callable(config) else config)
         result = synth(name, config=block.config, target="asic", device=library, workdir=workdir)
         features = rtlil_features(rtlil_of(block))
-        proxy = price(features, library)
-        rows.append({"label": label, "block": name, "features": features, "area_um2": result["area_um2"],
-                     "fmax_mhz": result["fmax_mhz"], "proxy_um2": proxy,
-                     "error": proxy / result["area_um2"] - 1})
+        row = {"label": label, "block": name, "features": features, "area_um2": result["area_um2"],
+               "fmax_mhz": result["fmax_mhz"]}
+        if coefficients:
+            proxy = _price(features, coefficients)
+            row.update(proxy_um2=proxy, error=proxy / result["area_um2"] - 1)
+        rows.append(row)
     return rows
+
+
+def _priced(rows, coefficients):
+    return [{**r, "proxy_um2": _price(r["features"], coefficients),
+             "error": _price(r["features"], coefficients) / r["area_um2"] - 1} for r in rows]
 
 
 def _ranking_agrees(rows):
@@ -104,15 +124,26 @@ def proxy_table(points=POINTS, *, library="osu018", workdir=None, refit=False, p
     """The calibration result: ``rows``, ``coefficients`` (stored), the ``refit`` ones
     (when asked), the largest error over all points and over :data:`DATAPATHS`, and
     the rank agreement over all points and over the datapaths' points."""
+    from phongfx.explore.synth.asic import library_name
+
+    stored = _stored(library)
+    if stored is None and not refit:
+        raise ValueError(f"library {library_name(library)!r} has no stored area proxy coefficients "
+                         f"(calibrated: {', '.join(AREA_COEFFICIENTS)}): ask for refit (--refit) to fit them")
     rows = calibration_rows(points, library=library, workdir=workdir, progress=progress)
+    found = fit([[r["features"][k] for k in FEATURES] for r in rows], [r["area_um2"] for r in rows]) if refit else None
+    rows = _priced(rows, stored or found)
     datapaths = [r for r in rows if r["block"] in DATAPATHS]
-    result = {"table": "proxy", "library": library, "coefficients": dict(AREA_COEFFICIENTS[library]),
-              "rows": rows, "max_error": max(abs(r["error"]) for r in rows),
+    result = {"table": "proxy", "library": library_name(library), "coefficients": dict(stored or found),
+              "stored": stored is not None, "rows": rows, "max_error": max(abs(r["error"]) for r in rows),
               "max_error_datapaths": max((abs(r["error"]) for r in datapaths), default=None),
               "ranking": _ranking_agrees(rows), "ranking_datapaths": _ranking_agrees(datapaths)}
     if refit:
-        result["refit"] = fit([[r["features"][k] for k in FEATURES] for r in rows],
-                              [r["area_um2"] for r in rows])
+        result["refit"] = found
+        refitted = _priced(rows, found)
+        result["refit_max_error"] = max(abs(r["error"]) for r in refitted)
+        result["refit_max_error_datapaths"] = max((abs(r["error"]) for r in refitted
+                                                   if r["block"] in DATAPATHS), default=None)
     return result
 
 
@@ -123,14 +154,15 @@ def run_table(name, out_dir=None, library="osu018", refit=False):
 
     def progress(index, total, label):
         print(f"proxy: synthesizing point {index + 1} of {total} ({label}, {library}; cached runs are "
-              f"instant)", file=sys.stderr)
+              f"instant)", file=sys.stderr, flush=True)
     return proxy_table(library=library, refit=refit, progress=progress)
 
 
 def markdown(result):
     """Per point: synthesized area, proxy, error; then the largest errors and the ranking."""
+    source = "stored" if result.get("stored", True) else "fitted now: none stored for this library"
     lines = [f"# The area proxy against standard-cell synthesis ({result['library']})", "",
-             "Coefficients (µm² per bit): " + ", ".join(f"{k} {v:.1f}" for k, v in result["coefficients"].items()),
+             f"Coefficients (µm² per bit, {source}): " + ", ".join(f"{k} {v:.1f}" for k, v in result["coefficients"].items()),
              "", "| point | synthesized µm² | proxy µm² | error |", "|---|---:|---:|---:|"]
     for r in result["rows"]:
         lines.append(f"| {r['label']} | {r['area_um2']:,.0f} | {r['proxy_um2']:,.0f} | {r['error']:+.1%} |")
@@ -141,7 +173,9 @@ def markdown(result):
               f"* Ranking: the proxy orders {agree} of {pairs} pairs of points as synthesis does; "
               f"{dagree} of {dpairs} pairs of datapath points."]
     if "refit" in result:
-        lines.append("* Refitted now: " + ", ".join(f"{k} {v:.1f}" for k, v in result["refit"].items()))
+        lines.append("* Refitted now: " + ", ".join(f"{k} {v:.1f}" for k, v in result["refit"].items())
+                     + f" (largest error {result['refit_max_error']:.1%} over every point, "
+                       f"{result['refit_max_error_datapaths']:.1%} over the datapaths)")
     return "\n".join(lines) + "\n"
 
 

@@ -90,3 +90,30 @@ def test_gate_level_fig7(asic_tools, sg13g2, tmp_path):
     result = check_gate_level(bench.directory, "fig7", sg13g2 / TYPICAL, _models(sg13g2))
     assert result["passed"], result["output"][-2000:]
     assert re.search(r"^PASS 300 vectors", result["output"], re.M)
+
+
+@pytest.mark.needs_sta
+def test_command_line_liberty_and_corner(asic_tools, sg13g2, capsys):
+    from phongfx.cli import main
+
+    assert main(["synth", "shape", "--target", "asic", "--liberty", str(sg13g2 / TYPICAL),
+                 "--corner", str(sg13g2 / SLOW), "--quiet"]) == 0
+    text = capsys.readouterr().out
+    assert "| shape | sg13g2_stdcell_typ_1p20V_25C |" in text
+    assert re.search(r"^\* the same netlist at sg13g2_stdcell_slow_1p08V_125C \(1\.08 V, 125 °C, process 1\): "
+                     r"Fmax \d+\.\d MHz, worst path ", text, re.M), text
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--liberty", "{tmp}/none.lib"], "Liberty file {tmp}/none.lib does not exist"),
+    (["--liberty", "{typ}", "--corner", "{tmp}/none.lib"], "Liberty file {tmp}/none.lib does not exist"),
+    (["--target", "ecp5", "--corner", "{typ}"], "--corner applies to --target asic only, not to 'ecp5'"),
+])
+def test_command_line_bad_liberty_before_any_work(sg13g2, capsys, tmp_path, argv, message):
+    from phongfx.cli import main
+
+    argv = [a.format(tmp=tmp_path, typ=sg13g2 / TYPICAL) for a in argv]
+    target = [] if "--target" in argv else ["--target", "asic"]
+    assert main(["synth", "shape", *target, *argv, "--quiet", "--workdir", str(tmp_path / "work")]) == 2
+    assert capsys.readouterr().err == f"phongfx: error: {message.format(tmp=tmp_path)}\n"
+    assert not (tmp_path / "work").exists()
