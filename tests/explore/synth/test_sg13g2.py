@@ -117,3 +117,23 @@ def test_command_line_bad_liberty_before_any_work(sg13g2, capsys, tmp_path, argv
     assert main(["synth", "shape", *target, *argv, "--quiet", "--workdir", str(tmp_path / "work")]) == 2
     assert capsys.readouterr().err == f"phongfx: error: {message.format(tmp=tmp_path)}\n"
     assert not (tmp_path / "work").exists()
+
+
+@pytest.mark.slow
+@pytest.mark.needs_sta
+@pytest.mark.needs_iverilog
+def test_gate_level_compiled_scene(asic_tools, sg13g2, tmp_path):
+    """The exported testbench of a compiled scene (its shipped top, the scene's own vectors)
+    passes on the top's SG13G2 netlist."""
+    import json
+    from pathlib import Path
+
+    from phongfx.cli import main
+
+    scene = Path(__file__).resolve().parents[3] / "scenes" / "two-lights.toml"
+    assert main(["compile", str(scene), "-o", str(tmp_path / "out"), "--target", "asic", "--testbench",
+                 "--no-check", "--quiet"]) == 0
+    module = json.loads((tmp_path / "out" / "manifest.json").read_text())["module"]
+    result = check_gate_level(tmp_path / "out" / "testbench", module, sg13g2 / TYPICAL, _models(sg13g2))
+    assert result["passed"], result["output"][-2000:]
+    assert re.search(r"^PASS \d+ vectors", result["output"], re.M)
