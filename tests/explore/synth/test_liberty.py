@@ -107,3 +107,20 @@ def test_command_line_liberty_checks(tmp_path, sg13g2):
         target_device("asic", None, "osu018", typical)
     with pytest.raises(LibertyError, match=f"^Liberty file {tmp_path}/x.lib does not exist$"):
         target_device("asic", None, None, str(tmp_path / "x.lib"))
+
+
+def test_the_proxies_refuse_an_uncalibrated_library(tmp_path):
+    from phongfx.core.registry import get_block
+    from phongfx.explore.synth.clock import proxy_clock
+    from phongfx.explore.synth.proxy import proxy_area
+
+    path = tmp_path / "tiny.lib"
+    path.write_text(TINY % FLOP)
+    block = get_block("shape")
+    with pytest.raises(ValueError, match=r"^library must be one of 'osu018', .*, not 'tiny_lib' \(Liberty file "
+                                         rf"{tmp_path}/tiny.lib\): fit its area proxy with `phongfx tables proxy "
+                                         r"--liberty FILE --refit`$"):
+        proxy_area(block, str(path))
+    with pytest.raises(ValueError, match=r"^device must be one of osu018.* for the asic clock proxy, not 'tiny_lib': "
+                                         r"fit it with `phongfx tables clock --liberty FILE --refit`$"):
+        proxy_clock(block, "asic", str(path))
