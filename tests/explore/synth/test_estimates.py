@@ -70,5 +70,6 @@ def test_the_proxy_prices_a_known_design_without_elaborating_it(home, monkeypatc
     assert proxy_estimate(get_block("fig7"), "ecp5") == priced and len(conversions) == 2
     area = proxy_estimate(fig7, "asic")
     assert area["model"] == "asic-proxy" and area["area_um2"] > 0 and len(conversions) == 3
-    with pytest.raises(ValueError, match=r"^library must be one of 'osu018', 'osu035', not 'x'$"):
+    with pytest.raises(ValueError, match=r"^library must be one of 'osu018', 'osu035', 'sg13g2_stdcell_typ_1p20V_25C', "
+                                         r"'sg13g2_stdcell_slow_1p08V_125C', 'sg13g2_stdcell_fast_1p32V_m40C', not 'x'$"):
         proxy_estimate(fig7, "asic", "x")

@@ -64,7 +64,8 @@ def test_table_rows_errors_and_ranking(monkeypatch):
 
 
 def test_unknown_library():
-    with pytest.raises(ValueError, match=r"^library must be one of 'osu018', 'osu035', not 'x'$"):
+    with pytest.raises(ValueError, match=r"^library must be one of 'osu018', 'osu035', 'sg13g2_stdcell_typ_1p20V_25C', "
+                                         r"'sg13g2_stdcell_slow_1p08V_125C', 'sg13g2_stdcell_fast_1p32V_m40C', not 'x'$"):
         proxy_area(get_block("shape"), "x")
 
 
@@ -83,3 +84,25 @@ def test_calibration_over_every_point(library, asic_tools):
     assert result["max_error_datapaths"] <= 0.15
     agree, pairs = result["ranking_datapaths"]
     assert agree == pairs
+
+
+def test_a_library_without_coefficients_is_fitted(monkeypatch, tmp_path):
+    """A Liberty file the proxy knows nothing of: the table refuses to run without --refit,
+    and with it prices the points by the fitted coefficients."""
+    lib = tmp_path / "new.lib"
+    lib.write_text('library (new_cells) {\n  time_unit : "1ns";\n  nom_process : 1;\n  nom_voltage : 1.0;\n'
+                   '  nom_temperature : 25;\n  cell (DF) {\n    area : 2;\n    ff (IQ, IQN) { next_state : "D"; }\n'
+                   '  }\n}\n')
+
+    def fake(name, *, config, target, device, workdir):
+        return {"area_um2": 0.5 * proxy_area(get_block(name, config), "osu018"), "fmax_mhz": 100.0}
+
+    monkeypatch.setattr(proxy_table, "synth", fake)
+    points = (("shape", "shape", None), ("fig7", "fig7", None), ("fig8", "fig8", None))
+    with pytest.raises(ValueError, match=r"^library 'new_cells' has no stored area proxy coefficients \(calibrated: "
+                                         r"osu018, osu035, .*\): ask for refit \(--refit\) to fit them$"):
+        proxy_table.proxy_table(points, library=str(lib))
+    result = proxy_table.proxy_table(points, library=str(lib), refit=True)
+    assert result["library"] == "new_cells" and result["stored"] is False
+    assert result["coefficients"] == result["refit"] and result["max_error"] < 1e-6
+    assert "fitted now: none stored for this library" in proxy_table.markdown(result)
