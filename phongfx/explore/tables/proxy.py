@@ -158,6 +158,10 @@ def run_table(name, out_dir=None, library="osu018", refit=False):
     return proxy_table(library=library, refit=refit, progress=progress)
 
 
+def _share(value):
+    return "–" if value is None else f"{value:.1%}"  # no datapath among the points
+
+
 def markdown(result):
     """Per point: synthesized area, proxy, error; then the largest errors and the ranking."""
     source = "stored" if result.get("stored", True) else "fitted now: none stored for this library"
@@ -169,13 +173,13 @@ def markdown(result):
     agree, pairs = result["ranking"]
     dagree, dpairs = result["ranking_datapaths"]
     lines += ["", f"* Largest error: {result['max_error']:.1%} over every point; "
-              f"{result['max_error_datapaths']:.1%} over the datapaths ({', '.join(DATAPATHS)}).",
+              f"{_share(result['max_error_datapaths'])} over the datapaths ({', '.join(DATAPATHS)}).",
               f"* Ranking: the proxy orders {agree} of {pairs} pairs of points as synthesis does; "
               f"{dagree} of {dpairs} pairs of datapath points."]
     if "refit" in result:
         lines.append("* Refitted now: " + ", ".join(f"{k} {v:.1f}" for k, v in result["refit"].items())
                      + f" (largest error {result['refit_max_error']:.1%} over every point, "
-                       f"{result['refit_max_error_datapaths']:.1%} over the datapaths)")
+                       f"{_share(result['refit_max_error_datapaths'])} over the datapaths)")
     return "\n".join(lines) + "\n"
 
 

@@ -98,11 +98,12 @@ def test_a_library_without_coefficients_is_fitted(monkeypatch, tmp_path):
         return {"area_um2": 0.5 * proxy_area(get_block(name, config), "osu018"), "fmax_mhz": 100.0}
 
     monkeypatch.setattr(proxy_table, "synth", fake)
-    points = (("shape", "shape", None), ("difference", "difference", None), ("fig8", "fig8", None))
+    points = (("shape", "shape", None), ("difference", "difference", None), ("root", "root", None))
     with pytest.raises(ValueError, match=r"^library 'new_cells' has no stored area proxy coefficients \(calibrated: "
                                          r"osu018, osu035, .*\): ask for refit \(--refit\) to fit them$"):
         proxy_table.proxy_table(points, library=str(lib))
     result = proxy_table.proxy_table(points, library=str(lib), refit=True)
     assert result["library"] == "new_cells" and result["stored"] is False
     assert result["coefficients"] == result["refit"] and result["max_error"] < 1e-6
-    assert "fitted now: none stored for this library" in proxy_table.markdown(result)
+    text = proxy_table.markdown(result)
+    assert "fitted now: none stored for this library" in text and "; – over the datapaths" in text
