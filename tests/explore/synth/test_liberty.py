@@ -124,3 +124,22 @@ def test_the_proxies_refuse_an_uncalibrated_library(tmp_path):
     with pytest.raises(ValueError, match=r"^device must be one of osu018.* for the asic clock proxy, not 'tiny_lib': "
                                          r"fit it with `phongfx tables clock --liberty FILE --refit`$"):
         proxy_clock(block, "asic", str(path))
+
+
+@pytest.mark.parametrize("table, options", [
+    ("clock", {"device": "{typ}"}),
+    ("proxy", {"library": "{typ}"}),
+    ("cost", {"target": "asic", "device": "{typ}"}),
+])
+def test_tables_take_a_liberty_file(monkeypatch, capsys, sg13g2, table, options):
+    import importlib
+
+    from phongfx.cli import main
+
+    typ = str(sg13g2 / "sg13g2_stdcell_typ_1p20V_25C.lib")
+    module = importlib.import_module(f"phongfx.explore.tables.{table}")
+    seen = {}
+    monkeypatch.setattr(module, "run_table", lambda name, out_dir=None, **given: seen.update(given) or {})
+    monkeypatch.setattr(module, "to_json", lambda result: "{}")
+    assert main(["tables", table, "--liberty", typ, "--json"]) == 0
+    assert seen == {k: v.format(typ=typ) for k, v in options.items()}
