@@ -24,6 +24,7 @@ from amaranth.lib.wiring import In, Out
 from phongfx.config import ShaderConfig
 
 from .block import OVERFLOW, PipelinedBlock, checked_outputs, unbuilt
+from .comment import wrap
 from .emit import verilog
 from .handshake import Handshake
 from .overflow import overflow_checks
@@ -253,15 +254,9 @@ def header(ports, name, latency, interval=1, timing=None, noun="vector"):
 
 
 def _wrap(text, width=96):
-    """``text`` in lines of at most ``width`` characters, the later ones indented."""
-    lines, line = [], ""
-    for word in text.split():
-        if line and len(line) + 1 + len(word) > width:
-            lines.append(line)
-            line = "  " + word
-        else:
-            line = f"{line} {word}" if line else word
-    return lines + [line]
+    """``text`` in lines of at most ``width`` characters, the later ones indented, none of
+    which a tool reads as its pragma once behind ``// `` (:func:`~phongfx.hdl.comment.wrap`)."""
+    return wrap(text, width)
 
 
 def top_verilog(block_component, name, *, overflow=False, timing=None):

@@ -27,8 +27,7 @@ lines (the first :data:`MAX_REPORT` errors: vector, field, got, expected) and
 ``$finish``; a cycle time-out prints ``FAIL`` too.
 """
 
-import textwrap
-
+from phongfx.hdl.comment import comment
 from phongfx.hdl.top import port_map
 
 from .vectors import payload_fields
@@ -103,7 +102,7 @@ def verilog_testbench(config, name, count, latency, *, reset_at, seed=1, stall=0
     dump = (f"    $dumpfile(\"tb_{name}.vcd\");\n    $dumpvars(0, tb_{name});\n") if vcd else ""
     junk_words = (in_width + 31) // 32
     start = f"applies rst for {reset_cycles} cycles" if reset_cycles else "starts without a reset (power-up)"
-    about = textwrap.fill(
+    about = comment(
         f"tb_{name}: self-checking testbench of {name}_top, written by phongfx (sim/testbench.py). "
         f"Runs unchanged under Icarus Verilog (iverilog -g2012) and Verilator (--binary): see README.txt. "
         f"It {start}, streams the {count} vectors of {name}_in.memh with pseudo-random in_valid bubbles "
@@ -113,10 +112,9 @@ def verilog_testbench(config, name, count, latency, *, reset_at, seed=1, stall=0
         f"by field, with {name}_expected.memh.  It also checks that out_valid and out_* hold while "
         f"out_ready is low, and that out_valid is low while nothing is in flight.  Nothing is counted "
         f"as a transfer while rst is high.  It prints \"PASS <n> vectors, <cycles> cycles\" or FAIL "
-        f"lines, then $finish.", width=97, initial_indent="// ", subsequent_indent="// ")
+        f"lines, then $finish.", width=94)
     return f"""\
-{about}
-module tb_{name};
+{about}module tb_{name};
   localparam integer N = {count};
   localparam integer IW = {in_width};
   localparam integer OW = {out_width};
