@@ -16,6 +16,13 @@ does under ``-g2012``.  Yosys makes every ``always @*`` block read a dummy regis
 initialized in its declaration, so that the initialization wakes the block at time 0
 (Verilog-2005's rule); without the event such a block waits for an input to change, and
 a register fed by it can load X on the first clock edge.
+
+``verilog(..., lint=True)`` (the shipped top, :func:`phongfx.hdl.top.top_verilog`) is the
+text ``verilator --lint-only -Wall`` and ``iverilog -Wall`` pass without a warning: every
+operand's width written out (:func:`phongfx.hdl.widths.explicit_widths`; the same bits), and
+the warning classes that come from the generated code's style, not from a defect, waived in
+the file, each with its reason (:data:`LINT_WAIVERS`, :func:`waive_lint`).  The default text,
+which synthesis and the simulation harness read, is Yosys' own.
 """
 
 import functools
@@ -24,12 +31,26 @@ from pathlib import Path
 
 from amaranth.back import verilog as _verilog
 
-__all__ = ["PROJECT_ROOT", "verilog", "portable_src", "wake_at_time_zero", "write_verilog", "payload_widths"]
+from .comment import comment
+from .widths import explicit_widths
+
+__all__ = ["PROJECT_ROOT", "LINT_WAIVERS", "verilog", "portable_src", "wake_at_time_zero", "waive_lint",
+           "write_verilog", "payload_widths"]
 
 #: The folder holding ``hdl/``: the repository (or, installed, the ``phongfx`` package);
 #: ``src`` paths are written relative to it.
 PROJECT_ROOT = Path(__file__).resolve().parent.parent
 _SRC = re.compile(r'\(\* src = "((?:[^"\\]|\\.)*)" \*\)( ?)')
+#: Verilator ``-Wall`` classes waived in a ``lint=True`` text, and why each is no defect.
+LINT_WAIVERS = {
+    "DECLFILENAME": "one file holds the top and its submodules (named <top>.<instance> by Yosys), "
+                    "so no file can be named after each module",
+    "PROCASSINIT": "each register's declaration initializer is its power-up value (Yosys' init "
+                   "attribute; see the header's power-up note), and always blocks assign it",
+    "UNUSEDSIGNAL": "Yosys keeps every named wire: per-field views of the packed payloads, kept for "
+                    "waveforms, and full-width sums and products whose low bits a rounding drops; "
+                    "synthesis removes what nothing reads",
+}
 _DUMMY = re.compile(r"^([ \t]*)reg (\\\$auto\$verilog_backend\.cc:\d+:dump_module\$\d+) += 0;$", re.M)
 
 
@@ -81,7 +102,19 @@ def wake_at_time_zero(text):
     return _DUMMY.sub(initial, text)
 
 
-def verilog(component, name, *, emit_src=True, time_zero=False):
+def waive_lint(text):
+    """``text`` between ``verilator lint_off`` and ``lint_on`` comments of each class of
+    :data:`LINT_WAIVERS`, the reason above each: the waivers end with the file."""
+    off = "".join(comment(f"{cls}: {reason}.", width=96, indent="  ") + f"/* verilator lint_off {cls} */\n"
+                  for cls, reason in LINT_WAIVERS.items())
+    on = "".join(f"/* verilator lint_on {cls} */\n" for cls in LINT_WAIVERS)
+    about = comment("Lint: verilator --lint-only -Wall and iverilog -Wall give no warning on this file: every "
+                    "operand is written at the width Verilog extends it to, and these classes, style of "
+                    "generated code, are waived here:", width=96)
+    return about + off + text + on
+
+
+def verilog(component, name, *, emit_src=True, time_zero=False, lint=False):
     """Verilog text of ``component`` as a module called ``name``.
 
     Parameters
@@ -98,6 +131,10 @@ def verilog(component, name, *, emit_src=True, time_zero=False):
     time_zero : bool
         Make every ``always @*`` block run at time 0 under SystemVerilog's rules too
         (:func:`wake_at_time_zero`; Icarus ``-g2012``).
+    lint : bool
+        Write every operand's width out (:func:`~phongfx.hdl.widths.explicit_widths`) and
+        waive the classes of :data:`LINT_WAIVERS` in the file (:func:`waive_lint`): the text
+        lints clean under ``verilator -Wall`` and ``iverilog -Wall``, and computes the same.
 
     Returns
     -------
@@ -109,7 +146,9 @@ def verilog(component, name, *, emit_src=True, time_zero=False):
     text = _verilog.convert(component, name=name, emit_src=emit_src)
     if emit_src:
         text = portable_src(text)
-    return wake_at_time_zero(text) if time_zero else text
+    if time_zero:
+        text = wake_at_time_zero(text)
+    return waive_lint(explicit_widths(text)) if lint else text
 
 
 def write_verilog(component, name, path, *, emit_src=True):
