@@ -6,7 +6,7 @@ which Verilator took for its own directive (``%Error-BADVLTPRAGMA``).  Every nam
 from 1 to 80 is checked here under Verilator itself (two families of names, 160 in one file
 and one Verilator run), and every comment line against the words other tools
 read (:data:`phongfx.hdl.comment.PRAGMA_WORDS`); and a testbench exported for a 22-character
-name passes under both simulators."""
+name passes under both simulators and lints clean with its top (``-Wall``)."""
 
 import re
 import subprocess
@@ -92,3 +92,11 @@ def test_a_22_character_top_passes_under_verilator_and_icarus(tmp_path):
     bench = tb.write_testbench(block, inputs, expected, tmp_path / NAME_22, NAME_22)
     cycles = check_pass(bench, *tb.run_verilator(bench.directory, NAME_22))
     assert check_pass(bench, *tb.run_icarus(bench.directory, NAME_22)) == cycles
+    # and the testbench with the top lints clean under both (-Wall)
+    files = [str(bench.directory / f"tb_{NAME_22}.v"), str(bench.directory / f"{NAME_22}_top.v")]
+    lint = subprocess.run([str(tool_environment()), "--lint-only", "-Wall", "--timing", "--top-module",
+                           f"tb_{NAME_22}", *files], capture_output=True, text=True, timeout=300)
+    assert lint.returncode == 0 and "%" not in lint.stderr, lint.stderr[-3000:]
+    icarus = subprocess.run(["iverilog", "-g2012", "-Wall", "-s", f"tb_{NAME_22}", "-o", "/dev/null", *files],
+                            capture_output=True, text=True, timeout=300)
+    assert icarus.returncode == 0 and not (icarus.stdout + icarus.stderr).strip(), icarus.stderr
