@@ -160,14 +160,14 @@ def _rewrite(target, expression, widths, msbs):
     shape = tuple(kind if kind == "operand" else token[1] for kind, token in items)
     operand = [(_Operand(token, widths, msbs) if kind == "operand" else None) for kind, token in items]
     target_width = _Operand(_split(_tokens(target))[0][1], widths, msbs).width
-    replace = []  # (operand, text)
+    edits = []  # (start, end, new text) in expression
 
     def extend(operands, width):
         signed = all(o.signed for o in operands)
         for o in operands:
             text = o.extended(width, signed)
             if text is not None:
-                replace.append((o, text))
+                edits.append((o.start, o.end, text))
 
     if len(shape) == 3 and shape[0] == shape[2] == "operand":
         a, b, op = operand[0], operand[2], shape[1]
@@ -183,12 +183,11 @@ def _rewrite(target, expression, widths, msbs):
             extend([a], max(a.width, target_width))
         elif op == "!" and a.width > 1:
             token = items[0][1]
-            replace.append((token[2], token[2] + 1, "~|"))
+            edits.append((token[2], token[2] + 1, "~|"))
     elif shape == ("operand", "?", "operand", ":", "operand"):
         b, c = operand[2], operand[4]
         extend([b, c], max(b.width, c.width, target_width))
-    edits = sorted(((r[0].start, r[0].end, r[1]) if len(r) == 2 else r for r in replace), reverse=True)
-    for start, end, text in edits:
+    for start, end, text in sorted(edits, reverse=True):
         expression = expression[:start] + text + expression[end:]
     return expression
 
@@ -215,23 +214,23 @@ def _module_shapes(lines):
 def explicit_widths(text):
     """``text`` (Yosys ``write_verilog`` output) with every operand extension written out
     (see the module docstring); a line outside the forms Yosys writes is left as it is."""
-    lines = text.splitlines(keepends=True)
     out, module = [], []
 
     def flush():
         widths, msbs = _module_shapes(module)
         for line in module:
-            match = _ASSIGN.match(line.rstrip("\n"))
+            body = line.rstrip("\n")
+            match = _ASSIGN.match(body)
             if match is not None:
                 head, target, expression = match.groups()
                 try:
-                    line = f"{head}{target} = {_rewrite(target, expression, widths, msbs)};" + line[len(line.rstrip("\n")):]
+                    line = f"{head}{target} = {_rewrite(target, expression, widths, msbs)};" + line[len(body):]
                 except _Unreadable:
                     pass
             out.append(line)
         module.clear()
 
-    for line in lines:
+    for line in text.splitlines(keepends=True):
         module.append(line)
         if line.startswith("endmodule"):
             flush()

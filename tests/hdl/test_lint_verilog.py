@@ -132,12 +132,12 @@ def test_explicit_widths(line, expected):
 EQUIV = """\
 read_verilog -sv {before}
 hierarchy -top {top}
-proc; flatten; opt_clean
+proc; memory; flatten; opt_clean
 rename {top} gold
 design -stash gold
 read_verilog -sv {after}
 hierarchy -top {top}
-proc; flatten; opt_clean
+proc; memory; flatten; opt_clean
 rename {top} gate
 design -stash gate
 design -copy-from gold -as gold gold
