@@ -107,10 +107,17 @@ def cmd_testbench(args):
 
 def cmd_sim(args):
     from phongfx.sim.harness import check
+    # every range checked here, before a Verilator build of up to a minute
     if args.vectors < 0:
-        raise ValueError("--vectors must be a non-negative integer")
+        raise ValueError(f"--vectors must be a non-negative integer, not {args.vectors}")
     if args.seed < 0:
         raise ValueError(f"--seed must be a non-negative integer, not {args.seed}")
+    for option in ("stalls", "bubbles"):
+        value = getattr(args, option)
+        if not 0 <= value < 1:  # NaN fails too
+            raise ValueError(f"--{option} must be a probability in [0, 1) (at 1 nothing would move), not {value:g}")
+    if args.reset_at is not None and args.reset_at < 0:
+        raise ValueError(f"--reset-at must be a cycle number, 0 or more, not {args.reset_at}")
     block = configured_block(args.name, args.set)
     options = {"vcd": args.vcd} if args.vcd else {}
     stream = args.stalls or args.reset_at is not None

@@ -133,8 +133,16 @@ def _baseline(records, error_key, dsp_weight):
     return lines
 
 
-#: Smaller runs of the slow tables for ``quick=True``.
-_QUICK = {"hast": {"frames": 4}, "cost": {"blocks": ("difference", "shape", "root")}}
+#: Smaller runs of the slow tables for ``quick=True``: a smoke run of every table, under 2
+#: minutes on 2 cores with an empty cache.  4 frames of Hast's; 3 blocks of the cost table's
+#: 8; for the pipeline table (3 datapaths × 5 depths × 3 seeds, 45 syntheses) the shape
+#: block at depths 0 and 2 with one seed; 2 of the area proxy's 22 points (standard cells);
+#: for the clock proxy's (every datapath at every depth, on ECP5 and standard cells) the
+#: shape block at depth 0.  The shape block's runs at its defaults are shared (cached).
+_QUICK = {"hast": {"frames": 4}, "cost": {"blocks": ("difference", "shape", "root")},
+          "pipeline": {"names": ("shape",), "depths": (0, 2), "seeds": (1,)},
+          "proxy": {"points": (("shape", "shape", None), ("root", "root", None))},
+          "clock": {"selected": [("shape", "shape", None, 0)]}}
 
 
 def _demote(text):
