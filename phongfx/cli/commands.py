@@ -17,19 +17,12 @@ from phongfx.explore.tables import TABLES, table_module
 
 from .settings import apply_settings, configured_block
 
-__all__ = ["MAX_SIZE", "MAX_TESTBENCH_COUNT", "cmd_blocks", "cmd_verilog", "cmd_testbench", "cmd_sim",
+__all__ = ["MAX_SIZE", "MAX_TESTBENCH_COUNT", "cmd_verilog", "cmd_testbench", "cmd_sim",
            "cmd_render", "cmd_synth", "cmd_sweep", "cmd_report", "cmd_figure9", "cmd_tables",
            "exit_on_mismatch", "target_device"]
 
 #: Largest ``--size`` of ``render mesh`` / ``render frames`` (an 8K frame).
 MAX_SIZE = 8192
-
-
-def cmd_blocks(args):
-    for name in block_names():
-        block = get_block(name)
-        print(f"{name:16s} latency {block.latency:3d}  {block.config}")
-    return 0
 
 
 def cmd_verilog(args):
