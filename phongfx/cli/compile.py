@@ -9,6 +9,7 @@ import sys
 
 from phongfx.core.cache import folder
 from phongfx.core.files import check_folder
+from phongfx.core.words import levels
 
 from .commands import exit_on_mismatch, target_device
 
@@ -98,9 +99,7 @@ def _levels(value):
     """A max error in display levels (whole numbers at the outputs; "inf" when unbuildable)."""
     if isinstance(value, float) and value.is_integer():
         value = int(value)
-    if isinstance(value, float):
-        return f"{value:.3f} levels"
-    return f"{value} level" if value == 1 else f"{value} levels"
+    return levels(value, ".3f" if isinstance(value, float) else "")
 
 
 def _where(result):
@@ -261,7 +260,7 @@ def cmd_compile(args):
     for line in fit_lines(data.get("fit")):
         print(line)
     for step in data["witness_rounds"]:
-        print(f"  {step['method']} at {step['params']}: witness {step['witness_levels']} levels, "
+        print(f"  {step['method']} at {step['params']}: witness {levels(step['witness_levels'])}, "
               + (f"searched again with {step['hard_points']} hard points" if step["action"] == "searched again"
                  else "not chosen"))
     print(f"  witness: {witness['found_by']}; replay: {witness['replay']}")

@@ -29,6 +29,7 @@ from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
 from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
+from phongfx.core.words import levels
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
@@ -226,7 +227,7 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
         error = _picture(g, pixel_error(codes, reference, compiled.spec.output.bits).max(axis=-1), np.nan)
         error_figure(os.path.join(out_dir, "error", name), error,
                      f"{compiled.spec.name}: {method}, frame {g.frame}: error against {against}, worst "
-                     f"channel, max {np.nanmax(error, initial=0):g} levels", scale)
+                     f"channel, max {levels(np.nanmax(error, initial=0))}", scale)
         for sheet, value in zip(sheets, (picture, error, f"frame {g.frame}")):
             sheet.append(value)
         if check and result is None:
