@@ -22,6 +22,7 @@ import sys
 
 from phongfx.config import MAX_PIPELINE, BlendConfig, ShaderConfig
 from phongfx.core.registry import get_block
+from phongfx.core.words import plural
 
 from phongfx.explore.progress import Candidates
 from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, clock_netlist, critical_path
@@ -218,7 +219,7 @@ def markdown(result):
     lines = [f"# The clock proxy against synthesis (ECP5 LFE5U-45F seed {result['seed']} at {result['freq']} MHz; "
              f"osu018 pre-layout)", ""]
     for target, numbers in result["summary"].items():
-        lines += [f"## {target}: {numbers['rows']} points, median error {numbers['median']:.1%}, "
+        lines += [f"## {target}: {plural(numbers['rows'], 'point')}, median error {numbers['median']:.1%}, "
                   f"largest {numbers['max']:.1%} (stored margin {result['error'][target]:.0%})", "",
                   f"Coefficients (ns): {_coefficients(result['coefficients'][target])}", "",
                   "| point | depth | synthesized MHz | proxy MHz | error | synthesized path | proxy path |",
