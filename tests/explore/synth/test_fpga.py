@@ -338,3 +338,23 @@ def test_difference_synthesizes_on_ecp5_at_its_defaults():
     directory = result["directory"]
     netlist = json.loads(Path(directory, "netlist.json").read_text())
     assert _multiply_driven(netlist) == {}
+
+
+@pytest.mark.needs_yosys
+@pytest.mark.slow
+def test_the_yosys_abc9_conflict_reproduces_and_xaiger1_avoids_it(tmp_path):
+    # the reproduction for upstream (abc9_conflict/repro.ys): if a new Yosys passes it, the
+    # xaiger1 fallback of phongfx.explore.synth.lutmap may go
+    from phongfx.explore.synth.toolrun import run_yosys
+
+    source = Path(__file__).with_name("abc9_conflict")
+    for name in ("difference.v", "harness.v"):
+        (tmp_path / name).write_text((source / name).read_text())
+    script = (source / "repro.ys").read_text()
+    (tmp_path / "repro.ys").write_text(script.replace("check -assert", "check"))
+    run_yosys(tmp_path, "repro.ys")
+    # reported by synth_ecp5's own check and by the script's
+    assert set(lutmap.conflicts(tmp_path / "yosys.log")) == {"difference_synth.\\dut.i__payload.l [2]"}
+    (tmp_path / "repro.ys").write_text(f"{lutmap.XAIGER1}\n{script}")
+    run_yosys(tmp_path, "repro.ys")  # check -assert passes
+    assert lutmap.conflicts(tmp_path / "yosys.log") == []
