@@ -135,7 +135,7 @@ def _baseline(records, error_key, dsp_weight):
 
 #: Smaller runs of the slow tables for ``quick=True``: a smoke run of every table, under 2
 #: minutes on 2 cores with an empty cache.  4 frames of Hast's; 3 blocks of the cost table's
-#: 8; for the pipeline table (3 datapaths × 5 depths × 3 seeds, 45 syntheses) the shape
+#: 7; for the pipeline table (3 datapaths × 5 depths × 3 seeds, 45 syntheses) the shape
 #: block at depths 0 and 2 with one seed; 2 of the area proxy's 22 points (standard cells);
 #: for the clock proxy's (every datapath at every depth, on ECP5 and standard cells) the
 #: shape block at depth 0.  The shape block's runs at its defaults are shared (cached).

@@ -236,7 +236,7 @@ def test_build_report_shows_the_synthesis_progress_of_its_tables(tmp_path, monke
 
 def test_the_quick_report_runs_every_synthesizing_table_small(tmp_path, monkeypatch):
     # `report --quick`, "a smoke run", had run 830 s and was at the proxy table's point 13 of 22;
-    # now about 100 s on 2 cores with an empty cache, 4 syntheses and 3 standard-cell runs
+    # now 96 s on 2 cores with an empty cache: 4 FPGA syntheses and 2 standard-cell runs
     from phongfx.explore.synth import fpga
     from phongfx.explore.tables import clock, cost, pipeline, proxy
 
