@@ -183,7 +183,7 @@ def _unit_entry(name, unit, config, spec, copy, n_scale):
         return _per_pixel(name, unit, spec, copy, n_scale)
     if isinstance(unit, SphericalConfig):
         return _spherical(name, copy)
-    raise ValueError(f"config.unit must be a unit the compiler ships (a datapath, conventional, blinn or "
+    raise ValueError(f"config.units[0] must be a unit the compiler ships (a datapath, conventional, blinn or "
                      f"spherical), not {type(unit).__name__}")
 
 
