@@ -1,6 +1,7 @@
 """Write what :func:`phongfx.explore.compile.compiler.compile_scene` found, and verify it.
 
-``DIR/manifest.json`` (:func:`manifest`), ``DIR/verilog/<module>_top.v`` (the shipped
+``DIR/manifest.json`` (:func:`manifest`, with the top's input contract as ``"contract"``:
+:mod:`phongfx.deliver.contract`), ``DIR/verilog/<module>_top.v`` (the shipped
 design: the named-port top of :mod:`phongfx.hdl.top` around exactly the chosen shader's
 blocks, without the simulation-only overflow checks, what the cost is of),
 ``DIR/frames/frame_NNN.png`` (the shader's r, g, b codes of each frame at its first
