@@ -289,6 +289,8 @@ def test_example_scenes_compile_and_verify(tmp_path, name):
     chosen, lirps = {"torus": ("fig7", 1)}.get(name, ("conventional", None))
     assert data["chosen"] == chosen and data["block_counts"].get("lirp") == lirps
     assert data["rtl_check"]["mismatches"] == 0
+    header = (out / data["top"]["file"]).read_text()  # the contract names the scene's material
+    assert f"// Material 0 = {data['contract']['materials'][0]['name']}: " in header
     proof = data["overflow_proof"]  # every overflow="error" claim of the shipped design, proven
     assert proof["claims"] and proof["counterexample"] == 0 and proof["unknown"] == 0
 
