@@ -10,6 +10,8 @@ testbench drive) is checked against what each entry claims.
 import functools
 import json
 import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -202,3 +204,11 @@ def test_only_a_compiled_shader_with_a_shipped_unit_has_a_contract():
     with pytest.raises(ValueError, match=r"^config.units\[0\] must be a unit the compiler ships \(a datapath, "
                                          r"conventional, blinn or spherical\), not SchlickConfig$"):
         input_contract(schlick, spec, "schlick", n_scale=1)
+
+
+def test_the_layer_loads_its_modules_only_when_a_name_is_asked_for():
+    code = ("import sys, phongfx.deliver as d\nassert 'phongfx.deliver.contract' not in sys.modules\n"
+            "assert d.input_contract.__module__ == 'phongfx.deliver.contract'\nprint(sorted(d.__all__))")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stderr
+    assert {"contract_lines", "input_contract"} <= set(eval(run.stdout))  # the other modules add theirs
