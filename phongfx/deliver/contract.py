@@ -29,8 +29,6 @@ the frames of :mod:`phongfx.scene.geometry`:
 :func:`contract_lines` prints it as the paragraphs of the top's header.
 """
 
-import numpy as np
-
 from phongfx.config import BlinnConfig, ConventionalConfig, DatapathConfig, ShaderConfig, SphericalConfig
 
 __all__ = ["SPACE", "QUANTIZE", "input_contract", "contract_lines"]
@@ -212,7 +210,7 @@ def _outputs(config, spec):
                f"of A_c + sum over lights i of ({diff}spec_i*S_ic{gate}), saturated at {top}, where diff_i and "
                f"spec_i are the unit's terms of light i (diff_i = max(N.L, 0)) and A_c, D_ic, S_ic the "
                f"material's codes (ka*M_c, kd*M_c*L_ic, ks*M_c*L_ic times {top}, {blend.coef_frac} fraction "
-               f"bits, round half up): the sum is already in display levels, rounded once")
+               f"bit(s), round half up): the sum is already in display levels, rounded once")
     target = "true Phong" if spec.requirement.against == "phong" else "the method's own float form"
     return [{"port": f"out_{c}", "format": str(blend.out_format), "quantity": c,
              "meaning": meaning,
