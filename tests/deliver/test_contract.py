@@ -212,3 +212,38 @@ def test_the_layer_loads_its_modules_only_when_a_name_is_asked_for():
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, run.stderr
     assert {"contract_lines", "input_contract"} <= set(eval(run.stdout))  # the other modules add theirs
+
+
+def _unit(v):
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def _host(quantity, geometry):
+    """What a host computes for ``quantity`` at every visible pixel, read off the contract's words."""
+    g, a = geometry, geometry.a[:, None]
+
+    def lirp(start, end):  # the contract's (1-a)*X0 + a*X1
+        return (1 - a) * start + a * end
+
+    fixed = {"N0": g.n0, "N1": g.n1, "a": g.a, "n": g.n, "n'": 4 * g.n, "V": g.viewer, "V0": g.v0, "V1": g.v1,
+             "N'": lirp(g.n0, g.n1), "V'": lirp(g.v0, g.v1), "material": g.material}
+    if quantity in fixed:
+        return fixed[quantity]
+    kind, light, end = quantity[0], int(quantity[1]), quantity[2:]
+    if kind == "H":
+        return _unit(g.light[light] + g.viewer)
+    return {"": g.light[light], "_0": g.l0[light], "_1": g.l1[light], "'": lirp(g.l0[light], g.l1[light])}[end]
+
+
+@pytest.mark.parametrize(("scene", "method"), [case for case in CASES if case[1] != "spherical"])
+def test_a_host_that_follows_the_contract_feeds_the_codes_the_compiler_streams(scene, method):
+    _, geometry, config, contract = _design(scene, method)
+    stream = run.frame_inputs(method, config, geometry, geometry.n)
+    for entry in contract["inputs"]:
+        fmt, _ = config.inputs[entry["field"]]
+        value = np.asarray(_host(entry["quantity"], geometry), dtype=np.float64)
+        if entry["lanes"] == 1 and fmt.frac_bits == 0:  # n, n', material: integers as they are
+            codes = np.rint(value).astype(np.int64)
+        else:  # the contract's rule: floor(x * 2^m + 1/2), saturated
+            codes = np.clip(np.floor(value * 2.0 ** fmt.frac_bits + 0.5), fmt.min_raw, fmt.max_raw)
+        assert np.array_equal(codes, stream[entry["field"]]), f"{scene}/{method}: {entry['field']}"
