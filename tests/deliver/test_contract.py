@@ -23,6 +23,8 @@ from phongfx.hdl.top import header, port_map
 from phongfx.scene.file import load_scene, parse_scene
 from phongfx.scene.geometry import frames
 
+from tests.docs.pages import blocks
+
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
 #: The example scenes with the methods the compiler chooses for them, and the others it ships.
 CASES = [("lyon-balls", "fig7"), ("lyon-balls", "conventional"), ("torus", "fig7"), ("torus", "conventional"),
@@ -30,33 +32,8 @@ CASES = [("lyon-balls", "fig7"), ("lyon-balls", "conventional"), ("torus", "fig7
          ("local-mesh", "conventional"), ("torus", "blinn"), ("torus", "spherical"), ("two-lights", "blinn")]
 RATES = {"pixel", "span end", "constant", "span setup"}
 
-TWO_MATERIALS = """
-name = "duo"
-[[lights]]
-direction = [1, 1, 1]
-[materials.red]
-kd = 0.6
-ks = 0.4
-n = 16
-colour = [1.0, 0.3, 0.2]
-[materials.blue]
-kd = 0.5
-ks = 0.5
-ka = 0.1
-n = 8
-colour = [0.2, 0.4, 1.0]
-[[objects]]
-type = "torus"
-material = "red"
-polygons = 72
-[[objects]]
-type = "sphere"
-material = "blue"
-scale = 0.4
-[output]
-width = 24
-height = 24
-"""
+#: The two-material scene of the integration page (docs/integration.rst), which a host drives there.
+TWO_MATERIALS = next(b.text for b in blocks("integration.rst") if b.caption == "duo.toml")
 
 
 @functools.cache
@@ -187,12 +164,12 @@ def test_the_material_port_maps_each_index_to_its_name_and_constants():
     assert entry["meaning"] == "the index of the pixel's material in the scene file's order: 0 = red, 1 = blue"
     red, blue = contract["materials"]
     assert (blue["index"], blue["name"], blue["kd"], blue["ks"], blue["ka"], blue["colour"], blue["n"]) == (
-        1, "blue", 0.5, 0.5, 0.1, [0.2, 0.4, 1.0], 8)
+        1, "blue", 0.5, 0.5, 0.1, [0.2, 0.4, 1.0], 16)
     assert blue["codes"]["ambient"] == [round(0.1 * c * 255 * 256) for c in (0.2, 0.4, 1.0)]
     assert red["objects"] == ["torus"] and blue["objects"] == ["sphere"]
     assert set(np.unique(run.frame_inputs("conventional", config, geometry, geometry.n)["material"])) == {0, 1}
     lines = contract_lines(contract)
-    assert "Material 1 = blue: kd 0.5, ks 0.5, ka 0.1, colour (0.2, 0.4, 1), n 8; blend codes (8.8) ambient " \
+    assert "Material 1 = blue: kd 0.5, ks 0.5, ka 0.1, colour (0.2, 0.4, 1), n 16; blend codes (7.8) ambient " \
            "[1306, 2611, 6528]" in "\n".join(lines)
 
 
