@@ -267,7 +267,9 @@ def input_contract(config, spec, method, *, n_scale, ports=None):
         notes.append(f"No material port: the scene has one material, {next(iter(spec.materials))}, built into "
                      f"the blend.")
     if config.copies > 1:
-        notes.append(f"One unit per light: c<i>_ ports feed light i's; unprefixed ones feed every light.")
+        turns = ("" if config.interval == 1 else
+                 f" (the core's units take the lights in turn, {config.interval} clocks per pixel)")
+        notes.append(f"One unit per light{turns}: c<i>_ ports feed light i's; unprefixed ones feed every light.")
     lights = [{"index": i, "kind": light.kind, ("position" if light.kind == "point" else "direction"):
                list(light.vector), "rgb": list(light.rgb)} for i, light in enumerate(spec.lights)]
     return {"method": method, "scene": spec.name, "space": SPACE, "quantize": QUANTIZE, "stream": _stream(config),
