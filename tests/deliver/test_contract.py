@@ -224,3 +224,13 @@ def test_a_host_that_follows_the_contract_feeds_the_codes_the_compiler_streams(s
         else:  # the contract's rule: floor(x * 2^m + 1/2), saturated
             codes = np.clip(np.floor(value * 2.0 ** fmt.frac_bits + 0.5), fmt.min_raw, fmt.max_raw)
         assert np.array_equal(codes, stream[entry["field"]]), f"{scene}/{method}: {entry['field']}"
+
+
+def test_units_taking_the_lights_in_turn_keep_one_set_of_ports_per_light():
+    spec, _, config, contract = _design("two-lights", "conventional")
+    assert contract["notes"][-1] == "One unit per light: c<i>_ ports feed light i's; unprefixed ones feed every light."
+    turns = run.build("conventional", {}, analyse(spec, frames(spec)[:1]), {"interval": 2})
+    shared = input_contract(turns, spec, "conventional", n_scale=1)
+    assert [e["field"] for e in shared["inputs"]] == [e["field"] for e in contract["inputs"]]
+    assert shared["notes"][-1] == ("One unit per light (the core's units take the lights in turn, 2 clocks per "
+                                   "pixel): c<i>_ ports feed light i's; unprefixed ones feed every light.")
