@@ -30,7 +30,7 @@ from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
 from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
-from phongfx.core.words import levels
+from phongfx.core.words import levels, plural
 from phongfx.deliver.contract import contract_lines, input_contract
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
@@ -253,7 +253,7 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
                 progress(f"testbench of frame {g.frame}")
             write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module)
             written = (g.frame, len(next(iter(out.values()))))
-    title = f"{compiled.spec.name}: {method}, {len(done)} frame(s)"
+    title = f"{compiled.spec.name}: {method}, {plural(len(done), 'frame')}"
     contact_sheet(os.path.join(out_dir, "frames", "sheet.png"), sheets[0], sheets[2], title=title)
     contact_sheet(os.path.join(out_dir, "error", "sheet.png"), sheets[1], sheets[2], white_levels=scale,
                   title=f"{title}: error against {against} (display levels)")
