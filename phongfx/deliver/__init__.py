@@ -12,7 +12,8 @@ into a design of their own.
 * :mod:`phongfx.deliver.fusesoc` — a FuseSoC CAPI2 ``.core`` file: the RTL, the testbench
   and their targets.
 * :mod:`phongfx.deliver.component` — the compiled core as an Amaranth
-  ``wiring.Component`` with ``lib.stream`` interfaces.
+  ``wiring.Component`` with ``lib.stream`` interfaces (:func:`load_core` of a compiled
+  folder); :mod:`phongfx.deliver.manifest` reads the folder's ``manifest.json`` back.
 
 The layer sits above :mod:`phongfx.render` (it reads scene specs and configs, and may
 render) and below :mod:`phongfx.explore` (whose compiler calls it when it writes a compiled
@@ -23,7 +24,9 @@ imported on first use.
 from importlib import import_module
 
 #: public name -> the module it lives in
-_HOMES = {"input_contract": "phongfx.deliver.contract", "contract_lines": "phongfx.deliver.contract"}
+_HOMES = {"input_contract": "phongfx.deliver.contract", "contract_lines": "phongfx.deliver.contract",
+          "ShadingCore": "phongfx.deliver.component", "load_core": "phongfx.deliver.component",
+          "ManifestError": "phongfx.deliver.manifest", "read_manifest": "phongfx.deliver.manifest"}
 __all__ = list(_HOMES)
 
 

@@ -29,6 +29,7 @@ from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
 from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
+from phongfx.deliver.manifest import MANIFEST_VERSION
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
@@ -120,7 +121,7 @@ def _domain_evaluation(compiled):
 def manifest(compiled, module=None, instances=None, check=None):
     """The manifest dict (module docstring of :mod:`phongfx.explore.compile.emit`)."""
     spec, best = compiled.spec, compiled.best
-    out = {"scene": spec.name, "path": spec.path,
+    out = {"manifest_version": MANIFEST_VERSION, "scene": spec.name, "path": spec.path,
            "requirement": {**spec.requirement.as_dict(), "clock_mhz": compiled.speed.clock_mhz},
            "analysis": compiled.analysis.as_dict(), "cost_model": compiled.cost_model,
            "evaluation": {"frames": len(compiled.scene.geometries), "renders": len(compiled.scene.renders),
