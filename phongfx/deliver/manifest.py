@@ -22,7 +22,8 @@ import os
 from phongfx.config import BlockConfig, ShaderConfig
 from phongfx.core.registry import REGISTRY
 
-__all__ = ["MANIFEST_VERSION", "ManifestError", "manifest_path", "read_manifest", "check_version", "design_of", "config_from_dict"]
+__all__ = ["MANIFEST_VERSION", "ManifestError", "manifest_path", "read_manifest", "check_version", "design_of",
+           "config_from_dict"]
 
 #: The version of the manifest's layout that this module reads (the manifest's ``"manifest_version"``).
 MANIFEST_VERSION = 1
