@@ -24,7 +24,7 @@ happens on an edge where ``valid`` and ``ready`` are both high; ``o.valid`` come
 register and never depends on ``o.ready``; while ``o.valid & ~o.ready`` the whole pipeline
 holds, so ``o.valid`` and ``o.payload`` stay stable until taken; ``i.ready`` depends
 combinationally on ``o.ready`` (``o.ready | ~o.valid``) and never on ``i.valid``.  A design
-whose lights take turns on shared hardware (:attr:`ShadingCore.interval` > 1) holds
+whose lights take turns on shared hardware (``interval`` > 1) holds
 ``i.ready`` low for ``interval − 1`` moving cycles after each pixel taken.  ``rst`` (the
 ``sync`` domain's reset) drops what is in flight.
 """
@@ -111,7 +111,7 @@ class ShadingCore(wiring.Component):
 
 
 def load_core(folder, *, overflow=False):
-    """The :class:`ShadingCore` of a compiled output folder (``phongfx compile ... -o folder``),
+    """The :class:`~phongfx.deliver.component.ShadingCore` of a compiled output folder (``phongfx compile ... -o folder``),
     of its ``manifest.json`` path, or of a manifest dict (what
     :func:`phongfx.explore.compile.emit.emit` returns).
 
