@@ -1,22 +1,22 @@
 """What ships with a compiled core, beside its Verilog: everything a user needs to drop it
 into a design of their own.
 
-* :mod:`phongfx.deliver.contract` — the input contract: for every port of the compiled top,
+* ``phongfx.deliver.contract`` — the input contract: for every port of the compiled top,
   what the host computes (which vector, in which space, unit or not, per pixel or per span
   end, who normalizes), the meaning of ``a`` and ``init`` where present, the material
   index → name map with each material's constants, and what ``r``, ``g``, ``b`` are and how
   they are rounded.  The top's header, the manifest's ``"contract"`` and
   ``docs/integration.rst`` print it.
-* :mod:`phongfx.deliver.constraints` — the clock the design was compiled for, as an SDC
+* ``phongfx.deliver.constraints`` — the clock the design was compiled for, as an SDC
   (generic and ASIC), an ECP5 LPF and an iCE40 nextpnr clock script.
-* :mod:`phongfx.deliver.fusesoc` — a FuseSoC CAPI2 ``.core`` file: the RTL, the testbench
+* ``phongfx.deliver.fusesoc`` — a FuseSoC CAPI2 ``.core`` file: the RTL, the testbench
   and their targets.
 * :mod:`phongfx.deliver.component` — the compiled core as an Amaranth
-  ``wiring.Component`` with ``lib.stream`` interfaces (:func:`load_core` of a compiled
+  ``wiring.Component`` with ``lib.stream`` interfaces (``load_core`` of a compiled
   folder); :mod:`phongfx.deliver.manifest` reads the folder's ``manifest.json`` back.
 
-The layer sits above :mod:`phongfx.render` (it reads scene specs and configs, and may
-render) and below :mod:`phongfx.explore` (whose compiler calls it when it writes a compiled
+The layer sits above ``phongfx.render`` (it reads scene specs and configs, and may
+render) and below ``phongfx.explore`` (whose compiler calls it when it writes a compiled
 folder).  Importing ``phongfx.deliver`` loads none of its modules: the names below are
 imported on first use.
 """
