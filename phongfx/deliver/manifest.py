@@ -72,7 +72,9 @@ def design_of(data, where="manifest"):
     manifest of a compile that found no design, or a field that cannot be read."""
     check_version(data, where)
     if data.get("config") is None:
-        why = data.get("refused") or "no method met the requirement"
+        refused = data.get("refused")
+        why = "; ".join(refused.get("text") or []) if isinstance(refused, dict) else ""
+        why = why or "no method met the error requirement"
         raise ManifestError(f"{where}: field 'config' is absent: the compile of scene {data.get('scene')!r} "
                             f"found no design ({why}; 'chosen' is {data.get('chosen')!r}), so there is no core")
     block, module = data.get("block"), data.get("module")

@@ -17,8 +17,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from amaranth.hdl import Shape
+from amaranth.hdl import ClockDomain, Module, Shape
 from amaranth.lib import data
+from amaranth.sim import Simulator
 
 import phongfx
 from phongfx.deliver.component import ShadingCore, load_core
@@ -102,6 +103,51 @@ def test_the_core_holds_while_the_sink_is_not_ready_and_drops_nothing(folders):
     run = drive(core, words, stalls=0.9, bubbles=0.0, seed=5)
     assert (run.words, run.breaks) == (expected, [])
     assert run.stalled > 300
+
+
+@pytest.mark.parametrize("interval", [1, 2])
+def test_a_reset_drops_what_is_in_flight_and_the_core_starts_again(folders, interval):
+    """``rst`` (the ``sync`` domain's) for one edge with pixels in flight and the sink stalled:
+    no output is valid after it, ``i.ready`` is high, and the next pixels come out right."""
+    core = load_core(folders[interval])
+    words, expected = golden_words(core, core.block.stimulus(count=10, seed=6))
+    seen = {}
+    top = Module()  # the user's design: its own sync domain, whose reset the bench drives
+    top.domains.sync = domain = ClockDomain("sync")
+    top.submodules.core = core
+
+    async def bench(ctx):
+        ctx.set(core.o.ready, 0)
+        for word in words[:6]:  # into the pipeline, none taken out
+            ctx.set(core.i.payload.as_value(), word)
+            ctx.set(core.i.valid, 1)
+            await ctx.tick().until(core.i.ready)
+        ctx.set(core.i.valid, 0)
+        for _ in range(core.latency * interval):
+            await ctx.tick()
+        seen["before"] = ctx.get(core.o.valid)
+        ctx.set(domain.rst, 1)
+        await ctx.tick()
+        ctx.set(domain.rst, 0)
+        seen["after"] = (ctx.get(core.o.valid), ctx.get(core.i.ready))
+        ctx.set(core.o.ready, 1)
+        got = []
+        for word in words[6:9]:
+            ctx.set(core.i.payload.as_value(), word)
+            ctx.set(core.i.valid, 1)
+            await ctx.tick().until(core.i.ready)
+        ctx.set(core.i.valid, 0)
+        while len(got) < 3:
+            _, _, valid, word = await ctx.tick().sample(core.o.valid, core.o.payload.as_value())
+            if valid:
+                got.append(word)
+        seen["got"] = got
+
+    sim = Simulator(top)
+    sim.add_clock(1e-8)
+    sim.add_testbench(bench)
+    sim.run()
+    assert seen == {"before": 1, "after": (0, 1), "got": expected[6:9]}
 
 
 # ---------------------------------------------------------------- the documented example

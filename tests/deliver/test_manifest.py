@@ -73,7 +73,10 @@ BAD = {
     "a failed compile": ({"manifest_version": MANIFEST_VERSION, "scene": "tiny", "chosen": None, "refused": None,
                           "methods": {"fig7": {"feasible": False}}},
                          r"out/manifest\.json: field 'config' is absent: the compile of scene 'tiny' found no "
-                         r"design \(no method met the requirement; 'chosen' is None\), so there is no core$"),
+                         r"design \(no method met the error requirement; 'chosen' is None\), so there is no core$"),
+    "a compile refused for speed": ({"manifest_version": MANIFEST_VERSION, "scene": "tiny", "chosen": None,
+                                     "refused": {"why": "speed", "text": ["no design meets 90 Mpixel/s: ..."]}},
+                                    r"found no design \(no design meets 90 Mpixel/s: \.\.\.; 'chosen' is None\)"),
     "an unknown block": (_changed(block="pixel"),
                          r"out/manifest\.json: field 'block' must be a registered block \(lirp, .*shader\), "
                          r"not 'pixel'$"),
@@ -109,3 +112,18 @@ def test_a_missing_folder_is_named_and_a_manifest_error_is_a_value_error(tmp_pat
         read_manifest(tmp_path / "nowhere")
     with pytest.raises(ManifestError, match=r"^manifest: field 'manifest_version' is '1'; "):
         load_core({**TWO_LIGHTS, "manifest_version": "1"})
+
+
+def test_the_folder_of_a_real_compile_that_chose_nothing_is_refused(tmp_path):
+    from phongfx.explore.compile.compiler import compile_scene
+    from phongfx.explore.compile.emit import emit
+    from phongfx.scene.file import parse_scene
+    from tests.explore.compile.test_compiler import TORUS
+
+    compiled = compile_scene(parse_scene(TORUS.format(error=0.001, against="phong"), name="tiny"), methods=["fig7"])
+    data = emit(compiled, tmp_path / "out", check=False)
+    assert data["manifest_version"] == MANIFEST_VERSION and data["chosen"] is None
+    with pytest.raises(ManifestError, match=r"out/manifest\.json: field 'config' is absent: the compile of scene "
+                                            r"'tiny' found no design \(no method met the error requirement; "
+                                            r"'chosen' is None\), so there is no core$"):
+        load_core(tmp_path / "out")
