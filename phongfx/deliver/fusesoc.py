@@ -27,7 +27,7 @@ from phongfx.sim.simulators import COROUTINES, VERILATOR_WARNINGS
 
 from .constraints import constraint_files, write_constraints
 
-__all__ = ["core_name", "testbench_files", "core_text", "write_core", "write_flow"]
+__all__ = ["core_name", "simulation_files", "core_text", "write_core", "write_flow"]
 
 
 def _version():
@@ -42,7 +42,7 @@ def core_name(module, version=None):
     return f"phongfx:scene:{module}:{version or _version()}"
 
 
-def testbench_files(module):
+def simulation_files(module):
     """The testbench's files the core lists, relative to the core's folder: the testbench
     and its stimulus and expected outputs (``$readmemh`` files)."""
     return [f"testbench/tb_{module}.v", f"testbench/{module}_in.memh", f"testbench/{module}_expected.memh"]
@@ -54,7 +54,7 @@ def _list(items):
 
 def core_text(module, description, *, version=None):
     """The CAPI2 text of ``<module>.core`` (module docstring); ``description``: one line."""
-    tb, stimulus, expected = testbench_files(module)
+    tb, stimulus, expected = simulation_files(module)
     constraints = constraint_files(module)
     top, bench = f"{module}_top", f"tb_{module}"
     return f"""\
@@ -145,7 +145,7 @@ def write_core(out_dir, module, description, *, version=None):
 def write_flow(out_dir, module, clock, ports, description, *, version=None):
     """Write the constraints (:func:`phongfx.deliver.constraints.write_constraints`) and the
     core file of the core in ``out_dir``, whose ``verilog/<module>_top.v`` and ``testbench/``
-    (:func:`testbench_files`) the core lists; returns what the manifest keeps (``"flow"``)."""
+    (:func:`simulation_files`) the core lists; returns what the manifest keeps (``"flow"``)."""
     files = write_constraints(out_dir, module, clock, ports)
     core = write_core(out_dir, module, description, version=version)
     name = core_name(module, version)
