@@ -309,9 +309,10 @@ def cmd_compile(args):
               f"{data['testbench']['frame']}; run: sh {args.output}/testbench/run.sh)")
     if "flow" in data:
         flow = data["flow"]
-        print(f"flow: {args.output}/constraints (SDC, ECP5 LPF, iCE40 nextpnr script; clk {flow['clock_mhz']:g} "
-              f"MHz), FuseSoC core {args.output}/{flow['fusesoc_core']} ({flow['fusesoc_name']}; run: fusesoc "
-              f"--cores-root {args.output} run --target sim {flow['fusesoc_name']})")
+        print(f"constraints: {args.output}/constraints (clk {flow['clock_mhz']:g} MHz: .sdc, .lpf for ECP5, "
+              f"_ice40_clock.py for nextpnr-ice40 --pre-pack)")
+        print(f"FuseSoC core: {args.output}/{flow['fusesoc_core']} (run: fusesoc --cores-root {args.output} run "
+              f"--target sim {flow['fusesoc_name']})")
     missed = timing_missed(data["timing"], data["chosen"])
     if missed:
         print(missed, file=sys.stderr)

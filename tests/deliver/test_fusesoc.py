@@ -142,7 +142,7 @@ def test_the_sim_target_passes_under_verilator(core_folder, tmp_path):
 
 
 @pytest.mark.needs_iverilog
-def test_a_compiled_scene_s_core_passes_its_sim_target(tmp_path):
+def test_a_compiled_scene_s_core_passes_its_sim_target(tmp_path, capsys):
     """On a real ``phongfx compile`` output: the core, the constraints at the compiled
     clock and the testbench come with it, and FuseSoC runs the sim target to PASS."""
     from phongfx.cli import main
@@ -153,6 +153,12 @@ def test_a_compiled_scene_s_core_passes_its_sim_target(tmp_path):
     assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--no-check", "--quiet"]) == 0
     data = json.loads((out / "manifest.json").read_text())
     flow, module = data["flow"], data["module"]
+    printed = capsys.readouterr().out
+    assert f"constraints: {out}/constraints (clk {flow['clock_mhz']:g} MHz: .sdc, .lpf for ECP5, " in printed
+    assert (f"FuseSoC core: {out}/tiny_fig7.core (run: fusesoc --cores-root {out} run --target sim "
+            f"{flow['fusesoc_name']})\n") in printed
+    assert sorted(p.name for p in (out / "constraints").iterdir()) == [
+        "tiny_fig7.lpf", "tiny_fig7.sdc", "tiny_fig7_ice40_clock.py"]
     assert module == "tiny_fig7" and flow["fusesoc_name"] == core_name(module)
     assert flow["clock_mhz"] == data["timing"]["clock_mhz"] > 0
     assert f"create_clock -name clk -period {flow['clock_period_ns']:g} [get_ports clk]" in \
