@@ -310,7 +310,7 @@ def cmd_compile(args):
     if "flow" in data:
         flow = data["flow"]
         print(f"constraints: {args.output}/constraints (clk {flow['clock_mhz']:g} MHz: .sdc, .lpf for ECP5, "
-              f"_ice40_clock.py for nextpnr-ice40 --pre-pack)")
+              f"_ice40_clock.py for nextpnr-ice40 --pre-pack, _nextpnr.sdc for nextpnr --sdc)")
         print(f"FuseSoC core: {args.output}/{flow['fusesoc_core']} (run: fusesoc --cores-root {args.output} run "
               f"--target sim {flow['fusesoc_name']})")
     missed = timing_missed(data["timing"], data["chosen"])

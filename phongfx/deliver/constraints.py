@@ -11,10 +11,14 @@ run at the clock it was compiled for: the ``--clock`` asked (the manifest's
 * ``constraints/<module>.lpf``: a Lattice preference file for ECP5 (nextpnr-ecp5 ``--lpf``,
   Diamond), the clock only;
 * ``constraints/<module>_ice40_clock.py``: for iCE40, whose PCF holds pins but no clock,
-  a script for nextpnr-ice40 ``--pre-pack`` that calls ``ctx.addClock``.
+  a script for nextpnr-ice40 ``--pre-pack`` that calls ``ctx.addClock``;
+* ``constraints/<module>_nextpnr.sdc``: the clock alone, for nextpnr's own ``--sdc`` (any
+  architecture), which takes ``create_clock`` and refuses the port delays of the full SDC;
+  it serves where nextpnr has no Python (the WebAssembly build phongfx runs has none, so no
+  ``--pre-pack``).
 
 No file places pins: the core is usually instantiated inside a larger design, and where it
-is a top on its own, its pins are the user's board's.  All three are written for every
+is a top on its own, its pins are the user's board's.  All are written for every
 core whatever target it was priced for: the Verilog is the same on every target (no vendor
 primitive), so the user may take it anywhere; the comment names the target the clock was
 estimated for.
@@ -26,8 +30,8 @@ from dataclasses import dataclass
 
 from phongfx.core.files import atomic_write
 
-__all__ = ["PLACEHOLDER_MHZ", "Clock", "clock_of", "sdc_text", "lpf_text", "ice40_clock_text", "constraint_files",
-           "write_constraints"]
+__all__ = ["PLACEHOLDER_MHZ", "Clock", "clock_of", "sdc_text", "nextpnr_sdc_text", "lpf_text", "ice40_clock_text",
+           "constraint_files", "write_constraints"]
 
 #: The clock written when none was asked and none estimated (a target without a clock
 #: estimate, compiled without ``--clock``); the files say it is a placeholder.
@@ -127,6 +131,15 @@ def sdc_text(module, clock, ports):
             + _port_list(inputs, "set_input_delay 0 -clock clk") + _port_list(outputs, "set_output_delay 0 -clock clk"))
 
 
+def nextpnr_sdc_text(module, clock):
+    """The clock of ``<module>_top`` for nextpnr ``--sdc``: ``create_clock`` alone (nextpnr's
+    SDC reader stops at ``set_input_delay``)."""
+    return (_head(module, "clock constraint for nextpnr --sdc (iCE40, ECP5), no PCF or LPF needed", clock)
+            + _wrap("nextpnr reads create_clock only (the full SDC beside this file has the port delays). "
+                    "Inside a larger design, name the clock port of that design instead of clk.")
+            + f"create_clock -name clk -period {clock.period_ns:g} [get_ports clk]\n")
+
+
 def lpf_text(module, clock):
     """The ECP5 preference file of ``<module>_top``: the clock's frequency only."""
     return (_head(module, "clock constraint for Lattice ECP5 (nextpnr-ecp5 --lpf, Diamond)", clock)
@@ -146,16 +159,16 @@ def ice40_clock_text(module, clock):
 
 def constraint_files(module):
     """``{kind: path}`` of the files :func:`write_constraints` writes, relative to the
-    core's folder (``kind``: ``"sdc"``, ``"lpf"``, ``"ice40"``)."""
+    core's folder (``kind``: ``"sdc"``, ``"lpf"``, ``"ice40"``, ``"nextpnr"``)."""
     return {"sdc": f"constraints/{module}.sdc", "lpf": f"constraints/{module}.lpf",
-            "ice40": f"constraints/{module}_ice40_clock.py"}
+            "ice40": f"constraints/{module}_ice40_clock.py", "nextpnr": f"constraints/{module}_nextpnr.sdc"}
 
 
 def write_constraints(out_dir, module, clock, ports):
-    """Write the three files of :func:`constraint_files` into ``out_dir``; returns that dict."""
+    """Write the files of :func:`constraint_files` into ``out_dir``; returns that dict."""
     files = constraint_files(module)
     texts = {"sdc": sdc_text(module, clock, ports), "lpf": lpf_text(module, clock),
-             "ice40": ice40_clock_text(module, clock)}
+             "ice40": ice40_clock_text(module, clock), "nextpnr": nextpnr_sdc_text(module, clock)}
     for kind, path in files.items():
         atomic_write(os.path.join(out_dir, path), lambda p, text=texts[kind]: _save(p, text))
     return files

@@ -7,8 +7,9 @@ FuseSoC (https://github.com/olofk/fusesoc) finds cores by their ``.core`` files 
 * filesets: ``rtl`` (``verilog/<module>_top.v``), ``tb`` (the self-checking testbench of
   :func:`phongfx.sim.testbench.write_testbench`: ``testbench/tb_<module>.v`` and its two
   ``$readmemh`` files, which it opens by bare name from the directory it runs in, so they
-  are copied (``copyto``) to the tool's work directory), and one per constraint file of
-  :mod:`phongfx.deliver.constraints`;
+  are copied (``copyto``) to the tool's work directory), and the constraint files of
+  :mod:`phongfx.deliver.constraints`: ``sdc``, ``lpf`` and ``ice40_clock`` (the
+  ``--pre-pack`` script and the clock-only SDC for nextpnr, copied to the work directory);
 * targets: ``default`` (the RTL alone: what a core that depends on this one gets), ``sim``
   (the testbench; Icarus by default, ``-g2012``; Verilator ``--binary`` with the flags of
   :mod:`phongfx.sim.simulators`), ``lint`` (Verilator ``--lint-only -Wall`` on the top), and
@@ -86,6 +87,7 @@ filesets:
   ice40_clock:
     files:
       - {constraints['ice40']}: {{copyto: {os.path.basename(constraints['ice40'])}}}
+      - {constraints['nextpnr']}: {{copyto: {os.path.basename(constraints['nextpnr'])}}}
     file_type: user
 
 targets:
@@ -120,7 +122,7 @@ targets:
     filesets: [rtl, lpf]
     toplevel: {top}
   ice40:
-    description: "pass --pre-pack {os.path.basename(constraints['ice40'])} to nextpnr-ice40"
+    description: "pass nextpnr-ice40 --pre-pack {os.path.basename(constraints['ice40'])} (or, without Python, --sdc {os.path.basename(constraints['nextpnr'])})"
     filesets: [rtl, ice40_clock]
     toplevel: {top}
   asic:

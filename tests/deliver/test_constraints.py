@@ -9,8 +9,8 @@ import subprocess
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.deliver.constraints import (PLACEHOLDER_MHZ, Clock, clock_of, ice40_clock_text, lpf_text, sdc_text,
-                                         write_constraints)
+from phongfx.deliver.constraints import (PLACEHOLDER_MHZ, Clock, clock_of, ice40_clock_text, lpf_text,
+                                         nextpnr_sdc_text, sdc_text, write_constraints)
 from phongfx.hdl.top import port_map, top_verilog
 
 #: The manifest's timing of a design at its own Fmax by the ECP5 clock proxy (torus, fig7).
@@ -88,10 +88,18 @@ def test_the_ice40_script_adds_the_clock_when_nextpnr_runs_it():
     assert clocks == [("clk", 123.4)]
 
 
-def test_the_three_files_are_written_under_constraints(tmp_path):
+def test_the_nextpnr_sdc_holds_the_clock_alone():
+    text = nextpnr_sdc_text("tiny_fig7", Clock(41.06, "a test"))
+    assert [line for line in text.splitlines() if not line.startswith("#")] == [
+        "create_clock -name clk -period 24.355 [get_ports clk]"]
+
+
+def test_the_files_are_written_under_constraints(tmp_path):
     files = write_constraints(tmp_path, "m", Clock(50, "a test"), port_map(get_block("lirp").config))
-    assert files == {"sdc": "constraints/m.sdc", "lpf": "constraints/m.lpf", "ice40": "constraints/m_ice40_clock.py"}
-    assert sorted(p.name for p in (tmp_path / "constraints").iterdir()) == ["m.lpf", "m.sdc", "m_ice40_clock.py"]
+    assert files == {"sdc": "constraints/m.sdc", "lpf": "constraints/m.lpf", "ice40": "constraints/m_ice40_clock.py",
+                     "nextpnr": "constraints/m_nextpnr.sdc"}
+    assert sorted(p.name for p in (tmp_path / "constraints").iterdir()) == [
+        "m.lpf", "m.sdc", "m_ice40_clock.py", "m_nextpnr.sdc"]
     assert "create_clock -name clk -period 20 [get_ports clk]" in (tmp_path / files["sdc"]).read_text()
 
 
@@ -126,3 +134,25 @@ def test_opensta_reads_the_sdc_against_a_synthesized_top(tmp_path):
     assert ran.returncode == 0 and not re.search(r"^(Warning|Error)", out, re.M), out
     assert re.search(r"^clk\s+4\.00\s+0\.00\s+2\.00$", out, re.M), out  # period, rising and falling edge
     assert "data required time" in out and "slack" in out
+
+
+@pytest.mark.needs_yosys
+@pytest.mark.slow
+@pytest.mark.parametrize("arch, synth, options", [
+    ("ecp5", "synth_ecp5", ["--25k", "--package", "CABGA381", "--lpf", "constraints/lirp.lpf",
+                            "--lpf-allow-unconstrained"]),
+    ("ice40", "synth_ice40", ["--hx8k", "--package", "ct256", "--sdc", "constraints/lirp_nextpnr.sdc",
+                              "--pcf-allow-unconstrained"]),
+])
+def test_nextpnr_takes_the_clock_from_the_lpf_and_the_clock_only_sdc(tmp_path, arch, synth, options):
+    from phongfx.explore.synth.toolrun import run, run_yosys, tool
+
+    block = get_block("lirp")
+    (tmp_path / "lirp_top.v").write_text(top_verilog(block.component(), "lirp"))
+    write_constraints(tmp_path, "lirp", Clock(77.7, "a test"), port_map(block.config))
+    (tmp_path / "synth.ys").write_text(f"read_verilog lirp_top.v\n{synth} -top lirp_top -json netlist.json\n")
+    run_yosys(tmp_path, "synth.ys", outputs=("netlist.json",))
+    code = run([tool(f"yowasp-nextpnr-{arch}"), "--json", "netlist.json", *options], tmp_path, "nextpnr.log")
+    log = (tmp_path / "nextpnr.log.out").read_text()
+    assert code == 0, log[-3000:]
+    assert "Info: constraining clock net 'clk' to 77.70 MHz" in log

@@ -19,6 +19,8 @@ from phongfx.hdl.top import port_map, top_verilog
 from phongfx.sim.simulators import COROUTINES, VERILATOR_WARNINGS
 from phongfx.sim.testbench import write_testbench
 
+from tests.explore.compile.test_compiler import TORUS  # the compiler tests' tiny torus scene
+
 MODULE = "tiny_fig7"
 VECTORS = 100
 PASS = re.compile(r"^PASS (\d+) vectors, (\d+) cycles", re.M)
@@ -69,7 +71,7 @@ def test_the_core_names_the_module_and_lists_what_the_folder_holds(core_folder):
              for name, fileset in core["filesets"].items()}
     assert files == {"rtl": ["verilog/tiny_fig7_top.v"], "tb": simulation_files(MODULE),
                      "sdc": ["constraints/tiny_fig7.sdc"], "lpf": ["constraints/tiny_fig7.lpf"],
-                     "ice40_clock": ["constraints/tiny_fig7_ice40_clock.py"]}
+                     "ice40_clock": ["constraints/tiny_fig7_ice40_clock.py", "constraints/tiny_fig7_nextpnr.sdc"]}
     assert all((folder / path).is_file() for paths in files.values() for path in paths)
     memh = [f for f in core["filesets"]["tb"]["files"] if isinstance(f, dict)]
     assert [list(f.values())[0] for f in memh] == [  # read by $readmemh from the run directory
@@ -148,7 +150,7 @@ def test_a_compiled_scene_s_core_passes_its_sim_target(tmp_path, capsys):
     from phongfx.cli import main
 
     scene = tmp_path / "tiny.toml"
-    scene.write_text(TORUS)
+    scene.write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"
     assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--no-check", "--quiet"]) == 0
     data = json.loads((out / "manifest.json").read_text())
@@ -158,7 +160,7 @@ def test_a_compiled_scene_s_core_passes_its_sim_target(tmp_path, capsys):
     assert (f"FuseSoC core: {out}/tiny_fig7.core (run: fusesoc --cores-root {out} run --target sim "
             f"{flow['fusesoc_name']})\n") in printed
     assert sorted(p.name for p in (out / "constraints").iterdir()) == [
-        "tiny_fig7.lpf", "tiny_fig7.sdc", "tiny_fig7_ice40_clock.py"]
+        "tiny_fig7.lpf", "tiny_fig7.sdc", "tiny_fig7_ice40_clock.py", "tiny_fig7_nextpnr.sdc"]
     assert module == "tiny_fig7" and flow["fusesoc_name"] == core_name(module)
     assert flow["clock_mhz"] == data["timing"]["clock_mhz"] > 0
     assert f"create_clock -name clk -period {flow['clock_period_ns']:g} [get_ports clk]" in \
@@ -167,29 +169,6 @@ def test_a_compiled_scene_s_core_passes_its_sim_target(tmp_path, capsys):
     code, log = run_fusesoc(out, tmp_path / "work", "run", "--target", "sim", flow["fusesoc_name"])
     assert code == 0 and int(PASS.search(log).group(1)) == data["testbench"]["vectors"], log[-3000:]
 
-
-#: A small scene (the compiler tests' tiny torus).
-TORUS = """
-name = "tiny"
-[[lights]]
-direction = [1, 1, 1]
-[materials.shiny]
-kd = 0.6
-ks = 0.4
-n = 16
-[[objects]]
-type = "torus"
-material = "shiny"
-polygons = 288
-[output]
-width = 32
-height = 32
-[requirement]
-max_error_levels = 1.0
-[domain]
-samples = 2000
-final_samples = 10000
-"""
 
 
 @pytest.mark.needs_verilator
