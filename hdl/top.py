@@ -201,10 +201,12 @@ def timing_line(timing, interval=1, noun="vector"):
     return "Timing: " + "; ".join(parts) + "."
 
 
-def header(ports, name, latency, interval=1, timing=None, noun="vector"):
+def header(ports, name, latency, interval=1, timing=None, noun="vector", contract=()):
     """The comment that opens :func:`top_verilog`: what the module is, its latency and
     initiation interval (``interval`` clocks per ``noun``), its clock and rate (``timing``,
-    :func:`timing_line`), handshake, reset and one line per port of ``ports`` (:func:`port_map`)."""
+    :func:`timing_line`), handshake, reset, one line per port of ``ports`` (:func:`port_map`)
+    and, last, the paragraphs of ``contract`` (what the inputs and outputs mean: text made by
+    :func:`phongfx.deliver.contract.contract_lines`, each paragraph wrapped)."""
     if interval == 1:
         rate = f"Initiation interval: 1 clock: one {noun} every clock while out_ready is high."
     else:
@@ -249,6 +251,8 @@ def header(ports, name, latency, interval=1, timing=None, noun="vector"):
                        f"offset {port['offset']}")
         lines.append(f"  {port['direction']:6s} {port['name']:{width}s} {port['width']:4d}  "
                      f"{port['format'] or '-':7s} {meaning}")
+    for paragraph in contract or ():
+        lines.extend(_wrap(paragraph))
     return "".join(f"// {line}".rstrip() + "\n" for line in lines)
 
 
@@ -264,7 +268,7 @@ def _wrap(text, width=96):
     return lines + [line]
 
 
-def top_verilog(block_component, name, *, overflow=False, timing=None):
+def top_verilog(block_component, name, *, overflow=False, timing=None, contract=()):
     """Verilog of the shipped top of ``block_component``: module ``<name>_top``, header first.
 
     Parameters
@@ -281,6 +285,9 @@ def top_verilog(block_component, name, *, overflow=False, timing=None):
         ``"proxied: ecp5-clock-proxy"`` or ``"synthesized: nextpnr-ecp5"``),
         ``pixel_rate_mpx`` (default ``clock_mhz / interval``), ``requirement_mpx``, ``met``;
         any may be missing.  A shader's rates are in pixels, another block's in vectors.
+    contract : sequence of str, optional
+        The header's closing "Contract" paragraphs: what each input and output means
+        (:func:`phongfx.deliver.contract.contract_lines`); none for a bare block.
 
     Returns
     -------
@@ -290,5 +297,5 @@ def top_verilog(block_component, name, *, overflow=False, timing=None):
     """
     top = Top(block_component, name, overflow=overflow)
     noun = "pixel" if isinstance(block_component.config, ShaderConfig) else "vector"
-    return (header(top.ports, name, top.latency, top.interval, timing, noun)
+    return (header(top.ports, name, top.latency, top.interval, timing, noun, contract)
             + verilog(top, f"{name}_top", time_zero=True))

@@ -10,7 +10,7 @@ The package is a house of layers; each may import only the layers before it:
 ``phongfx.sim``           checking one against the other, cycle by cycle; stimulus
 ``phongfx.scene``         Lyon's scene, scene files, meshes, per-frame geometry, span inputs
 ``phongfx.render``        pictures: shading scenes and meshes through the blocks
-``phongfx.deliver``       what ships with a compiled core: constraints, a FuseSoC core
+``phongfx.deliver``       what ships with a compiled core: input contract, constraints, cores
 ``phongfx.papers``        the seed papers' claims and tables, measured
 ``phongfx.explore``       synthesis, cost models, sweeps, reports and the scene compiler
 ``phongfx.certify``       sound bounds on a design's error over a scene's input domain

@@ -1,6 +1,7 @@
 """Write what :func:`phongfx.explore.compile.compiler.compile_scene` found, and verify it.
 
-``DIR/manifest.json`` (:func:`manifest`), ``DIR/verilog/<module>_top.v`` (the shipped
+``DIR/manifest.json`` (:func:`manifest`, with the top's input contract as ``"contract"``:
+:mod:`phongfx.deliver.contract`), ``DIR/verilog/<module>_top.v`` (the shipped
 design: the named-port top of :mod:`phongfx.hdl.top` around exactly the chosen shader's
 blocks, without the simulation-only overflow checks, what the cost is of),
 ``DIR/frames/frame_NNN.png`` (the shader's r, g, b codes of each frame at its first
@@ -33,6 +34,7 @@ from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
 from phongfx.deliver.constraints import clock_of
+from phongfx.deliver.contract import contract_lines, input_contract
 from phongfx.deliver.fusesoc import write_flow
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
@@ -223,7 +225,9 @@ def _write(compiled, out_dir, check, progress, vcd):
     text = verilog(block.component(), module, emit_src=False)  # only to name the instances
     timing = timing_of(best["cost"])
     header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
-    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx})
+    contract = input_contract(config, compiled.spec, method, n_scale=runs.hooks(method).n_scale)
+    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx},
+                          contract=contract_lines(contract))
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
     done, result, written, sheets = set(), None, None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
@@ -276,6 +280,7 @@ def _write(compiled, out_dir, check, progress, vcd):
     data["top"] = {"module": f"{module}_top", "file": f"verilog/{module}_top.v", "latency": block.latency,
                    "interval": getattr(config, "interval", 1),
                    "ports": port_map(block.config)}
+    data["contract"] = contract
     data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],
                          "run": "sh testbench/run.sh (Icarus Verilog and Verilator)"}
     data["flow"] = _flow(out_dir, module, data)
