@@ -38,6 +38,9 @@ def test_the_clock_asked_wins_and_a_miss_is_said():
     assert clock.source.endswith("timing will not close at the clock asked (manifest timing.met is false)")
     synthesized = clock_of(manifest(timing={"fmax_mhz": 57.3, "clock_mhz": 57.3, "clock_source": "synthesis"}))
     assert synthesized.mhz == 57.3 and "ecp5 Fmax 57.3 MHz by synthesis" in synthesized.source
+    unestimated = clock_of(manifest(asked=100, timing={"fmax_mhz": None, "clock_mhz": 100, "clock_source": None},
+                                    cost_model="asic-proxy"))
+    assert unestimated.mhz == 100.0 and unestimated.source.endswith("; no Fmax estimate for this target")
 
 
 def test_no_clock_asked_nor_estimated_gives_a_placeholder_that_says_so():
