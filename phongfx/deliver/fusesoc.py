@@ -60,7 +60,8 @@ def core_text(module, description, *, version=None):
     top, bench = f"{module}_top", f"tb_{module}"
     return f"""\
 CAPI=2:
-# FuseSoC core of {top}, written by phongfx compile with the core. Run from any directory:
+# FuseSoC core of {top}, written by phongfx compile with the core.
+# Run from any directory but this one (FuseSoC builds in ./build):
 #   fusesoc --cores-root <this folder> run --target sim {core_name(module, version)}
 #   (--tool verilator for Verilator; --target lint: Verilator lint of the top)
 # The testbench opens its .memh files by bare name from the directory it runs in: they are
