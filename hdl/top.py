@@ -17,7 +17,7 @@ block's packed payload; :func:`top_verilog`'s header comment is printed from it,
 manifest and the Verilog cannot disagree.
 """
 
-from amaranth.hdl import Elaboratable, Fragment, Module
+from amaranth.hdl import Module
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
@@ -26,7 +26,7 @@ from phongfx.config import ShaderConfig
 from .block import OVERFLOW, PipelinedBlock, checked_outputs, unbuilt
 from .emit import verilog
 from .handshake import Handshake
-from .overflow import overflow_checks
+from .overflow import Checked
 
 __all__ = ["CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line", "header",
            "top_verilog"]
@@ -93,20 +93,6 @@ def port_map(config, *, overflow=False):
     return ports
 
 
-class _Checked(Elaboratable):
-    """``inner`` elaborated with overflow checks on or off.  Amaranth elaborates submodules
-    only after the parent's ``elaborate`` has returned, so a context manager there would
-    not reach the block; here ``Fragment.get`` builds the whole subtree inside it."""
-
-    def __init__(self, inner, enabled):
-        self.inner = inner
-        self.enabled = enabled
-
-    def elaborate(self, platform):
-        with overflow_checks(self.enabled):
-            return Fragment.get(self.inner, platform)
-
-
 class Top(wiring.Component):
     """``block`` behind :class:`~phongfx.hdl.handshake.Handshake`, one port per field and lane.
 
@@ -156,7 +142,7 @@ class Top(wiring.Component):
     def elaborate(self, platform):
         m = Module()
         handshake = self.handshake
-        m.submodules.handshake = _Checked(handshake, self.overflow)
+        m.submodules.handshake = Checked(handshake, self.overflow)
         m.d.comb += [
             handshake.i.valid.eq(self.in_valid),
             self.in_ready.eq(handshake.i.ready),

@@ -24,7 +24,8 @@ layers above it.
 
 The names below are the everyday entry points, imported on first use (importing
 ``phongfx`` itself loads nothing else): :func:`get_block` and :func:`block_names` (the
-registry), :class:`Format`, and the datapath configurations of Lyon's Figures 7, 8 and 5.
+registry), :class:`Format`, the datapath configurations of Lyon's Figures 7, 8 and 5, and
+:func:`load_core` (a compiled output folder as an Amaranth component with stream interfaces).
 """
 
 from importlib import import_module
@@ -33,7 +34,7 @@ from importlib import import_module
 _HOMES = {"Format": "phongfx.core.format", "get_block": "phongfx.core.registry",
           "block_names": "phongfx.core.registry", "DatapathConfig": "phongfx.config",
           "fig7_config": "phongfx.config", "fig8_config": "phongfx.config",
-          "halfway_config": "phongfx.config"}
+          "halfway_config": "phongfx.config", "load_core": "phongfx.deliver.component"}
 __all__ = list(_HOMES)
 
 

@@ -8,11 +8,13 @@ into a design of their own.
   they are rounded.  The top's header, the manifest's ``"contract"`` and
   ``docs/integration.rst`` print it.
 * ``phongfx.deliver.constraints`` — the clock the design was compiled for, as an SDC
-  (generic and ASIC), an ECP5 LPF and an iCE40 nextpnr clock script.
+  (generic and ASIC), an ECP5 LPF, an iCE40 nextpnr clock script and a clock-only SDC for
+  nextpnr ``--sdc``.
 * ``phongfx.deliver.fusesoc`` — a FuseSoC CAPI2 ``.core`` file: the RTL, the testbench
   and their targets.
-* ``phongfx.deliver.component`` — the compiled core as an Amaranth
-  ``wiring.Component`` with ``lib.stream`` interfaces.
+* :mod:`phongfx.deliver.component` — the compiled core as an Amaranth
+  ``wiring.Component`` with ``lib.stream`` interfaces (``load_core`` of a compiled
+  folder); :mod:`phongfx.deliver.manifest` reads the folder's ``manifest.json`` back.
 
 The layer sits above ``phongfx.render`` (it reads scene specs and configs, and may
 render) and below ``phongfx.explore`` (whose compiler calls it when it writes a compiled
@@ -23,7 +25,11 @@ imported on first use.
 from importlib import import_module
 
 #: public name -> the module it lives in
-_HOMES = {"input_contract": "phongfx.deliver.contract", "contract_lines": "phongfx.deliver.contract"}
+_HOMES = {"input_contract": "phongfx.deliver.contract", "contract_lines": "phongfx.deliver.contract",
+          "ShadingCore": "phongfx.deliver.component", "load_core": "phongfx.deliver.component",
+          "ManifestError": "phongfx.deliver.manifest", "read_manifest": "phongfx.deliver.manifest",
+          "clock_of": "phongfx.deliver.constraints", "write_constraints": "phongfx.deliver.constraints",
+          "write_flow": "phongfx.deliver.fusesoc"}
 __all__ = list(_HOMES)
 
 

@@ -11,9 +11,12 @@ the requirement), each also as one contact sheet ``sheet.png``, and a cycle-by-c
 of the shader against the golden model on the whole first frame
 (:func:`phongfx.sim.harness.check`, ``verilator-fast``, with random ``out_ready`` stalls
 and a reset in the middle of the stream; ``vectors`` is the frame's pixels, every span
-pixel for units fed per span, hidden ones included).  With ``testbench=True``,
-``DIR/testbench/`` holds the same frame as a self-checking Verilog testbench for Icarus
-Verilog and Verilator (:func:`phongfx.sim.testbench.write_testbench`).
+pixel for units fed per span, hidden ones included).  ``DIR/testbench/`` holds the same
+frame as a self-checking Verilog testbench for Icarus Verilog and Verilator
+(:func:`phongfx.sim.testbench.write_testbench`), and the rest of a flow comes with it:
+``DIR/constraints/`` the clock the core was compiled for as SDC, ECP5 LPF and an iCE40
+nextpnr script (:mod:`phongfx.deliver.constraints`), ``DIR/<module>.core`` a FuseSoC core
+of the RTL, the testbench and the constraints (:mod:`phongfx.deliver.fusesoc`).
 """
 
 import dataclasses
@@ -31,7 +34,10 @@ from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
 from phongfx.core.words import levels, plural
+from phongfx.deliver.constraints import clock_of
 from phongfx.deliver.contract import contract_lines, input_contract
+from phongfx.deliver.fusesoc import write_flow
+from phongfx.deliver.manifest import MANIFEST_VERSION
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
@@ -123,7 +129,7 @@ def _domain_evaluation(compiled):
 def manifest(compiled, module=None, instances=None, check=None):
     """The manifest dict (module docstring of :mod:`phongfx.explore.compile.emit`)."""
     spec, best = compiled.spec, compiled.best
-    out = {"scene": spec.name, "path": spec.path,
+    out = {"manifest_version": MANIFEST_VERSION, "scene": spec.name, "path": spec.path,
            "requirement": {**spec.requirement.as_dict(), "clock_mhz": compiled.speed.clock_mhz},
            "analysis": compiled.analysis.as_dict(), "cost_model": compiled.cost_model,
            "evaluation": {"frames": len(compiled.scene.geometries), "renders": len(compiled.scene.renders),
@@ -187,13 +193,23 @@ def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=N
 
     The folder is built beside its place and renamed into it when complete
     (:func:`~phongfx.core.files.staged_folder`): it holds this run's result whole, or, after a
-    failure or an interrupt, the previous run's.  ``testbench``: also write ``testbench/``
-    (frame 0's vectors and expected outputs); ``vcd``: a waveform file of the RTL check."""
+    failure or an interrupt, the previous run's.  ``testbench/`` (frame 0's vectors and
+    expected outputs) is always written, the FuseSoC core's ``sim`` target runs it;
+    ``testbench`` is kept for callers that still pass it and changes nothing; ``vcd``: a
+    waveform file of the RTL check."""
     with staged_folder(out_dir) as work:
-        return _write(compiled, work, check, progress, testbench, vcd)
+        return _write(compiled, work, check, progress, vcd)
 
 
-def _write(compiled, out_dir, check, progress, testbench, vcd):
+def _flow(out_dir, module, data):
+    """Write the constraints and the FuseSoC core of the shipped top; the manifest's ``"flow"``."""
+    clock = clock_of(data)
+    description = (f"{data['scene']}: the {data['chosen']} shader of phongfx, {clock.mhz:g} MHz, "
+                   f"latency {data['top']['latency']} cycles, interval {data['top']['interval']}")
+    return write_flow(out_dir, module, clock, data["top"]["ports"], description)
+
+
+def _write(compiled, out_dir, check, progress, vcd):
     from phongfx.hdl.emit import verilog
     from phongfx.hdl.top import port_map, top_verilog
     from phongfx.scene.geometry import pixel_error
@@ -247,7 +263,7 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
                       "mismatches": r.mismatch_count, "ok": r.ok, "simulate_seconds": r.seconds,
                       "stalls": CHECK_STALLS, "reset_at_cycle": count // 2, "vcd": vcd,
                       "seconds": time.perf_counter() - start}  # with the Verilator build
-        if testbench and written is None:
+        if written is None:
             from phongfx.sim.testbench import write_testbench
             if progress:
                 progress(f"testbench of frame {g.frame}")
@@ -267,9 +283,9 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
                    "interval": getattr(config, "interval", 1),
                    "ports": port_map(block.config)}
     data["contract"] = contract
-    if written is not None:
-        data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],
-                             "run": "sh testbench/run.sh (Icarus Verilog and Verilator)"}
+    data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],
+                         "run": "sh testbench/run.sh (Icarus Verilog and Verilator)"}
+    data["flow"] = _flow(out_dir, module, data)
     atomic_write(os.path.join(out_dir, "manifest.json"),
                  lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
     return data
