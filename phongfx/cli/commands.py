@@ -309,7 +309,14 @@ def cmd_report(args):
     tables = tuple(args.tables) if args.tables is not None else tuple(TABLES)
     for name in tables:
         table_module(name)  # refuses an unknown name before any work
-    print(f"wrote {build_report(out_dir=args.out, sweep_dir=args.sweep, tables=tables, quick=args.quick)}")
+    from phongfx.core.words import plural
+
+    failed = []
+    index = build_report(out_dir=args.out, sweep_dir=args.sweep, tables=tables, quick=args.quick, failed=failed)
+    print(f"wrote {index}")
+    if failed:
+        print(f"phongfx: {plural(len(failed), 'table')} failed ({', '.join(failed)}); see {index}", file=sys.stderr)
+        return 1
     return 0
 
 

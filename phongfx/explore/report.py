@@ -11,6 +11,7 @@ re-exported here, where the report's readers have always found them.
 """
 
 import os
+import sys
 
 from phongfx.explore.sweep.front import (DSP_LUT_WEIGHT, INVISIBLE, MAXIMIZE, cost_key, is_proxy,
                                          lut_equivalent, pareto, target_label, value)
@@ -151,13 +152,20 @@ def _demote(text):
                      if not line.startswith(("Plots: ", "![")))
 
 
-def _table_section(name, out_dir, quick):
+def _table_section(name, out_dir, quick, failed):
+    from phongfx.explore.synth.toolrun import SynthError
     from phongfx.explore.tables import table_module
 
     module = table_module(name)
     where = os.path.join(out_dir, name)
     os.makedirs(where, exist_ok=True)
-    result = module.run_table(name, out_dir=where, **(_QUICK.get(name, {}) if quick else {}))
+    try:
+        result = module.run_table(name, out_dir=where, **(_QUICK.get(name, {}) if quick else {}))
+    except SynthError as error:  # one table's failed synthesis: the others still run, and it shows
+        first = (str(error).strip().splitlines() or ["no message"])[0]
+        print(f"report: table {name} FAILED: {first}", file=sys.stderr, flush=True)
+        failed.append(name)
+        return [f"## {name}: failed", "", f"A synthesis failed: {first}", ""]
     lines = [_demote(module.markdown(result)), ""]
     plots = sorted(f for f in os.listdir(where) if f.endswith(".png"))
     lines += [f"![{name} {p}]({name}/{p})" for p in plots]
@@ -196,7 +204,7 @@ def _sweep_section(records, points, sweep_dir, out_dir, error_keys, dsp_weight):
 
 def build_report(out_dir="build/report", sweep_dir="build/sweep",
                  tables=("lyon", "szirmay", "hast", "schlick", "cost", "pipeline"), quick=False,
-                 error_keys=("torus.phong.max", "torus.self.max"), dsp_weight=DSP_LUT_WEIGHT):
+                 error_keys=("torus.phong.max", "torus.self.max"), dsp_weight=DSP_LUT_WEIGHT, failed=None):
     """Write ``out_dir/index.md``: the papers' tables measured, then the sweep's Pareto plots,
     cheapest invisible-error datapaths and the Blinn–Phong baseline.
 
@@ -205,8 +213,10 @@ def build_report(out_dir="build/report", sweep_dir="build/sweep",
     float form, on the torus) the sweep gets a Pareto plot (``out_dir/pareto.png`` for the
     first, ``pareto_<key>.png`` for the others) and a summary; the Blinn–Phong baseline is
     listed by the first key.  ``index.md`` is written last and atomically: on any error it
-    is left as it was.  ``quick`` runs the slow tables smaller (:data:`_QUICK`).
-    Returns the path of ``index.md``.
+    is left as it was.  ``quick`` runs the slow tables smaller (:data:`_QUICK`).  A table whose
+    synthesis fails is a section saying so (and a ``report: table NAME FAILED`` line on
+    stderr) and its name is appended to ``failed`` (a list, when given); the other tables
+    still run.  Returns the path of ``index.md``.
     """
     from phongfx.core.files import atomic_write
 
@@ -218,8 +228,9 @@ def build_report(out_dir="build/report", sweep_dir="build/sweep",
              + (f" Quick run: smaller {', '.join(t for t in _QUICK if t in tables)} tables." if quick else ""), ""]
     if tables:
         lines += ["# The papers' tables, measured", ""]
+    failed = [] if failed is None else failed
     for name in tables:
-        lines += _table_section(name, out_dir, quick)
+        lines += _table_section(name, out_dir, quick, failed)
     lines += ["# Sweep: error against hardware cost", ""]
     points = os.path.join(sweep_dir, "points.jsonl")
     if not os.path.isfile(points):

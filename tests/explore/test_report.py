@@ -266,3 +266,21 @@ def test_the_quick_report_runs_every_synthesizing_table_small(tmp_path, monkeypa
                      "proxy": {"points": (("shape", "shape", None), ("root", "root", None))},
                      "clock": {"selected": [("shape", "shape", None, 0)]}}
     assert runs[0] == ("shape", "ecp5", 0) and runs[1][:2] == ("shape", "asic")
+
+
+def test_a_table_whose_synthesis_fails_is_shown_and_the_others_still_run(tmp_path, monkeypatch, capsys):
+    from phongfx.cli import main
+    from phongfx.explore.synth.fpga import SynthError
+    from phongfx.explore.tables import pipeline
+
+    def fails(name, out_dir=None, **options):
+        raise SynthError("nextpnr failed (exit code 1); log x/nextpnr.log:\nERROR: Net 'in_shift[39]' is multiply driven")
+    monkeypatch.setattr(pipeline, "run_table", fails)
+    out = tmp_path / "r"
+    assert main(["report", "--out", str(out), "--sweep", str(tmp_path / "none"), "--tables", "pipeline", "schlick"]) == 1
+    err = capsys.readouterr().err.splitlines()
+    assert err == ["report: table pipeline FAILED: nextpnr failed (exit code 1); log x/nextpnr.log:",
+                   f"phongfx: 1 table failed (pipeline); see {out / 'index.md'}"]
+    text = (out / "index.md").read_text()
+    assert "## pipeline: failed\n\nA synthesis failed: nextpnr failed (exit code 1)" in text
+    assert "Figure 1, measured" in text  # schlick's table, after the failed one
