@@ -22,6 +22,7 @@ import sys
 
 from phongfx.config import MAX_PIPELINE, BlendConfig, ShaderConfig
 from phongfx.core.registry import get_block
+from phongfx.core.words import plural
 
 from phongfx.explore.progress import Candidates
 from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, FEATURES, clock_netlist, critical_path
@@ -174,12 +175,12 @@ def fit_lut4(rows):
     return {"lut": round(float(found[0]), 3), "carry_bits": round(float(found[1]), 3)}
 
 
-def clock_table(selected=None, *, workdir=None, refit=False, progress=None):
+def clock_table(selected=None, *, targets=TARGETS, workdir=None, refit=False, progress=None):
     """The calibration: ``rows`` (without their netlists), the stored ``coefficients`` and
     ``error`` margins, the ``summary`` per target, the area proxy's ``resources`` errors
     against the stored :data:`~phongfx.explore.synth.proxy.RESOURCE_MARGIN`; with
     ``refit``, ``refit`` coefficients per target and the ``refit_summary`` they give."""
-    rows = calibration_rows(selected, workdir=workdir, progress=progress)
+    rows = calibration_rows(selected, targets=targets, workdir=workdir, progress=progress)
     result = {"table": "clock", "freq": FREQ, "seed": SEED, "coefficients": COEFFICIENTS, "error": ERROR,
               "summary": summary(rows), "resources": resource_errors(rows), "resource_margin": RESOURCE_MARGIN}
     if refit:
@@ -200,11 +201,13 @@ def clock_table(selected=None, *, workdir=None, refit=False, progress=None):
     return result
 
 
-def run_table(name, out_dir=None, refit=False, progress=None):
-    """The table called ``name`` (``"clock"``); nothing is written to ``out_dir``."""
+def run_table(name, out_dir=None, refit=False, progress=None, selected=None):
+    """The table called ``name`` (``"clock"``) over ``selected`` points (default
+    :func:`points`; ``(label, block, config or None for its defaults, depth)``, fewer for a
+    smoke run); nothing is written to ``out_dir``."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
-    return clock_table(refit=refit, progress=progress)
+    return clock_table(selected, refit=refit, progress=progress)
 
 
 def _coefficients(values):
@@ -216,7 +219,7 @@ def markdown(result):
     lines = [f"# The clock proxy against synthesis (ECP5 LFE5U-45F seed {result['seed']} at {result['freq']} MHz; "
              f"osu018 pre-layout)", ""]
     for target, numbers in result["summary"].items():
-        lines += [f"## {target}: {numbers['rows']} points, median error {numbers['median']:.1%}, "
+        lines += [f"## {target}: {plural(numbers['rows'], 'point')}, median error {numbers['median']:.1%}, "
                   f"largest {numbers['max']:.1%} (stored margin {result['error'][target]:.0%})", "",
                   f"Coefficients (ns): {_coefficients(result['coefficients'][target])}", "",
                   "| point | depth | synthesized MHz | proxy MHz | error | synthesized path | proxy path |",
