@@ -3,9 +3,10 @@ give no warning on any registered block's top nor on a compiled example scene's,
 explicit widths (:mod:`phongfx.hdl.widths`) compute what Yosys' own text computes, as a
 Yosys equivalence check (``equiv_make`` / ``equiv_simple`` / ``equiv_induct``) proves.
 
-The default run lints two blocks' tops and a two-light shader's, and proves one; ``-m slow`` does every block, and
+The default run lints two blocks' tops and the two-lights scene's, and proves one; ``-m slow`` does every block, and
 compiles the example scenes (minutes each) to lint what ``phongfx compile`` ships."""
 
+import json
 import re
 import shutil
 import subprocess
@@ -14,8 +15,8 @@ from pathlib import Path
 
 import pytest
 
-from phongfx.config import BlendConfig, ConventionalConfig, ShaderConfig
 from phongfx.core.registry import block_names, get_block
+from phongfx.deliver.manifest import design_of
 from phongfx.hdl.emit import LINT_WAIVERS, verilog, waive_lint
 from phongfx.hdl.top import Top, top_verilog
 from phongfx.hdl.widths import explicit_widths
@@ -191,16 +192,14 @@ def test_the_equivalence_check_can_fail(tmp_path):
 # ---------------------------------------------------------------- the compiled scenes' tops
 
 @pytest.mark.needs_verilator
-def test_a_two_light_shader_top_lints_clean(tmp_path):
-    # what scenes/two-lights.toml compiles to (two copies of the conventional unit, one blend,
-    # shared inputs), at the configs' own widths rather than the searched ones: the default
-    # run's stand-in for the compiled scenes below
-    config = ShaderConfig(unit="conventional", units=(ConventionalConfig(),) * 2,
-                          blend=BlendConfig(diff="1.15", coef_frac=1), share=True)
-    name = "two_lights_conventional"
-    path = tmp_path / f"{name}_top.v"
-    path.write_text(top_verilog(get_block("shader", config=config).component(), name))
-    check_clean(path, f"{name}_top")
+def test_the_two_lights_top_lints_clean(tmp_path):
+    # the design scenes/two-lights.toml compiles to, from the manifest of a compile kept with the
+    # deliver tests (compiling takes minutes): the default run's compiled-scene top
+    data = json.loads((ROOT / "tests" / "deliver" / "two_lights.json").read_text())
+    block, module, config = design_of(data)
+    path = tmp_path / f"{module}_top.v"
+    path.write_text(top_verilog(get_block(block, config=config).component(), module))
+    check_clean(path, f"{module}_top")
 
 
 @pytest.fixture(scope="session")
