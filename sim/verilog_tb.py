@@ -27,16 +27,23 @@ lines (the first :data:`MAX_REPORT` errors: vector, field, got, expected) and
 ``$finish``; a cycle time-out prints ``FAIL`` too.
 """
 
-import textwrap
-
+from phongfx.hdl.comment import comment
 from phongfx.hdl.top import port_map
 
 from .vectors import payload_fields
 
-__all__ = ["MAX_REPORT", "RESET_CYCLES", "MID_RESET_CYCLES", "verilog_testbench"]
+__all__ = ["LINT_WAIVERS", "MAX_REPORT", "RESET_CYCLES", "MID_RESET_CYCLES", "verilog_testbench"]
 
 #: Errors the testbench prints before its verdict.
 MAX_REPORT = 5
+#: Verilator ``-Wall`` classes waived in the testbench, and why each is no defect.
+LINT_WAIVERS = {
+    "BLKSEQ": "the checker is a program run at each clock edge (counters, generators, the "
+              "verdict, in order), not logic, so it assigns with =",
+    "PROCASSINIT": "its variables start at their declared values, which the clocked process then updates",
+    "UNUSEDSIGNAL": "a bubble's junk payload is whole 32-bit words of the generators, of which the "
+                    "payload's width is used",
+}
 #: Rising edges with ``rst`` high at the start, and at the mid-stream reset.
 RESET_CYCLES = 4
 MID_RESET_CYCLES = 2
@@ -61,9 +68,12 @@ def _slice(port):
     return f"[{port['offset'] + port['width'] - 1}:{port['offset']}]"
 
 
-def _value(expression, port):
-    """``expression`` as a 65-bit signed operand: the port's code, sign-extended if signed."""
-    return f"$signed({expression})" if port["signed"] else f"{{1'b0, {expression}}}"
+def _value(word, port):
+    """The port's field of ``word`` as a 65-bit signed operand, its code sign-extended if
+    signed: written out at 65 bits, so that lint sees no implicit extension."""
+    extra, msb = 65 - port["width"], port["offset"] + port["width"] - 1
+    pad = f"{{{extra}{{{word}[{msb}]}}}}" if port["signed"] else f"{extra}'h0"
+    return f"$signed({{{pad}, {word}{_slice(port)}}})"
 
 
 def verilog_testbench(config, name, count, latency, *, reset_at, seed=1, stall=0.3, bubbles=0.2, vcd=False,
@@ -97,13 +107,13 @@ def verilog_testbench(config, name, count, latency, *, reset_at, seed=1, stall=0
     connections = ",\n    ".join(connections)
     compares = "\n".join(
         f"        if (out_word{_slice(p)} !== expected[delivered]{_slice(p)})\n"
-        f"          mismatch(delivered, \"{p['name']}\", {_value(f'out_word{_slice(p)}', p)},\n"
-        f"                   {_value(f'expected[delivered]{_slice(p)}', p)});"
+        f"          mismatch(delivered, \"{p['name']}\", {_value('out_word', p)},\n"
+        f"                   {_value('expected[delivered]', p)});"
         for p in outputs)
     dump = (f"    $dumpfile(\"tb_{name}.vcd\");\n    $dumpvars(0, tb_{name});\n") if vcd else ""
     junk_words = (in_width + 31) // 32
     start = f"applies rst for {reset_cycles} cycles" if reset_cycles else "starts without a reset (power-up)"
-    about = textwrap.fill(
+    about = comment(
         f"tb_{name}: self-checking testbench of {name}_top, written by phongfx (sim/testbench.py). "
         f"Runs unchanged under Icarus Verilog (iverilog -g2012) and Verilator (--binary): see README.txt. "
         f"It {start}, streams the {count} vectors of {name}_in.memh with pseudo-random in_valid bubbles "
@@ -113,10 +123,12 @@ def verilog_testbench(config, name, count, latency, *, reset_at, seed=1, stall=0
         f"by field, with {name}_expected.memh.  It also checks that out_valid and out_* hold while "
         f"out_ready is low, and that out_valid is low while nothing is in flight.  Nothing is counted "
         f"as a transfer while rst is high.  It prints \"PASS <n> vectors, <cycles> cycles\" or FAIL "
-        f"lines, then $finish.", width=97, initial_indent="// ", subsequent_indent="// ")
+        f"lines, then $finish.", width=94)
+    waivers = "".join(comment(f"{cls}: {reason}.", width=94, indent="  ") + f"/* verilator lint_off {cls} */\n"
+                      for cls, reason in LINT_WAIVERS.items())
+    waivers_end = "".join(f"/* verilator lint_on {cls} */\n" for cls in LINT_WAIVERS)
     return f"""\
-{about}
-module tb_{name};
+{about}{waivers}module tb_{name};
   localparam integer N = {count};
   localparam integer IW = {in_width};
   localparam integer OW = {out_width};
@@ -268,4 +280,4 @@ module tb_{name};
     end
   end
 endmodule
-"""
+{waivers_end}"""

@@ -39,7 +39,7 @@ MAPPED_FOLDERS = ("golden", "hdl", "sim")
 OTHER_FOLDERS = ("bench", "tests")
 #: The layers of phongfx, lowest first: each may import only itself and those before it.
 LAYERS = ("phongfx.core", "phongfx.config", "phongfx.golden", "phongfx.hdl", "phongfx.sim", "phongfx.scene",
-          "phongfx.render", "phongfx.papers", "phongfx.explore", "phongfx.certify",
+          "phongfx.render", "phongfx.deliver", "phongfx.papers", "phongfx.explore", "phongfx.certify",
           "phongfx.cli")
 
 

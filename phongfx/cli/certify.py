@@ -17,6 +17,8 @@ import os
 import sys
 from pathlib import Path
 
+from phongfx.core.words import levels
+
 __all__ = ["PER_PIXEL", "add_arguments", "cmd_certify", "parse_widths", "per_pixel_scene", "exit_code"]
 
 #: The scene of a method certified without ``--scene``: one unit sphere of exact per-pixel
@@ -219,10 +221,10 @@ def _report(result, out=None):
     out = out or sys.stdout
     cert, witness, req = result["certificate"], result["witness"], result["requirement"]
     print(f"{result['method']} at {result['params'] or 'its default widths'} on {result['scene']} "
-          f"(requirement {req['max_error_levels']:g} level(s) against {req['against']})", file=out)
+          f"(requirement {levels(req['max_error_levels'])} against {req['against']})", file=out)
     print(f"domain: {result['domain']['description']}", file=out)
     if witness is not None:
-        print(f"witness: {witness['error_levels']} level(s) ({witness['unrounded']:.3f} unrounded): outputs "
+        print(f"witness: {levels(witness['error_levels'])} ({witness['unrounded']:.3f} unrounded): outputs "
               f"{[witness['outputs'][c] for c in 'rgb']} against {witness['reference_levels']}, "
               f"found by {witness['found_by']}", file=out)
         print(f"  point: {json.dumps(witness['point'])}", file=out)
@@ -247,8 +249,8 @@ def _replay(args, method, params, spec, data):
     if args.json:
         print(json.dumps({"witness": witness, "replay": again}, indent=2, default=float))
     else:
-        print(f"{method} at {params}: witness of {witness['error_levels']} level(s) replayed: "
-              f"{again['error_levels']} level(s) ({again['unrounded']:.3f} unrounded), outputs {again['outputs']} "
+        print(f"{method} at {params}: witness of {levels(witness['error_levels'])} replayed: "
+              f"{levels(again['error_levels'])} ({again['unrounded']:.3f} unrounded), outputs {again['outputs']} "
               f"against {again['reference_levels']}; "
               f"{'reproduced' if again['matches'] else 'NOT reproduced'}")
     if not again["matches"]:

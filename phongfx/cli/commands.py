@@ -17,19 +17,12 @@ from phongfx.explore.tables import TABLES, table_module
 
 from .settings import apply_settings, configured_block
 
-__all__ = ["MAX_SIZE", "MAX_TESTBENCH_COUNT", "cmd_blocks", "cmd_verilog", "cmd_testbench", "cmd_sim",
+__all__ = ["MAX_SIZE", "MAX_TESTBENCH_COUNT", "cmd_verilog", "cmd_testbench", "cmd_sim",
            "cmd_render", "cmd_synth", "cmd_sweep", "cmd_report", "cmd_figure9", "cmd_tables",
            "exit_on_mismatch", "target_device"]
 
 #: Largest ``--size`` of ``render mesh`` / ``render frames`` (an 8K frame).
 MAX_SIZE = 8192
-
-
-def cmd_blocks(args):
-    for name in block_names():
-        block = get_block(name)
-        print(f"{name:16s} latency {block.latency:3d}  {block.config}")
-    return 0
 
 
 def cmd_verilog(args):
@@ -107,10 +100,17 @@ def cmd_testbench(args):
 
 def cmd_sim(args):
     from phongfx.sim.harness import check
+    # every range checked here, before a Verilator build of up to a minute
     if args.vectors < 0:
-        raise ValueError("--vectors must be a non-negative integer")
+        raise ValueError(f"--vectors must be a non-negative integer, not {args.vectors}")
     if args.seed < 0:
         raise ValueError(f"--seed must be a non-negative integer, not {args.seed}")
+    for option in ("stalls", "bubbles"):
+        value = getattr(args, option)
+        if not 0 <= value < 1:  # NaN fails too
+            raise ValueError(f"--{option} must be a probability in [0, 1) (at 1 nothing would move), not {value:g}")
+    if args.reset_at is not None and args.reset_at < 0:
+        raise ValueError(f"--reset-at must be a cycle number, 0 or more, not {args.reset_at}")
     block = configured_block(args.name, args.set)
     options = {"vcd": args.vcd} if args.vcd else {}
     stream = args.stalls or args.reset_at is not None
@@ -330,7 +330,14 @@ def cmd_report(args):
     tables = tuple(args.tables) if args.tables is not None else tuple(TABLES)
     for name in tables:
         table_module(name)  # refuses an unknown name before any work
-    print(f"wrote {build_report(out_dir=args.out, sweep_dir=args.sweep, tables=tables, quick=args.quick)}")
+    from phongfx.core.words import plural
+
+    failed = []
+    index = build_report(out_dir=args.out, sweep_dir=args.sweep, tables=tables, quick=args.quick, failed=failed)
+    print(f"wrote {index}")
+    if failed:
+        print(f"phongfx: {plural(len(failed), 'table')} failed ({', '.join(failed)}); see {index}", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -9,6 +9,7 @@ import sys
 
 from phongfx.core.cache import folder
 from phongfx.core.files import check_folder
+from phongfx.core.words import levels
 
 from .commands import exit_on_mismatch, target_device
 
@@ -45,8 +46,8 @@ def add_arguments(p):
                    help=f"comma-separated methods to consider: {', '.join(METHODS)} (default all)")
     p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
     p.add_argument("--testbench", action="store_true",
-                   help="also write DIR/testbench: frame 0 as a self-checking Verilog testbench "
-                        "(Icarus, Verilator)")
+                   help="does nothing: DIR/testbench (frame 0 as a self-checking Verilog testbench for "
+                        "Icarus and Verilator, the FuseSoC core's sim target) is always written; kept for scripts")
     p.add_argument("--vcd", metavar="FILE", help="waveform of the RTL check (Verilator --trace)")
     p.add_argument("--prove", action="store_true",
                    help="prove the chosen design's overflow=\"error\" claims (phongfx prove; minutes per claim "
@@ -100,9 +101,7 @@ def _levels(value):
     """A max error in display levels (whole numbers at the outputs; "inf" when unbuildable)."""
     if isinstance(value, float) and value.is_integer():
         value = int(value)
-    if isinstance(value, float):
-        return f"{value:.3f} levels"
-    return f"{value} level" if value == 1 else f"{value} levels"
+    return levels(value, ".3f" if isinstance(value, float) else "")
 
 
 def _where(result):
@@ -263,7 +262,7 @@ def cmd_compile(args):
     for line in fit_lines(data.get("fit")):
         print(line)
     for step in data["witness_rounds"]:
-        print(f"  {step['method']} at {step['params']}: witness {step['witness_levels']} levels, "
+        print(f"  {step['method']} at {step['params']}: witness {levels(step['witness_levels'])}, "
               + (f"searched again with {step['hard_points']} hard points" if step["action"] == "searched again"
                  else "not chosen"))
     print(f"  witness: {witness['found_by']}; replay: {witness['replay']}")
@@ -309,6 +308,12 @@ def cmd_compile(args):
     if "testbench" in data:
         print(f"testbench: {args.output}/testbench ({data['testbench']['vectors']} vectors of frame "
               f"{data['testbench']['frame']}; run: sh {args.output}/testbench/run.sh)")
+    if "flow" in data:
+        flow = data["flow"]
+        print(f"constraints: {args.output}/constraints (clk {flow['clock_mhz']:g} MHz: .sdc, .lpf for ECP5, "
+              f"_ice40_clock.py for nextpnr-ice40 --pre-pack, _nextpnr.sdc for nextpnr --sdc)")
+        print(f"FuseSoC core: {args.output}/{flow['fusesoc_core']} (run: fusesoc --cores-root {args.output} run "
+              f"--target sim {flow['fusesoc_name']})")
     missed = timing_missed(data["timing"], data["chosen"])
     if missed:
         print(missed, file=sys.stderr)

@@ -6,7 +6,8 @@
 * :mod:`.files`: :func:`~phongfx.core.files.atomic_write`, so that no command leaves a
   half-written output;
 * :mod:`.registry`: every block by name, its config, golden model, component, stimulus
-  and extreme rows.
+  and extreme rows;
+* :mod:`.words`: amounts in words, "1 level" and "2 levels".
 
 May import: nothing of phongfx at module level.  The registry imports the faces of a
 block (``phongfx.config``, ``phongfx.golden``, ``phongfx.hdl``, ``phongfx.sim``) by name

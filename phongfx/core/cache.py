@@ -117,6 +117,8 @@ def make_entry(directory, key, complete, make):
             shutil.rmtree(work, ignore_errors=True)
             raise
         raise _retarget(error, work, failed)
+    # the logs of an earlier failure of this entry are out of date now
+    shutil.rmtree(directory / FAILED / key, ignore_errors=True)
     if not (work / complete).is_file():  # not worth keeping
         shutil.rmtree(work, ignore_errors=True)
         return None, value

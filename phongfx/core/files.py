@@ -16,20 +16,33 @@ import tempfile
 __all__ = ["atomic_write", "check_folder", "staged_folder"]
 
 
+def _existing(path):
+    """``path`` or its nearest ancestor that exists."""
+    while not os.path.exists(path):
+        parent = os.path.dirname(path)
+        if parent == path:
+            break
+        path = parent
+    return path
+
+
 def check_folder(path, what="output folder"):
     """``path`` if it is, or could be made, a folder: else ``NotADirectoryError`` naming it and
-    the regular file in its way.  Called before long work, so that a bad ``-o`` fails at once,
-    not after the work is done."""
+    the regular file in its way, or ``PermissionError`` naming the folder that cannot be
+    written (the output is built beside ``path``, in its parent; tried by making and removing
+    a folder there, so that it holds for root and read-only file systems too).  Called before
+    long work, so that a bad ``-o`` fails at once, not after the work is done."""
     path = os.path.abspath(os.fspath(path))
-    probe = path
-    while not os.path.exists(probe):
-        parent = os.path.dirname(probe)
-        if parent == probe:
-            break
-        probe = parent
+    probe = _existing(path)
     if os.path.exists(probe) and not os.path.isdir(probe):
         where = "is a regular file" if probe == path else f"is under {probe}, a regular file"
         raise NotADirectoryError(20, f"the {what} {where}: Not a directory", path)
+    parent = _existing(os.path.dirname(path))
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".phongfx-probe-", dir=parent))
+    except OSError as error:
+        raise PermissionError(error.errno, f"the {what} cannot be written: {parent} is not writable "
+                                           f"({error.strerror})", path) from None
     return path
 
 

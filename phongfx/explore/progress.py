@@ -27,6 +27,9 @@ class Candidates:
     >>> stage("yosys")
     >>> lines
     ['synthesizing candidate 1 of 2 (fig7, vec=10) 0 s', 'synthesizing candidate 1 of 2 (fig7, vec=10): yosys 0 s']
+    >>> steps.failed("nextpnr failed (exit code 1); log x/nextpnr.log:\nERROR: ...")
+    >>> lines[-1]
+    'synthesizing candidate 1 of 2 (fig7, vec=10) FAILED: nextpnr failed (exit code 1); log x/nextpnr.log 0 s'
     """
 
     def __init__(self, total, progress, clock=time.monotonic):
@@ -34,10 +37,17 @@ class Candidates:
             raise ValueError(f"total must be a non-negative integer, not {total!r}")
         self.total, self.progress, self.clock = total, progress, clock
         self.index, self.started = 0, clock()
+        self.what = None
 
     def next(self, block, params=None):
         """Announce the next candidate; returns the callable that words its flow's stages."""
         self.index += 1
-        what = f"synthesizing candidate {self.index} of {self.total} ({describe(block, params)})"
+        what = self.what = f"synthesizing candidate {self.index} of {self.total} ({describe(block, params)})"
         self.progress(f"{what} {self.clock() - self.started:.0f} s")
         return lambda stage: self.progress(f"{what}: {stage} {self.clock() - self.started:.0f} s")
+
+    def failed(self, error):
+        """Say that the current candidate failed, with the first line of ``error`` (the
+        loop goes on to the next one, and a failure must not pass unseen)."""
+        first = (str(error).strip().splitlines() or [type(error).__name__])[0]
+        self.progress(f"{self.what} FAILED: {first} {self.clock() - self.started:.0f} s")

@@ -11,6 +11,7 @@ re-exported here, where the report's readers have always found them.
 """
 
 import os
+import sys
 
 from phongfx.explore.sweep.front import (DSP_LUT_WEIGHT, INVISIBLE, MAXIMIZE, cost_key, is_proxy,
                                          lut_equivalent, pareto, target_label, value)
@@ -133,8 +134,16 @@ def _baseline(records, error_key, dsp_weight):
     return lines
 
 
-#: Smaller runs of the slow tables for ``quick=True``.
-_QUICK = {"hast": {"frames": 4}, "cost": {"blocks": ("difference", "shape", "root")}}
+#: Smaller runs of the slow tables for ``quick=True``: a smoke run of every table, under 2
+#: minutes on 2 cores with an empty cache.  4 frames of Hast's; 3 blocks of the cost table's
+#: 7; for the pipeline table (3 datapaths × 5 depths × 3 seeds, 45 syntheses) the shape
+#: block at depths 0 and 2 with one seed; 2 of the area proxy's 22 points (standard cells);
+#: for the clock proxy's (every datapath at every depth, on ECP5 and standard cells) the
+#: shape block at depth 0.  The shape block's runs at its defaults are shared (cached).
+_QUICK = {"hast": {"frames": 4}, "cost": {"blocks": ("difference", "shape", "root")},
+          "pipeline": {"names": ("shape",), "depths": (0, 2), "seeds": (1,)},
+          "proxy": {"points": (("shape", "shape", None), ("root", "root", None))},
+          "clock": {"selected": [("shape", "shape", None, 0)]}}
 
 
 def _demote(text):
@@ -143,13 +152,20 @@ def _demote(text):
                      if not line.startswith(("Plots: ", "![")))
 
 
-def _table_section(name, out_dir, quick):
+def _table_section(name, out_dir, quick, failed):
+    from phongfx.explore.synth.toolrun import SynthError
     from phongfx.explore.tables import table_module
 
     module = table_module(name)
     where = os.path.join(out_dir, name)
     os.makedirs(where, exist_ok=True)
-    result = module.run_table(name, out_dir=where, **(_QUICK.get(name, {}) if quick else {}))
+    try:
+        result = module.run_table(name, out_dir=where, **(_QUICK.get(name, {}) if quick else {}))
+    except SynthError as error:  # one table's failed synthesis: the others still run, and it shows
+        first = (str(error).strip().splitlines() or ["no message"])[0]
+        print(f"report: table {name} FAILED: {first}", file=sys.stderr, flush=True)
+        failed.append(name)
+        return [f"## {name}: failed", "", f"A synthesis failed: {first}", ""]
     lines = [_demote(module.markdown(result)), ""]
     plots = sorted(f for f in os.listdir(where) if f.endswith(".png"))
     lines += [f"![{name} {p}]({name}/{p})" for p in plots]
@@ -188,7 +204,7 @@ def _sweep_section(records, points, sweep_dir, out_dir, error_keys, dsp_weight):
 
 def build_report(out_dir="build/report", sweep_dir="build/sweep",
                  tables=("lyon", "szirmay", "hast", "schlick", "cost", "pipeline"), quick=False,
-                 error_keys=("torus.phong.max", "torus.self.max"), dsp_weight=DSP_LUT_WEIGHT):
+                 error_keys=("torus.phong.max", "torus.self.max"), dsp_weight=DSP_LUT_WEIGHT, failed=None):
     """Write ``out_dir/index.md``: the papers' tables measured, then the sweep's Pareto plots,
     cheapest invisible-error datapaths and the Blinn–Phong baseline.
 
@@ -197,8 +213,10 @@ def build_report(out_dir="build/report", sweep_dir="build/sweep",
     float form, on the torus) the sweep gets a Pareto plot (``out_dir/pareto.png`` for the
     first, ``pareto_<key>.png`` for the others) and a summary; the Blinn–Phong baseline is
     listed by the first key.  ``index.md`` is written last and atomically: on any error it
-    is left as it was.  ``quick`` runs the slow tables smaller (:data:`_QUICK`).
-    Returns the path of ``index.md``.
+    is left as it was.  ``quick`` runs the slow tables smaller (:data:`_QUICK`).  A table whose
+    synthesis fails is a section saying so (and a ``report: table NAME FAILED`` line on
+    stderr) and its name is appended to ``failed`` (a list, when given); the other tables
+    still run.  Returns the path of ``index.md``.
     """
     from phongfx.core.files import atomic_write
 
@@ -210,8 +228,9 @@ def build_report(out_dir="build/report", sweep_dir="build/sweep",
              + (f" Quick run: smaller {', '.join(t for t in _QUICK if t in tables)} tables." if quick else ""), ""]
     if tables:
         lines += ["# The papers' tables, measured", ""]
+    failed = [] if failed is None else failed
     for name in tables:
-        lines += _table_section(name, out_dir, quick)
+        lines += _table_section(name, out_dir, quick, failed)
     lines += ["# Sweep: error against hardware cost", ""]
     points = os.path.join(sweep_dir, "points.jsonl")
     if not os.path.isfile(points):

@@ -10,7 +10,11 @@ says so only in a manifest.  These functions write the same data as a figure ins
 * :func:`error_figure`: per-pixel error in 8-bit display levels the same way, with a colour
   bar in those levels beside it; ``white_levels`` and above are white;
 * :func:`contact_sheet`: many frames (or error pictures) in one grid, each tile titled,
-  e.g. every frame of a scene's animation at a glance.
+  e.g. every frame of a scene's animation at a glance; the tiles are enlarged until the
+  sheet is :data:`MIN_SHEET_WIDTH` pixels wide (one 96 × 96 frame was a 311 × 140 sheet).
+
+A colour bar's label is wrapped to the bar's length (it was cut to "ror, 8-bit display
+levels" beside a short picture).
 
 The layout is set in pixels (Agg, :data:`DPI`), not left to ``tight_layout``: the picture
 is drawn at exactly ``scale`` PNG pixels per frame pixel, which a resampling layout would
@@ -25,13 +29,17 @@ import numpy as np
 
 from phongfx.core.files import atomic_write
 
-__all__ = ["MIN_SIZE", "TILE_SIZE", "DPI", "MARGIN", "UNCOVERED", "scale_for", "frame_figure", "error_figure",
-           "contact_sheet"]
+__all__ = ["MIN_SIZE", "TILE_SIZE", "MIN_SHEET_WIDTH", "DPI", "MARGIN", "UNCOVERED", "ERROR_LABEL", "scale_for",
+           "frame_figure", "error_figure", "contact_sheet"]
 
 #: Longer side, in PNG pixels, that a single picture is enlarged to at least.
 MIN_SIZE = 384
 #: Longer side, in PNG pixels, that a contact sheet's tile is enlarged to at least.
 TILE_SIZE = 192
+#: Width, in PNG pixels, that a contact sheet is brought to at least by enlarging its tiles.
+MIN_SHEET_WIDTH = 800
+#: The label of an error picture's colour bar.
+ERROR_LABEL = "error, 8-bit display levels"
 #: Dots per inch of the figures; the layout below is in pixels at this density.
 DPI = 100
 #: Colour of pixels with no value (NaN): light blue, outside every grey of the scale.
@@ -41,8 +49,9 @@ UNCOVERED = "#b8cce4"
 MARGIN = 10
 _LINE = 17  # pixels per title line at _FONT points
 _FONT = 10
+_HEAD_FONT = 12  # a contact sheet's title
 _CHAR = 6.8  # average pixels per character at _FONT points, to wrap titles
-_BAR = (14, 12, 72)  # colour bar: gap to the picture, its width, room for ticks and label
+_BAR = (14, 12, 72)  # colour bar: gap to the picture, its width, room for ticks and one label line
 
 
 def scale_for(shape, min_size=MIN_SIZE):
@@ -78,6 +87,14 @@ def _wrap(title, width_px):
     return [line for part in text.split("\n") for line in (textwrap.wrap(part, columns) or [""])]
 
 
+def _bar_label(label, length_px):
+    """``label`` wrapped to lines that fit along a colour bar ``length_px`` long (no word
+    broken), and the extra width in pixels its lines beyond the first take."""
+    columns = max(max(map(len, label.split())), int(length_px / _CHAR))
+    lines = textwrap.wrap(label, columns)
+    return "\n".join(lines), _LINE * (len(lines) - 1)
+
+
 def _grey_map(name):
     import matplotlib
     return matplotlib.colormaps[name].with_extremes(bad=UNCOVERED)
@@ -103,17 +120,21 @@ def _single(path, data, title, min_size, style, bar_label=None):
     plt = _pyplot()
     scale = scale_for(data.shape, min_size)
     h, w = data.shape[0] * scale, data.shape[1] * scale
-    bar = sum(_BAR) if bar_label else 0
+    # beside a low picture the bar stands taller than it, so that its label fits in two lines
+    length = max(h, math.ceil(_CHAR * len(bar_label or "") / 2) + 2 * _LINE) if bar_label else h
+    if bar_label:
+        bar_label, extra = _bar_label(bar_label, length)
+    bar = sum(_BAR) + extra if bar_label else 0
     width = w + bar + 2 * MARGIN
     lines = _wrap(title, width - 2 * MARGIN)
     top = _LINE * len(lines) + MARGIN
-    height = h + top + MARGIN
+    height = length + top + MARGIN
     fig = plt.figure(figsize=(width / DPI, height / DPI), dpi=DPI)
-    ax = fig.add_axes((MARGIN / width, MARGIN / height, w / width, h / height))
+    ax = fig.add_axes((MARGIN / width, (MARGIN + length - h) / height, w / width, h / height))  # under the title
     _show(ax, data, **style)
     fig.text(0.5, 1 - (MARGIN / 2) / height, "\n".join(lines), ha="center", va="top", fontsize=_FONT)
     if bar_label:
-        cax = fig.add_axes(((MARGIN + w + _BAR[0]) / width, MARGIN / height, _BAR[1] / width, h / height))
+        cax = fig.add_axes(((MARGIN + w + _BAR[0]) / width, MARGIN / height, _BAR[1] / width, length / height))
         fig.colorbar(ax.images[0], cax=cax, extend="max", label=bar_label)
     return _save(fig, path)
 
@@ -139,7 +160,7 @@ def error_figure(path, levels, title, white_levels, *, min_size=MIN_SIZE, cmap="
     to the PNG ``path`` as :func:`frame_figure` does, black = 0 and white = ``white_levels``
     or more, with a colour bar in 8-bit levels beside it.  Returns ``path``."""
     data, style = _error_style(levels, white_levels, cmap)
-    return _single(path, data, title, min_size, style, bar_label="error, 8-bit display levels")
+    return _single(path, data, title, min_size, style, bar_label=ERROR_LABEL)
 
 
 def contact_sheet(path, pictures, titles, *, title=None, columns=None, tile_size=TILE_SIZE,
@@ -147,8 +168,9 @@ def contact_sheet(path, pictures, titles, *, title=None, columns=None, tile_size
     """Write ``pictures`` (equal-shape frames as :func:`frame_figure` takes, or with
     ``white_levels`` error pictures as :func:`error_figure` takes, then sharing one colour
     bar) to the PNG ``path`` as one grid: ``columns`` tiles a row (default about square),
-    each tile titled by its entry of ``titles`` and enlarged to at least ``tile_size``
-    pixels; ``title`` above the whole sheet.  Returns ``path``."""
+    each tile titled by its entry of ``titles`` and enlarged by one integer factor to at
+    least ``tile_size`` pixels, and further until the sheet is at least
+    :data:`MIN_SHEET_WIDTH` wide; ``title`` above the whole sheet.  Returns ``path``."""
     plt = _pyplot()
     pictures = list(pictures)
     titles = list(titles)
@@ -167,13 +189,19 @@ def contact_sheet(path, pictures, titles, *, title=None, columns=None, tile_size
     if not isinstance(columns, int) or columns < 1:
         raise ValueError(f"columns must be a positive integer, not {columns!r}")
     rows = math.ceil(len(data) / columns)
-    scale = scale_for(shape, tile_size)
+    bar = sum(_BAR) if white_levels is not None else 0
+    room = MIN_SHEET_WIDTH - bar - (columns + 1) * MARGIN  # for the tiles of a row
+    scale = max(scale_for(shape, tile_size), math.ceil(room / (columns * shape[1])))
     h, w = shape[0] * scale, shape[1] * scale
     label = max(len(_wrap(t, w)) for t in titles) * _LINE + 4
-    bar = sum(_BAR) if white_levels is not None else 0
+    span = rows * (h + label + MARGIN) - MARGIN - label  # the colour bar's length
+    if white_levels is not None:
+        bar_label, extra = _bar_label(ERROR_LABEL, span)
+        bar += extra
     width = columns * (w + MARGIN) + MARGIN + bar
-    head = _wrap(title, width - 2 * MARGIN) if title else []
-    top = _LINE * len(head) + MARGIN
+    # the sheet's title a size larger than the tiles': what the sheet is, read first
+    head = _wrap(title, (width - 2 * MARGIN) * _FONT / _HEAD_FONT) if title else []
+    top = math.ceil(_LINE * _HEAD_FONT / _FONT) * len(head) + MARGIN
     height = top + rows * (h + label + MARGIN)
     fig = plt.figure(figsize=(width / DPI, height / DPI), dpi=DPI)
     for index, (picture, name) in enumerate(zip(data, titles)):
@@ -184,10 +212,9 @@ def contact_sheet(path, pictures, titles, *, title=None, columns=None, tile_size
         fig.text((x + w / 2) / width, (y + h + 2) / height, "\n".join(_wrap(name, w)),
                  ha="center", va="bottom", fontsize=_FONT - 1)
     if head:
-        fig.text(0.5, 1 - (MARGIN / 2) / height, "\n".join(head), ha="center", va="top", fontsize=_FONT)
+        fig.text(0.5, 1 - (MARGIN / 2) / height, "\n".join(head), ha="center", va="top", fontsize=_HEAD_FONT)
     if white_levels is not None:
-        span = rows * (h + label + MARGIN) - MARGIN - label
         cax = fig.add_axes(((width - bar + _BAR[0] - MARGIN) / width, MARGIN / height, _BAR[1] / width,
                             span / height))
-        fig.colorbar(fig.axes[0].images[0], cax=cax, extend="max", label="error, 8-bit display levels")
+        fig.colorbar(fig.axes[0].images[0], cax=cax, extend="max", label=bar_label)
     return _save(fig, path)

@@ -253,6 +253,22 @@ def test_directed_refusals(argv, message, capsys, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("argv, message", [
+    (["--stalls", "1.5"], "--stalls must be a probability in [0, 1) (at 1 nothing would move), not 1.5"),
+    (["--stalls", "-0.1"], "--stalls must be a probability in [0, 1) (at 1 nothing would move), not -0.1"),
+    (["--stalls", "nan"], "--stalls must be a probability in [0, 1) (at 1 nothing would move), not nan"),
+    (["--bubbles", "1"], "--bubbles must be a probability in [0, 1) (at 1 nothing would move), not 1"),
+    (["--reset-at", "-2"], "--reset-at must be a cycle number, 0 or more, not -2"),
+    (["--vectors", "-5"], "--vectors must be a non-negative integer, not -5"),
+])
+def test_sim_ranges_fail_before_any_build(argv, message, capsys, monkeypatch):
+    def no_build(*args, **kwargs):
+        raise AssertionError("a simulator was started for an argument out of range")
+    monkeypatch.setattr(harness, "check", no_build)
+    assert main(["sim", "shape", *argv]) == 2
+    assert capsys.readouterr().err == f"phongfx: error: {message}\n"
+
+
 @pytest.mark.parametrize("argv", [
     ["verilog", "shape", "-o", "FILE/x.v"],
     ["tables", "schlick", "--out", "FILE/plots"],

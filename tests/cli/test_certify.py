@@ -36,7 +36,7 @@ def test_bound_meets(capsys):
 def test_witness_fails(capsys):
     code, out, _ = run(capsys, *SMALL, "--max-error", "3")
     assert code == 1
-    assert "witness: 5 level(s)" in out and "bound: 4.528 levels (exhaustive" in out
+    assert "witness: 5 levels" in out and "bound: 4.528 levels (exhaustive" in out
     assert "not certified: some input code misses the requirement" in out
 
 

@@ -18,6 +18,31 @@ def test_blocks_lists_every_block(capsys):
         assert f"\n{name} " in "\n" + out
 
 
+def test_blocks_lines_fit_the_terminal_and_long_and_json_give_everything(capsys, monkeypatch):
+    import json
+
+    from phongfx.core.registry import block_names
+
+    monkeypatch.setenv("COLUMNS", "300")  # a wide terminal: still at most 100
+    assert main(["blocks"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert max(map(len, lines)) <= 100 and len(lines) < 60  # fig7's repr alone was 1,312 characters
+    assert lines[0] == "lirp             latency   2  vec=S1.10 a=1.10 out=S1.10 rounding=round_half_up pipeline=0"
+    assert "normalize=NormalizeConfig(…)" in "\n".join(lines)
+    monkeypatch.setenv("COLUMNS", "70")
+    assert main(["blocks"]) == 0
+    assert max(map(len, capsys.readouterr().out.splitlines())) <= 70
+
+    assert main(["blocks", "--long"]) == 0
+    long = capsys.readouterr().out.splitlines()
+    assert "    normalize.vec=S1.10" in long and "    units.0.specular=fig7" in long
+    assert main(["blocks", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [b["name"] for b in data] == list(block_names())
+    fig7 = next(b for b in data if b["name"] == "fig7")
+    assert fig7["latency"] == 17 and fig7["config"]["normalize"]["vec"] == "S1.10"
+
+
 def test_verilog_writes_a_module(tmp_path):
     path = tmp_path / "shape.v"
     assert main(["verilog", "shape", "--set", "k=1", "-o", str(path)]) == 0

@@ -1,5 +1,6 @@
 """An output folder that cannot be one (under a regular file) fails at once, before the work."""
 
+import os
 import time
 from pathlib import Path
 
@@ -34,3 +35,33 @@ def test_check_folder(tmp_path):
     (tmp_path / "f").write_text("")
     with pytest.raises(NotADirectoryError, match=r"the output folder is under .*f, a regular file: Not a directory"):
         check_folder(tmp_path / "f" / "x")
+
+
+def _unwritable(tmp_path):
+    """A folder this process cannot write into: a read-only one, or for root (whom
+    permissions do not stop) /sys, which no one can make folders in."""
+    if os.geteuid() != 0:
+        locked = tmp_path / "locked"
+        locked.mkdir(mode=0o555)
+        return locked
+    if not os.path.isdir("/sys"):
+        pytest.skip("running as root without /sys: no folder to fail writing into")
+    return Path("/sys")
+
+
+@pytest.mark.parametrize("argv", [
+    ["compile", SCENE, "-o", "{dir}/out", "--quiet"],
+    ["compile", SCENE, "-o", "{dir}/new/out", "--quiet"],
+    ["render", "--out", "{dir}/sim", "--quiet"],
+])
+def test_an_unwritable_output_folder_fails_before_the_work(tmp_path, capsys, argv):
+    locked = _unwritable(tmp_path)
+    argv = [part.replace("{dir}", str(locked)) for part in argv]
+    out = next(part for part in argv if part.startswith(str(locked)))
+    start = time.perf_counter()
+    assert main(argv) == 2
+    assert time.perf_counter() - start < 3  # the compile itself takes 10–46 s
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"phongfx: error: {out}: the output folder cannot be written: "
+                                               f"{locked} is not writable (")
+    assert not os.path.exists(out) and not [p for p in os.listdir(locked) if p.startswith(".phongfx")]

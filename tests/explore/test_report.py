@@ -232,3 +232,55 @@ def test_build_report_shows_the_synthesis_progress_of_its_tables(tmp_path, monke
     lines = [re.sub(r" \d+ s$", "", line) for line in capsys.readouterr().err.splitlines()]
     assert lines == [f"cost: synthesizing candidate {i} of 3 ({block}){stage}"
                      for i, block in enumerate(("difference", "shape", "root"), 1) for stage in ("", ": yosys")]
+
+
+def test_the_quick_report_runs_every_synthesizing_table_small(tmp_path, monkeypatch):
+    # `report --quick`, "a smoke run", had run 830 s and was at the proxy table's point 13 of 22;
+    # now 96 s on 2 cores with an empty cache: 4 FPGA syntheses and 2 standard-cell runs
+    from phongfx.explore.synth import fpga
+    from phongfx.explore.tables import clock, cost, pipeline, proxy
+
+    runs = []
+
+    def fake(name, *, config=None, target="ecp5", device=None, freq=150, seed=1, workdir=None, progress=None):
+        runs.append((name, target, getattr(config, "pipeline", 0)))
+        raise fpga.SynthError("stand-in")
+
+    for module in (fpga, cost, proxy):
+        monkeypatch.setattr(module, "synth", fake)
+    calls = {}
+    for module in (pipeline, proxy, clock):
+        original = module.run_table
+
+        def recorded(name, out_dir=None, original=original, **options):
+            calls[name] = options
+            try:
+                return original(name, out_dir=out_dir, **options)
+            except fpga.SynthError:
+                raise KeyError(name) from None  # stop here: what matters is what was asked
+        monkeypatch.setattr(module, "run_table", recorded)
+    for name in ("pipeline", "proxy", "clock"):
+        with pytest.raises(KeyError):
+            build_report(out_dir=tmp_path / "r", sweep_dir=tmp_path / "none", tables=(name,), quick=True)
+    assert calls == {"pipeline": {"names": ("shape",), "depths": (0, 2), "seeds": (1,)},
+                     "proxy": {"points": (("shape", "shape", None), ("root", "root", None))},
+                     "clock": {"selected": [("shape", "shape", None, 0)]}}
+    assert runs[0] == ("shape", "ecp5", 0) and runs[1][:2] == ("shape", "asic")
+
+
+def test_a_table_whose_synthesis_fails_is_shown_and_the_others_still_run(tmp_path, monkeypatch, capsys):
+    from phongfx.cli import main
+    from phongfx.explore.synth.fpga import SynthError
+    from phongfx.explore.tables import pipeline
+
+    def fails(name, out_dir=None, **options):
+        raise SynthError("nextpnr failed (exit code 1); log x/nextpnr.log:\nERROR: Net 'in_shift[39]' is multiply driven")
+    monkeypatch.setattr(pipeline, "run_table", fails)
+    out = tmp_path / "r"
+    assert main(["report", "--out", str(out), "--sweep", str(tmp_path / "none"), "--tables", "pipeline", "schlick"]) == 1
+    err = capsys.readouterr().err.splitlines()
+    assert err == ["report: table pipeline FAILED: nextpnr failed (exit code 1); log x/nextpnr.log:",
+                   f"phongfx: 1 table failed (pipeline); see {out / 'index.md'}"]
+    text = (out / "index.md").read_text()
+    assert "## pipeline: failed\n\nA synthesis failed: nextpnr failed (exit code 1)" in text
+    assert "Figure 1, measured" in text  # schlick's table, after the failed one

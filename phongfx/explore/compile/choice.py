@@ -8,6 +8,7 @@ the requirement too (``phongfx compile --certified``).
 """
 
 from phongfx.core.registry import get_block
+from phongfx.core.words import levels
 
 from . import run as runs
 from . import witness as witnesses
@@ -82,7 +83,7 @@ def choose(out, scene, cost, prove, prove_timeout, progress):
         searched = [s["method"] for s in out.rounds if s["action"] == "searched again"]
         mine = searched.count(name)
         if not runs.per_pixel(name) or len(searched) >= ROUNDS or mine >= METHOD_ROUNDS:
-            r["why_not_chosen"] = (f"its witness is {found['error_levels']} levels over the domain "
+            r["why_not_chosen"] = (f"its witness is {levels(found['error_levels'])} over the domain "
                                    f"(requirement {required:g}); "
                                    + ("a unit fed per span takes no hard points" if not runs.per_pixel(name)
                                       else f"after {mine} rounds of hard points"))
@@ -90,7 +91,7 @@ def choose(out, scene, cost, prove, prove_timeout, progress):
             continue
         scene.add_hard(hard)
         if progress:
-            progress(f"{name}: witness {found['error_levels']} levels; searched again with "
+            progress(f"{name}: witness {levels(found['error_levels'])}; searched again with "
                      f"{scene.points.hard_points} hard points")
         again = search_widths(scene, name, progress)
         again["default"]["cost"] = r["default"]["cost"]  # the same widths: the same cost
@@ -163,5 +164,5 @@ def certain(out, scene, cost, certifier, progress):
     out.certainty["extra_cost"] = after / before - 1 if before and after else None
     if best["witness"]["error_levels"] > required:  # a sound bound is never under a witness
         raise AssertionError(f"internal error: {best['method']} at {best['params']} has a witness of "
-                             f"{best['witness']['error_levels']} levels over its certificate's bound "
+                             f"{levels(best['witness']['error_levels'])} over its certificate's bound "
                              f"{out.certificate.bound_levels:.3f}: the bound is not sound")

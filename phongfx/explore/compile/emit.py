@@ -1,6 +1,7 @@
 """Write what :func:`phongfx.explore.compile.compiler.compile_scene` found, and verify it.
 
-``DIR/manifest.json`` (:func:`manifest`), ``DIR/verilog/<module>_top.v`` (the shipped
+``DIR/manifest.json`` (:func:`manifest`, with the top's input contract as ``"contract"``:
+:mod:`phongfx.deliver.contract`), ``DIR/verilog/<module>_top.v`` (the shipped
 design: the named-port top of :mod:`phongfx.hdl.top` around exactly the chosen shader's
 blocks, without the simulation-only overflow checks, what the cost is of),
 ``DIR/frames/frame_NNN.png`` (the shader's r, g, b codes of each frame at its first
@@ -10,9 +11,12 @@ the requirement), each also as one contact sheet ``sheet.png``, and a cycle-by-c
 of the shader against the golden model on the whole first frame
 (:func:`phongfx.sim.harness.check`, ``verilator-fast``, with random ``out_ready`` stalls
 and a reset in the middle of the stream; ``vectors`` is the frame's pixels, every span
-pixel for units fed per span, hidden ones included).  With ``testbench=True``,
-``DIR/testbench/`` holds the same frame as a self-checking Verilog testbench for Icarus
-Verilog and Verilator (:func:`phongfx.sim.testbench.write_testbench`).
+pixel for units fed per span, hidden ones included).  ``DIR/testbench/`` holds the same
+frame as a self-checking Verilog testbench for Icarus Verilog and Verilator
+(:func:`phongfx.sim.testbench.write_testbench`), and the rest of a flow comes with it:
+``DIR/constraints/`` the clock the core was compiled for as SDC, ECP5 LPF and an iCE40
+nextpnr script (:mod:`phongfx.deliver.constraints`), ``DIR/<module>.core`` a FuseSoC core
+of the RTL, the testbench and the constraints (:mod:`phongfx.deliver.fusesoc`).
 """
 
 import dataclasses
@@ -29,6 +33,11 @@ from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
 from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
+from phongfx.core.words import levels, plural
+from phongfx.deliver.constraints import clock_of
+from phongfx.deliver.contract import contract_lines, input_contract
+from phongfx.deliver.fusesoc import write_flow
+from phongfx.deliver.manifest import MANIFEST_VERSION
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
@@ -120,7 +129,7 @@ def _domain_evaluation(compiled):
 def manifest(compiled, module=None, instances=None, check=None):
     """The manifest dict (module docstring of :mod:`phongfx.explore.compile.emit`)."""
     spec, best = compiled.spec, compiled.best
-    out = {"scene": spec.name, "path": spec.path,
+    out = {"manifest_version": MANIFEST_VERSION, "scene": spec.name, "path": spec.path,
            "requirement": {**spec.requirement.as_dict(), "clock_mhz": compiled.speed.clock_mhz},
            "analysis": compiled.analysis.as_dict(), "cost_model": compiled.cost_model,
            "evaluation": {"frames": len(compiled.scene.geometries), "renders": len(compiled.scene.renders),
@@ -184,13 +193,23 @@ def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=N
 
     The folder is built beside its place and renamed into it when complete
     (:func:`~phongfx.core.files.staged_folder`): it holds this run's result whole, or, after a
-    failure or an interrupt, the previous run's.  ``testbench``: also write ``testbench/``
-    (frame 0's vectors and expected outputs); ``vcd``: a waveform file of the RTL check."""
+    failure or an interrupt, the previous run's.  ``testbench/`` (frame 0's vectors and
+    expected outputs) is always written, the FuseSoC core's ``sim`` target runs it;
+    ``testbench`` is kept for callers that still pass it and changes nothing; ``vcd``: a
+    waveform file of the RTL check."""
     with staged_folder(out_dir) as work:
-        return _write(compiled, work, check, progress, testbench, vcd)
+        return _write(compiled, work, check, progress, vcd)
 
 
-def _write(compiled, out_dir, check, progress, testbench, vcd):
+def _flow(out_dir, module, data):
+    """Write the constraints and the FuseSoC core of the shipped top; the manifest's ``"flow"``."""
+    clock = clock_of(data)
+    description = (f"{data['scene']}: the {data['chosen']} shader of phongfx, {clock.mhz:g} MHz, "
+                   f"latency {data['top']['latency']} cycles, interval {data['top']['interval']}")
+    return write_flow(out_dir, module, clock, data["top"]["ports"], description)
+
+
+def _write(compiled, out_dir, check, progress, vcd):
     from phongfx.hdl.emit import verilog
     from phongfx.hdl.top import port_map, top_verilog
     from phongfx.scene.geometry import pixel_error
@@ -208,7 +227,9 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
     text = verilog(block.component(), module, emit_src=False)  # only to name the instances
     timing = timing_of(best["cost"])
     header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
-    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx})
+    contract = input_contract(config, compiled.spec, method, n_scale=runs.hooks(method).n_scale)
+    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx},
+                          contract=contract_lines(contract))
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
     done, result, written, sheets = set(), None, None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
@@ -226,7 +247,7 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
         error = _picture(g, pixel_error(codes, reference, compiled.spec.output.bits).max(axis=-1), np.nan)
         error_figure(os.path.join(out_dir, "error", name), error,
                      f"{compiled.spec.name}: {method}, frame {g.frame}: error against {against}, worst "
-                     f"channel, max {np.nanmax(error, initial=0):g} levels", scale)
+                     f"channel, max {levels(np.nanmax(error, initial=0))}", scale)
         for sheet, value in zip(sheets, (picture, error, f"frame {g.frame}")):
             sheet.append(value)
         if check and result is None:
@@ -242,13 +263,13 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
                       "mismatches": r.mismatch_count, "ok": r.ok, "simulate_seconds": r.seconds,
                       "stalls": CHECK_STALLS, "reset_at_cycle": count // 2, "vcd": vcd,
                       "seconds": time.perf_counter() - start}  # with the Verilator build
-        if testbench and written is None:
+        if written is None:
             from phongfx.sim.testbench import write_testbench
             if progress:
                 progress(f"testbench of frame {g.frame}")
             write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module)
             written = (g.frame, len(next(iter(out.values()))))
-    title = f"{compiled.spec.name}: {method}, {len(done)} frame(s)"
+    title = f"{compiled.spec.name}: {method}, {plural(len(done), 'frame')}"
     contact_sheet(os.path.join(out_dir, "frames", "sheet.png"), sheets[0], sheets[2], title=title)
     contact_sheet(os.path.join(out_dir, "error", "sheet.png"), sheets[1], sheets[2], white_levels=scale,
                   title=f"{title}: error against {against} (display levels)")
@@ -261,9 +282,10 @@ def _write(compiled, out_dir, check, progress, testbench, vcd):
     data["top"] = {"module": f"{module}_top", "file": f"verilog/{module}_top.v", "latency": block.latency,
                    "interval": getattr(config, "interval", 1),
                    "ports": port_map(block.config)}
-    if written is not None:
-        data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],
-                             "run": "sh testbench/run.sh (Icarus Verilog and Verilator)"}
+    data["contract"] = contract
+    data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],
+                         "run": "sh testbench/run.sh (Icarus Verilog and Verilator)"}
+    data["flow"] = _flow(out_dir, module, data)
     atomic_write(os.path.join(out_dir, "manifest.json"),
                  lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
     return data

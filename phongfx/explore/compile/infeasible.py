@@ -13,14 +13,12 @@ no single ``k`` serves, the split of the range whose parts each meet it.
 
 import math
 
+from phongfx.core import words
+
 from . import witness as witnesses
 from .measure import GUARD, met_at
 
 __all__ = ["summary", "per_variant", "split", "hint"]
-
-
-def _levels(value):
-    return f"{value:g} level" if value == 1 else f"{value:g} levels"
 
 
 def _finite(error):
@@ -57,7 +55,7 @@ def _why(scene, method, best, widest_point, scan, requirement):
     out = []
     widest_error = scene.error(method, widest_point)
     if widest_point != params and widest_error["max"] > error["max"]:
-        out.append(f"every width at its range maximum gives {widest_error['max']:g} levels, more than the "
+        out.append(f"every width at its range maximum gives {words.levels(widest_error['max'])}, more than the "
                    f"best point's {error['max']:g}: wider formats do not lower this error")
     if scene.spec.requirement.against == "phong":
         try:
@@ -80,7 +78,7 @@ def _why(scene, method, best, widest_point, scan, requirement):
         k = min(scan, key=lambda v: (scan[v]["max"], scan[v]["mean"], v))
         near = ", ".join(f"k = {v}: {scan[v]['max']:g}" for v in (k - 1, k + 1) if v in scan)
         out.append(f"the shape function's k, scanned over {lo}..{hi} with every other width at its maximum, "
-                   f"is best at k = {k} ({_levels(scan[k]['max'])}{'; ' + near if near else ''})"
+                   f"is best at k = {k} ({words.levels(scan[k]['max'])}{'; ' + near if near else ''})"
                    + (f"; {hi} is the cap (phongfx.config.shape.K_MAX, n = 2^k = {2 ** hi})"
                       if k == hi else ""))
     return out
@@ -155,8 +153,8 @@ def hint(compiled):
         witness = witnesses.search(best["method"], best["params"], spec, compiled.domain, analysis=compiled.analysis)
         levels = max(levels, witness["error_levels"])
     command = f"phongfx compile {spec.path or spec.name + '.toml'} -o DIR --max-error {levels}"
-    text = [f"the best any method reaches is {_levels(best['max'])} ({best['method']} at {best['params']}); "
-            f"a requirement of {_levels(levels)} is met: {command}"]
+    text = [f"the best any method reaches is {words.levels(best['max'])} ({best['method']} at {best['params']}); "
+            f"a requirement of {words.levels(levels)} is met: {command}"]
     found = None
     for r in sorted(results, key=lambda r: r["max"]):
         found = split(compiled.scene, r.get("k_scan"), requirement)
@@ -166,7 +164,7 @@ def hint(compiled):
     if found:
         parts = "; ".join(f"{name} n = {a[0]}..{a[1]} and {b[0]}..{b[1]}"
                           for name, (a, b) in found["ranges"].items())
-        samples = ", ".join(f"n = {'/'.join(map(str, s['n'].values()))}: k = {s['k']} ({_levels(s['max'])})"
+        samples = ", ".join(f"n = {'/'.join(map(str, s['n'].values()))}: k = {s['k']} ({words.levels(s['max'])})"
                             for s in found["at"])
         text.append(f"no single k serves the whole shininess range, but each part does ({found['method']}, "
                     f"measured at {samples}): split it into two materials ({parts}) or two units, "

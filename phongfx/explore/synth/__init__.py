@@ -4,6 +4,8 @@
   and iCE40), cached;
 * :mod:`.asic`: standard-cell synthesis (Yosys onto the OSU Liberty cells) and static
   timing (OpenSTA);
+* :mod:`.lutmap`: Yosys' LUT mapping, and its fallbacks where ABC9 fails or gives nets
+  two drivers;
 * :mod:`.toolrun`: what both flows share (the synthesis harness, the RTLIL of a
   design, the cache of finished runs);
 * :mod:`.parallel`: many syntheses at once on Dask, with progress per candidate;

@@ -37,11 +37,12 @@ from phongfx.hdl.dsp import DSP_INTERNAL_NS, DSP_MAPPING, DSP_MAPPING_DEPTH, dsp
 
 from phongfx.explore.synth.asic import DEFAULT_LIBRARY, LIBRARIES, asic_synth, is_liberty_path
 from phongfx.explore.synth.devices import device_resources
-from phongfx.explore.synth.toolrun import (SynthError, cached_run, flow_key, harness, read_json, run,
-                                           run_yosys, tail, tool)
+from phongfx.explore.synth.lutmap import ABC9_ASSERT, run_yosys_abc9_fallback
+from phongfx.explore.synth.toolrun import SynthError, cached_run, flow_key, harness, read_json, run, tail, tool
 
 __all__ = ["SynthError", "Target", "TARGETS", "ALL_TARGETS", "DSP_MAPPING", "DSP_MAPPING_DEPTH", "dsp_mapping_of",
-           "harness", "synth", "markdown", "synth_command", "run_yosys_abc9_fallback", "device_resources"]
+           "harness", "synth", "markdown", "synth_command", "run_yosys_abc9_fallback", "ABC9_ASSERT",
+           "device_resources"]
 
 FLOW_VERSION = "3"  # bump when the scripts or parsing change what a cached result means
 
@@ -128,9 +129,6 @@ def _untimed_dsps(netlist):
                if cell.get("type") == "MULT18X18D" and on(cell, "REG_INPUTA_CLK") and on(cell, "REG_OUTPUT_CLK"))
 
 
-#: What Yosys' log says when ABC9 fails its reintegration assertion.
-ABC9_ASSERT = "Assert `GetSize(conn.first) == GetSize(conn.second)' failed"
-
 _OVERUSE = re.compile(r"^Info:\s+(\S+):\s+(\d+)/\s*(\d+)\s+\d+%", re.M)
 
 
@@ -184,23 +182,6 @@ def synth_command(target, options, top, abc9=True, json=None):
         raise ValueError(f"the classic ABC mapping is scripted for ecp5 only, not {target!r}")
     return (f"{command} -run :map_luts\ntechmap -map +/lattice/latches_map.v\nabc -lut 4\nclean\n"
             f"{command} -run map_cells:{tail}")
-
-
-def run_yosys_abc9_fallback(work, script, make_script, outputs=()):
-    """Run the Yosys script ``make_script(True)`` as ``script`` in ``work``; where Yosys
-    0.70's ABC9 fails its reintegration assertion (met on fig8 with local lights and on
-    fig7 at depth 2 with its DSPs mapped) on ECP5, run ``make_script(False)``, the script
-    with the classic ABC mapping (:func:`synth_command`), instead.  Returns (seconds,
-    which ABC flow mapped it)."""
-    (work / script).write_text(make_script(True))
-    try:
-        return run_yosys(work, script, outputs), "abc9"
-    except SynthError:
-        if ABC9_ASSERT not in (work / "yosys.log").read_text(errors="replace"):
-            raise
-    (work / "yosys.log").rename(work / "yosys-abc9.log")
-    (work / script).write_text(make_script(False))
-    return run_yosys(work, script, outputs), "abc (ABC9 failed an assertion: yosys-abc9.log)"
 
 
 def _yosys_script(module, target, options, abc9=True):

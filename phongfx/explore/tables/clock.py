@@ -22,6 +22,7 @@ import sys
 
 from phongfx.config import MAX_PIPELINE, BlendConfig, ShaderConfig
 from phongfx.core.registry import get_block
+from phongfx.core.words import plural
 
 from phongfx.explore.progress import Candidates
 from phongfx.explore.synth.clock import (COEFFICIENTS, ERROR, FEATURES, LIBRARY_COEFFICIENTS, LIBRARY_ERROR,
@@ -223,13 +224,15 @@ def clock_table(selected=None, *, targets=TARGETS, workdir=None, refit=False, pr
     return result
 
 
-def run_table(name, out_dir=None, refit=False, progress=None, device=None):
-    """The table called ``name`` (``"clock"``); nothing is written to ``out_dir``.  With
-    ``device`` (a library name or Liberty file) only the standard-cell flow on it is measured."""
+def run_table(name, out_dir=None, refit=False, progress=None, selected=None, device=None):
+    """The table called ``name`` (``"clock"``) over ``selected`` points (default
+    :func:`points`; ``(label, block, config or None for its defaults, depth)``, fewer for a
+    smoke run); nothing is written to ``out_dir``.  With ``device`` (a library name or
+    Liberty file) only the standard-cell flow on it is measured."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
     targets = TARGETS if device is None else (("asic", device),)
-    return clock_table(targets=targets, refit=refit, progress=progress)
+    return clock_table(selected, targets=targets, refit=refit, progress=progress)
 
 
 def _margin(error):
@@ -245,7 +248,7 @@ def markdown(result):
     lines = [f"# The clock proxy against synthesis (ECP5 LFE5U-45F seed {result['seed']} at {result['freq']} MHz; "
              f"osu018 pre-layout)", ""]
     for target, numbers in result["summary"].items():
-        lines += [f"## {target}: {numbers['rows']} points, median error {numbers['median']:.1%}, "
+        lines += [f"## {target}: {plural(numbers['rows'], 'point')}, median error {numbers['median']:.1%}, "
                   f"largest {numbers['max']:.1%} ({_margin(result['error'][target])})", "",
                   f"Coefficients (ns): {_coefficients(result['coefficients'][target])}", "",
                   "| point | depth | synthesized MHz | proxy MHz | error | synthesized path | proxy path |",

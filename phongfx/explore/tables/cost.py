@@ -71,10 +71,11 @@ def _to_stderr(text):
     print(f"cost: {text}", file=sys.stderr, flush=True)
 
 
-def _synthesize(block, target, device, freq, workdir, stage):
+def _synthesize(block, target, device, freq, workdir, steps):
     try:
-        result = synth(block, target=target, device=device, freq=freq, workdir=workdir, progress=stage)
+        result = synth(block, target=target, device=device, freq=freq, workdir=workdir, progress=steps.next(block))
     except SynthError as error:
+        steps.failed(error)
         return {"block": block, "what": WHAT.get(block, block), "error": str(error).splitlines()[0]}
     keys = _ASIC_KEYS if target == "asic" else _KEYS
     row = {"block": block, "what": WHAT.get(block, block), **{k: result[k] for k in keys}}
@@ -118,13 +119,13 @@ def cost_table(blocks=BLOCKS, *, target="ecp5", device=None, freq=150, n=N, work
     A block whose synthesis fails gets a row with ``error`` instead of numbers.  Each block
     takes up to minutes, so ``progress(text)`` (default: a ``cost:`` line on stderr) hears
     "synthesizing candidate i of N (block) T s" and the flow's stages
-    (:class:`~phongfx.explore.progress.Candidates`).
+    (:class:`~phongfx.explore.progress.Candidates`), and a failed block's error.
     """
     unknown = [b for b in blocks if b not in BLOCKS]
     if unknown:
         raise ValueError(f"blocks must be among {', '.join(BLOCKS)}, not {unknown[0]!r}")
     steps = Candidates(len(blocks), progress or _to_stderr)
-    rows = {b: _synthesize(b, target, device, freq, workdir, steps.next(b)) for b in blocks}
+    rows = {b: _synthesize(b, target, device, freq, workdir, steps) for b in blocks}
     if all(b in rows and "error" not in rows[b] for b in ("difference", "shape")):
         rows["difference+shape"] = _combined(rows["difference"], rows["shape"], "difference+shape",
                                              "Figure 7c + 7d in series")

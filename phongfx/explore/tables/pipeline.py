@@ -90,16 +90,18 @@ def pipeline_rows(names=NAMES, depths=DEPTHS, *, target="ecp5", device=None, fre
     return rows
 
 
-def run_table(name, out_dir=None, target="ecp5", device=None, progress=None):
+def run_table(name, out_dir=None, target="ecp5", device=None, progress=None, names=NAMES, depths=DEPTHS,
+              seeds=SEEDS):
     """The table called ``name`` (:data:`TABLES`) on ``target`` (``device``: the FPGA part or
-    the standard-cell library); writes ``pipeline_fmax.png`` into ``out_dir`` when given
-    (its path is the result's ``plot``)."""
+    the standard-cell library), over ``names``, ``depths`` and ``seeds`` (a smaller run
+    for a smoke test); writes ``pipeline_fmax.png`` into ``out_dir`` when given (its path
+    is the result's ``plot``)."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
-    rows = pipeline_rows(target=target, device=device, progress=progress)
+    rows = pipeline_rows(names, depths, target=target, device=device, seeds=seeds, progress=progress)
     result = {"source": "Fmax against pipeline depth: pipelining to a target frequency",
               "target": target, "device": device, "freq": FREQ,
-              "seeds": [1] if target == "asic" else list(SEEDS), "rows": rows, "plot": None}
+              "seeds": [1] if target == "asic" else list(seeds), "rows": rows, "plot": None}
     if out_dir is not None:
         result["plot"] = plot(result, os.path.join(out_dir, "pipeline_fmax.png"))
     return result

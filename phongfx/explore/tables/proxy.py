@@ -147,15 +147,16 @@ def proxy_table(points=POINTS, *, library="osu018", workdir=None, refit=False, p
     return result
 
 
-def run_table(name, out_dir=None, library="osu018", refit=False):
-    """The table called ``name`` (``"proxy"``); nothing is written to ``out_dir``."""
+def run_table(name, out_dir=None, library="osu018", refit=False, points=POINTS):
+    """The table called ``name`` (``"proxy"``) over ``points`` (a subset of :data:`POINTS`
+    for a smoke run); nothing is written to ``out_dir``."""
     if name not in TABLES:
         raise ValueError(f"unknown table {name!r}; valid tables: {', '.join(TABLES)}")
 
     def progress(index, total, label):
         print(f"proxy: synthesizing point {index + 1} of {total} ({label}, {library}; cached runs are "
               f"instant)", file=sys.stderr, flush=True)
-    return proxy_table(library=library, refit=refit, progress=progress)
+    return proxy_table(points, library=library, refit=refit, progress=progress)
 
 
 def _share(value):
@@ -172,8 +173,10 @@ def markdown(result):
         lines.append(f"| {r['label']} | {r['area_um2']:,.0f} | {r['proxy_um2']:,.0f} | {r['error']:+.1%} |")
     agree, pairs = result["ranking"]
     dagree, dpairs = result["ranking_datapaths"]
+    datapaths = result["max_error_datapaths"]
     lines += ["", f"* Largest error: {result['max_error']:.1%} over every point; "
-              f"{_share(result['max_error_datapaths'])} over the datapaths ({', '.join(DATAPATHS)}).",
+              + (f"{datapaths:.1%} over the datapaths ({', '.join(DATAPATHS)})." if datapaths is not None
+                 else f"no datapath ({', '.join(DATAPATHS)}) among the points."),
               f"* Ranking: the proxy orders {agree} of {pairs} pairs of points as synthesis does; "
               f"{dagree} of {dpairs} pairs of datapath points."]
     if "refit" in result:

@@ -189,7 +189,7 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     data = json.loads((out / "manifest.json").read_text())
     for key in ("scene", "analysis", "chosen", "block", "formats", "latency", "ports", "error", "cost",
                 "cost_model", "rejected", "minimality_proof", "default_widths", "blinn_baseline", "conventional_baseline",
-                "rtl_check", "blocks", "widths"):
+                "rtl_check", "blocks", "widths", "contract"):
         assert key in data, key
     assert data["cost_model"] == "ecp5-proxy" and data["chosen"] == "fig7"
     assert data["cost"]["unit"] == "LUT-eq" and data["cost"]["cost"] == data["cost"]["lut_eq"]
@@ -199,6 +199,13 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     from phongfx.scene.geometry import frames
     assert check["mismatches"] == 0 and check["pixels"] == len(frames(spec)[0]) > 0
     assert os.listdir(out / "verilog") == [f"{data['module']}_top.v"]
+    # the contract: every input port of the top has its meaning, the header names the material
+    inputs = {port["name"] for port in data["top"]["ports"] if port["direction"] == "input" and port["field"]}
+    assert {port for entry in data["contract"]["inputs"] for port in entry["ports"]} == inputs
+    assert [m["name"] for m in data["contract"]["materials"]] == ["shiny"]
+    text = (out / "verilog" / f"{data['module']}_top.v").read_text()
+    assert "// Contract: what the host feeds the core (fig7, compiled for the scene tiny)." in text
+    assert "// Material 0 = shiny: kd 0.6, ks 0.4, ka 0, colour (1, 1, 1), n 16;" in text
     assert (out / "frames" / "frame_000.png").is_file() and (out / "error" / "frame_000.png").is_file()
     assert check["stalls"] > 0 and check["reset_at_cycle"] > 0  # the check stalls and resets mid-stream
     assert "0 mismatches" in capsys.readouterr().out
@@ -282,6 +289,8 @@ def test_example_scenes_compile_and_verify(tmp_path, name):
     chosen, lirps = {"torus": ("fig7", 1)}.get(name, ("conventional", None))
     assert data["chosen"] == chosen and data["block_counts"].get("lirp") == lirps
     assert data["rtl_check"]["mismatches"] == 0
+    header = (out / data["top"]["file"]).read_text()  # the contract names the scene's material
+    assert f"// Material 0 = {data['contract']['materials'][0]['name']}: " in header
     proof = data["overflow_proof"]  # every overflow="error" claim of the shipped design, proven
     assert proof["claims"] and proof["counterexample"] == 0 and proof["unknown"] == 0
 

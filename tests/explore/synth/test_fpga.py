@@ -4,11 +4,13 @@ datapaths of Lyon's Figures 7 and 8 are slow)."""
 
 import json
 import sys
+from pathlib import Path
 
 import pytest
 
 from phongfx.core.registry import get_block
 from phongfx.explore.synth import fpga as synth_module
+from phongfx.explore.synth import lutmap
 from phongfx.explore.synth.fpga import TARGETS, SynthError, dsp_mapping_of, markdown, synth
 from phongfx.hdl.dsp import DSP_INTERNAL_NS
 from phongfx.sim import tools as sim_tools
@@ -254,7 +256,7 @@ def test_abc9_assertion_falls_back_to_abc(tmp_path, monkeypatch):
                                             f"{synth_module.ABC9_ASSERT} in rtlil.cc:3091.\n")
             raise SynthError("Yosys did not finish")
         return 2.5
-    monkeypatch.setattr(synth_module, "run_yosys", fake_run_yosys)
+    monkeypatch.setattr(lutmap, "run_yosys", fake_run_yosys)
     make = lambda abc9: synth_module.synth_command("ecp5", "", "top", abc9, "n.json")  # noqa: E731
     seconds, abc = synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", make)
     assert seconds == 2.5 and abc.startswith("abc (ABC9 failed an assertion")
@@ -266,6 +268,93 @@ def test_abc9_assertion_falls_back_to_abc(tmp_path, monkeypatch):
     def other_failure(work, script, outputs=()):
         (work / "yosys.log").write_text("ERROR: Can't open input file\n")
         raise SynthError("Yosys did not finish")
-    monkeypatch.setattr(synth_module, "run_yosys", other_failure)
+    monkeypatch.setattr(lutmap, "run_yosys", other_failure)
     with pytest.raises(SynthError):
         synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", lambda abc9: "synth_ecp5\n")
+
+
+# what Yosys' check pass wrote of the ECP5 netlist of difference in its harness (Yosys 0.70)
+_CONFLICT_LOG = ("5.52. Executing CHECK pass (checking for obvious problems).\n"
+                 "Warning: multiple conflicting drivers for difference_synth.\\dut.i__payload.l [2]:\n"
+                 "    port Q[0] of cell dut.i__payload.l_TRELLIS_FF_Q_23 (TRELLIS_FF)\n"
+                 "    port Q[0] of cell dut.i__payload.l_TRELLIS_FF_Q_13 (TRELLIS_FF)\n"
+                 "End of script.\n")
+
+
+def _fake_yosys(scripts, conflicted):
+    """A stand-in run_yosys whose log reports conflicting drivers on the runs numbered in
+    ``conflicted`` (from 0)."""
+    def run(work, script, outputs=()):
+        scripts.append((work / script).read_text())
+        (work / "yosys.log").write_text(_CONFLICT_LOG if len(scripts) - 1 in conflicted else "End of script.\n")
+        return 1.5
+    return run
+
+
+def test_conflicting_drivers_rerun_abc9_with_xaiger1(tmp_path, monkeypatch):
+    scripts = []
+    monkeypatch.setattr(lutmap, "run_yosys", _fake_yosys(scripts, {0}))
+    make = lambda abc9: synth_module.synth_command("ecp5", "", "top", abc9, "n.json")  # noqa: E731
+    seconds, abc = synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", make)
+    assert scripts == ["synth_ecp5 -top top -json n.json",
+                       "scratchpad -set abc9.xaiger 1\nsynth_ecp5 -top top -json n.json"]
+    assert abc == "abc9 with xaiger1 (xaiger2 gave nets two drivers: yosys-xaiger2.log)"
+    assert lutmap.conflicts(tmp_path / "yosys-xaiger2.log") == ["difference_synth.\\dut.i__payload.l [2]"]
+
+
+def test_conflicting_drivers_then_classic_abc_then_an_error_naming_the_net(tmp_path, monkeypatch):
+    scripts = []
+    monkeypatch.setattr(lutmap, "run_yosys", _fake_yosys(scripts, {0, 1}))
+    make = lambda abc9: synth_module.synth_command("ecp5", "", "top", abc9, "n.json")  # noqa: E731
+    seconds, abc = synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", make)
+    assert abc == "abc (ABC9 gave nets two drivers: yosys-xaiger2.log, yosys-xaiger1.log)"
+    assert scripts[2] == make(False)
+    monkeypatch.setattr(lutmap, "run_yosys", _fake_yosys([], {0, 1, 2}))
+    with pytest.raises(SynthError, match=r"^Yosys' netlist has 1 net\(s\) with conflicting drivers "
+                                         r"\(difference_synth\.\\dut\.i__payload\.l \[2\]\); log "):
+        synth_module.run_yosys_abc9_fallback(tmp_path, "s.ys", make)
+
+
+def _multiply_driven(netlist):
+    """Bits of a Yosys JSON netlist driven by more than one cell output."""
+    drivers = {}
+    for module in netlist["modules"].values():
+        for name, cell in module.get("cells", {}).items():
+            for port, direction in cell.get("port_directions", {}).items():
+                if direction == "output":
+                    for bit in cell["connections"][port]:
+                        if isinstance(bit, int):
+                            drivers.setdefault(bit, []).append(f"{name}.{port}")
+    return {bit: cells for bit, cells in drivers.items() if len(cells) > 1}
+
+
+@pytest.mark.needs_yosys
+def test_difference_synthesizes_on_ecp5_at_its_defaults():
+    # Yosys 0.70's ABC9 (write_xaiger2) gave two harness flip-flops one output net here, and
+    # nextpnr stopped: "Net 'in_shift[39]' is multiply driven"
+    result = synth("difference")
+    assert result["abc"] == "abc9 with xaiger1 (xaiger2 gave nets two drivers: yosys-xaiger2.log)"
+    assert result["dsp"] == 5 and result["lut4"] > 0 and result["fmax_mhz"] > 1
+    directory = result["directory"]
+    netlist = json.loads(Path(directory, "netlist.json").read_text())
+    assert _multiply_driven(netlist) == {}
+
+
+@pytest.mark.needs_yosys
+@pytest.mark.slow
+def test_the_yosys_abc9_conflict_reproduces_and_xaiger1_avoids_it(tmp_path):
+    # the reproduction for upstream (abc9_conflict/repro.ys): if a new Yosys passes it, the
+    # xaiger1 fallback of phongfx.explore.synth.lutmap may go
+    from phongfx.explore.synth.toolrun import run_yosys
+
+    source = Path(__file__).with_name("abc9_conflict")
+    for name in ("difference.v", "harness.v"):
+        (tmp_path / name).write_text((source / name).read_text())
+    script = (source / "repro.ys").read_text()
+    (tmp_path / "repro.ys").write_text(script.replace("check -assert", "check"))
+    run_yosys(tmp_path, "repro.ys")
+    # reported by synth_ecp5's own check and by the script's
+    assert set(lutmap.conflicts(tmp_path / "yosys.log")) == {"difference_synth.\\dut.i__payload.l [2]"}
+    (tmp_path / "repro.ys").write_text(f"{lutmap.XAIGER1}\n{script}")
+    run_yosys(tmp_path, "repro.ys")  # check -assert passes
+    assert lutmap.conflicts(tmp_path / "yosys.log") == []

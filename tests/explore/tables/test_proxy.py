@@ -106,4 +106,4 @@ def test_a_library_without_coefficients_is_fitted(monkeypatch, tmp_path):
     assert result["library"] == "new_cells" and result["stored"] is False
     assert result["coefficients"] == result["refit"] and result["max_error"] < 1e-6
     text = proxy_table.markdown(result)
-    assert "fitted now: none stored for this library" in text and "; – over the datapaths" in text
+    assert "fitted now: none stored for this library" in text and "no datapath (fig7, fig8, halfway_datapath) among the points" in text
