@@ -9,6 +9,7 @@ A datapath's config nests every unit's config (fig7's repr is 1,300 characters, 
 import dataclasses
 import json
 import shutil
+import sys
 import textwrap
 
 from phongfx.core.registry import block_names, get_block
@@ -52,6 +53,10 @@ def fields(config, prefix=""):
 
 
 def _width():
+    # A pipe or a file gets the full width whatever COLUMNS says (a test runner or CI sets
+    # it), so the text a page shows is the text a script reads; a terminal gets its own.
+    if not sys.stdout.isatty():
+        return MAX_WIDTH
     return max(60, min(MAX_WIDTH, shutil.get_terminal_size((MAX_WIDTH, 24)).columns))
 
 

@@ -23,12 +23,19 @@ def test_blocks_lines_fit_the_terminal_and_long_and_json_give_everything(capsys,
 
     from phongfx.core.registry import block_names
 
+    import sys
+
+    monkeypatch.setenv("COLUMNS", "70")  # a pipe takes the full width whatever COLUMNS says
+    assert main(["blocks"]) == 0
+    piped = capsys.readouterr().out
+    monkeypatch.setattr(sys.stdout, "isatty", lambda: True)
     monkeypatch.setenv("COLUMNS", "300")  # a wide terminal: still at most 100
     assert main(["blocks"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert max(map(len, lines)) <= 100 and len(lines) < 60  # fig7's repr alone was 1,312 characters
     assert lines[0] == "lirp             latency   2  vec=S1.10 a=1.10 out=S1.10 rounding=round_half_up pipeline=0"
     assert "normalize=NormalizeConfig(…)" in "\n".join(lines)
+    assert piped.splitlines() == lines
     monkeypatch.setenv("COLUMNS", "70")
     assert main(["blocks"]) == 0
     assert max(map(len, capsys.readouterr().out.splitlines())) <= 70

@@ -340,7 +340,7 @@ def test_cli_sim_takes_stalls_and_a_reset(capsys, tmp_path):
          "not on verilator"),
         (["--netlist", "ecp5", "--reset-at", "9"],
          "--stalls and --reset-at run the RTL inside Handshake; a --netlist has no ready"),
-        (["--stalls", "1"], "stalls must be a probability in 0..1 (excluding 1)"),
+        (["--stalls", "1"], "--stalls must be a probability in [0, 1) (at 1 nothing would move), not 1"),
     ]:
         assert main(["sim", "lirp", "--vectors", "5", *argv]) == 2
         assert f"phongfx: error: {message}" in capsys.readouterr().err
