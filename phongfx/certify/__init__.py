@@ -1,10 +1,11 @@
 """Certificates: sound upper bounds on a design's error over a scene's whole input domain.
 
 * :mod:`.certificate`: the :class:`~.certificate.Certificate` record;
-* :mod:`.bound`: :func:`~.bound.certify`, the ``"interval"`` method: rounding error by interval
+* :mod:`.bound`: :func:`~.bound.certify`, through the unit's bounding method (:mod:`.methods`);
+  :mod:`.figures`, the ``"interval"`` method of Lyon's datapaths: rounding error by interval
   arithmetic through the golden blocks (:mod:`.interval`, :mod:`.datapath`), the ideal
   datapath's distance from the reference (:mod:`.approximation`), both on boxes of the domain's
-  normals (:mod:`.sphere`) refined by branch and bound, summed at the outputs (:mod:`.outputs`);
+  normals (:mod:`.sphere`) refined by branch and bound (:mod:`.branch`), summed at the outputs (:mod:`.outputs`);
 * :mod:`.exhaustive`: every input code the host can send, where the domain is small enough
   (exact per-pixel normals, one ``n``, lights and viewer at infinity);
 * :mod:`.gappa`: Gappa's proof of the rounding error of Lyon's Figure 7c–d chain.

@@ -1,0 +1,116 @@
+"""Branch and bound over boxes of a domain's normals: the search every box-based bounding
+method shares.
+
+A bounding method gives ``errors(boxes)``: per box and channel the ``rounding`` and
+``approximation`` parts of its bound (B, 3) in display levels, the quantizes that may overflow
+(``faults``) and per box the backside ``gate`` (0 where the hardware's and the reference's
+backside tests agree).  Each box's total ``max_c(rounding + approximation) + 1/2`` holds for
+every point in it and the boxes cover the domain, so the largest total over the boxes at any
+round is sound; :func:`bound_boxes` halves the boxes whose total is within ``tolerance`` of the
+largest, round after round, until the largest stops falling (or the time or box budget is spent):
+splitting only makes the bound tighter.
+"""
+
+import time
+
+import numpy as np
+
+from .sphere import Boxes, cover
+
+__all__ = ["bound_boxes", "cases"]
+
+
+def cases(domain):
+    """``(n, material)`` per admissible shininess of every used material of ``domain``."""
+    return [(n, m) for m, (_, values) in enumerate(domain.materials) for n in values]
+
+
+def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60.0, batch=2048,
+                max_batch=65536, enough=None, boxes=None):
+    """Branch and bound (module docstring): ``(bound, parts)``, ``bound`` inf when some box
+    cannot be bounded (``parts["faults"]`` then names the quantizes that may overflow).
+
+    ``boxes``: the first cover (default :func:`~phongfx.certify.sphere.cover` of the domain's
+    normals, one set per admissible ``n``).  Each round halves the boxes within ``tolerance``
+    of the largest bound (at least the ``batch`` largest, at most ``max_batch``); it stops when
+    the largest has fallen by under 0.2 % over four rounds that split every box near it, or once
+    ``max_boxes`` boxes have been bounded (the budget that makes the result the same on every
+    machine), or at ``seconds``, or as soon as the largest is below ``enough`` (a width search
+    needs no tighter bound)."""
+    start, faults, history = time.perf_counter(), set(), []
+
+    def evaluate(boxes):
+        rounding, approximation, found, gate = errors(boxes)
+        faults.update(found)
+        total = np.max(rounding + approximation, axis=-1) + 0.5
+        return boxes, np.nan_to_num(total, nan=np.inf), rounding, approximation, gate
+
+    if boxes is None:
+        boxes = cover(domain.view_cos_min, domain.min_normal_length, cases(domain))
+    pool = evaluate(boxes)
+    evaluated = len(pool[0])
+    while True:
+        boxes, total = pool[0], pool[1]
+        top = float(total.max())
+        near = total >= top - tolerance
+        whole = np.count_nonzero(near) <= max_batch
+        history.append((top, whole))
+        settled = (len(history) > 4 and all(w for _, w in history[-4:])
+                   and history[-5][0] - top <= 0.002 * max(top, 1.0))
+        met = enough is not None and top < enough
+        if met or settled or time.perf_counter() - start > seconds or evaluated > max_boxes:
+            break
+        count = min(max(np.count_nonzero(near), batch), max_batch, len(total))
+        pick = np.zeros(len(total), dtype=bool)
+        pick[np.argpartition(-total, count - 1)[:count]] = True
+        children = _inherit(evaluate(boxes.take(pick).split()), [part[pick] for part in pool[1:]])
+        evaluated += len(children[0])
+        rest = [boxes.take(~pick)] + [part[~pick] for part in pool[1:]]
+        pool = (_concat(rest[0], children[0]),) + tuple(np.concatenate([a, b]) for a, b in zip(rest[1:], children[1:]))
+    bound, parts = _worst(*pool, domain)
+    parts.update(boxes=int(evaluated), rounds=len(history))
+    if faults:
+        parts["faults"] = sorted(faults)
+    return bound, parts
+
+
+def _inherit(children, parents):
+    """A child keeps its parent's bound where its own is larger: the parent's holds on it too
+    (interval bounds need not shrink with the box, only hold on it)."""
+    boxes, total, *rest = children
+    # Boxes.split puts the low halves first, then the high ones: parents twice over
+    worse = total > np.concatenate([parents[0], parents[0]])
+    for mine, theirs in zip([total, *rest], parents):
+        both = np.concatenate([theirs, theirs])
+        mine[worse] = both[worse]
+    return (boxes, total, *rest)
+
+
+def _concat(a, b):
+    return Boxes(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in ("theta", "phi", "z", "n", "material")))
+
+
+def _box(boxes, i, domain, channel=None):
+    """Where box ``i`` is: its ``n``, material, channel and ranges of θ, φ (degrees) and z."""
+    out = {"n": int(boxes.n[i]), "material": domain.materials[int(boxes.material[i])][0]}
+    if channel is not None:
+        out["channel"] = "rgb"[channel]
+    out.update(theta_deg=[round(float(np.degrees(x)), 4) for x in boxes.theta[i]],
+               phi_deg=[round(float(np.degrees(x)), 4) for x in boxes.phi[i]],
+               z=[round(float(x), 6) for x in boxes.z[i]])
+    return out
+
+
+def _worst(boxes, total, rounding, approximation, gate, domain):
+    """``(bound, parts)``: the box with the largest total, its parts (they sum to the bound), and
+    the largest of each part alone with its box."""
+    i = int(np.argmax(total))
+    c = int(np.argmax(rounding[i] + approximation[i]))
+    parts = {"rounding": float(rounding[i, c]), "approximation": float(approximation[i, c]), "output": 0.5,
+             "where": _box(boxes, i, domain, c)}
+    if gate[i] > 0:
+        parts["backside"] = float(gate[i])
+    for name, part in (("rounding", rounding), ("approximation", approximation)):
+        j = int(np.argmax(part.max(axis=-1)))
+        parts[f"largest_{name}"] = {"levels": float(part[j].max()), "where": _box(boxes, j, domain)}
+    return float(total[i]), parts

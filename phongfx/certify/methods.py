@@ -1,0 +1,30 @@
+"""Which bounding method bounds each unit the compiler can choose.
+
+A bounding method is an object with
+
+* ``name``: what the certificate names as its method (``"interval"``...);
+* ``why_not(shader, domain)``: None when it bounds the design ``shader`` (the compiler's
+  ShaderConfig) over ``domain`` (:class:`phongfx.scene.domain.Domain`), else one sentence;
+* ``bound(shader, spec, domain, *, max_boxes, enough)``: ``(bound_levels, parts)``, a sound
+  upper bound on ``|out - (2^bits - 1)·I_ref|`` over the domain in display levels (inf when some
+  quantize may overflow, ``parts["faults"]`` naming them), refined until it falls below
+  ``enough`` when that is given (:func:`phongfx.certify.branch.bound_boxes`).
+
+Adding a unit's bounding method is one module and one line in :data:`BOUNDING`.
+"""
+
+from .figures import LYON_DATAPATHS
+
+__all__ = ["BOUNDING", "bounding"]
+
+#: method name -> its bounding method
+BOUNDING = {
+    "fig7": LYON_DATAPATHS,
+    "fig8": LYON_DATAPATHS,
+    "halfway": LYON_DATAPATHS,
+}
+
+
+def bounding(method):
+    """The bounding method of ``method`` (None when it has none yet)."""
+    return BOUNDING.get(method)
