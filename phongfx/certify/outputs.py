@@ -29,7 +29,7 @@ from .approximation import (diffuse_shift, form_distance, halfway_distance, half
 from .datapath import unit_terms
 from .sphere import projection
 
-__all__ = ["coefficient_tables", "box_errors"]
+__all__ = ["coefficient_tables", "light_rounding", "box_errors"]
 
 
 def coefficient_tables(blend):
@@ -41,6 +41,25 @@ def coefficient_tables(blend):
     exact = tuple(np.array(table, dtype=np.float64) * blend.levels
                   for table in (blend.ambient, blend.diffuse, blend.specular))
     return out_codes, exact
+
+
+def light_rounding(tables, m, i, levels, d_hi, e_d, t_hi, e_s, q, margin, ideal=None):
+    """Light ``i``'s part of the rounding sum (module docstring) per box (B, 3), and per box
+    its gate: 0 where the backside tests agree, else ``margin``.  ``tables``:
+    :func:`coefficient_tables`; ``m``: the boxes' materials; ``d_hi``, ``t_hi``: the
+    hardware's largest diffuse and specular terms, ``e_d``, ``e_s`` their distance from the
+    ideal ones (B,), whose largest values are ``ideal = (diffuse, specular)`` when known, else
+    ``d_hi + e_d`` and ``t_hi + e_s``; ``q = (lo, hi)`` the exact ``N̂·L``; ``margin`` (B,) or
+    scalar: where ``|q|`` exceeds it, the hardware's gate is the sign of ``q``."""
+    (_, dc, sc), (_, de, se) = tables
+    d_top, t_top = ideal if ideal is not None else (d_hi + e_d, t_hi + e_s)
+    e_d, e_s, d_top, t_hi, t_top = e_d[:, None], e_s[:, None], d_top[:, None], t_hi[:, None], t_top[:, None]
+    rounding = dc[m, i] * e_d + np.abs(dc[m, i] - de[m, i]) * d_top
+    both = sc[m, i] * e_s + np.abs(sc[m, i] - se[m, i]) * t_top
+    agree = (margin < 1.0 / levels) | (q[0] > margin) | (q[1] < -margin)
+    mismatch = np.maximum(sc[m, i] * t_hi, se[m, i] * t_top)
+    rounding = rounding + np.where(agree[:, None], both, np.maximum(both, mismatch))
+    return rounding, np.where(agree, 0.0, margin)
 
 
 def _applied_n(unit, n):
@@ -73,7 +92,8 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length):
     box ``gate``: 0 where the backside tests agree, else the ``|N·L|`` below which they may not."""
     unit, blend = shader.units[0], shader.blend
     spec, diff = unit_terms(unit, boxes, basis, lights, min_normal_length)
-    (ac, dc, sc), (ae, de, se) = coefficient_tables(blend)
+    tables = coefficient_tables(blend)
+    (ac, _, _), (ae, de, se) = tables
     m = boxes.material
     s = scale_range(boxes.z, unit.normalize.order)
     p = projection(boxes, basis, basis[0])
@@ -88,14 +108,10 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length):
         c = projection(boxes, basis, light, reflected=True)
         d, t = diff[i], spec[i]
         faults |= d.faults | t.faults
-        e_d, e_s = d.dev[:, None], t.dev[:, None]
-        rounding += dc[m, i] * e_d + np.abs(dc[m, i] - de[m, i]) * (d.hi[:, None] + e_d)
-        both = sc[m, i] * e_s + np.abs(sc[m, i] - se[m, i]) * (t.hi[:, None] + e_s)
-        margin = d.dev / s[0]  # where |q| exceeds it, the hardware's N·L has the ideal's sign
-        agree = ((margin < 1.0 / blend.levels) | (q[0] > margin) | (q[1] < -margin))[:, None]
-        mismatch = np.maximum(sc[m, i] * t.hi[:, None], se[m, i] * (t.hi[:, None] + e_s))
-        rounding += np.where(agree, both, np.maximum(both, mismatch))
-        gate = np.where(agree[:, 0], gate, np.maximum(gate, margin))
+        # where |q| exceeds d.dev/s, the hardware's N·L has the ideal's sign
+        add, off = light_rounding(tables, m, i, blend.levels, d.hi, d.dev, t.hi, t.dev, q, d.dev / s[0])
+        rounding += add
+        gate = np.maximum(gate, off)
         if unit.specular == "halfway":
             shift = _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k)
         else:

@@ -1,0 +1,156 @@
+"""The bounding method of the spherical interpolation unit (Szirmay-Kalos et al. 2000, Figure 12).
+
+Per light the unit computes ``spec = Q(C_q·W(θ_hw))`` and ``diff = Q(C_dq·W_cos(θ_d,hw))``:
+``C = A^n'`` (``n' = 4n``, equation 18) and ``C_d = A_d`` rounded to ``c``, ``θ_hw = Q(b) +
+k·Q(s)`` the angle register (units of π, wrapping) at pixel ``k`` of a span, ``W`` the ROM word
+of its cell.  The exact setup gives ``θ(k) = a·x`` with ``A·cos x = N_s·H`` (``N_s`` the slerp
+of the span's end normals at ``t = k/(L - 1)``, :mod:`.span`; ``a = a(n')``, §4), so
+``|θ_hw - θ| <= δ = π·2^-(f+1)·L_max`` (``f`` the register's fraction bits, ``L_max``
+:func:`~phongfx.certify.span.max_pixels`).  The unit's own float form is
+``A^n'·g(a·x)``, ``g(y) = cos²y`` for ``|y| <= π/2``, else 0 (0 on a dark span, whose ``C``
+the host loads as 0), and ``(N_s·L)₊`` for the diffuse channel.  Per term:
+
+* **rounding** (hardware against its float form): the product's rounding, ``|C_q - C|·W``,
+  and ``A^n'·|W - g_per(θ)|``, which :func:`rom_error` bounds over every cell with its
+  angle widened by ``δ`` (``g_per`` the 2π-periodic ``cos₊²``, what a wrapping register
+  reads); plus, where the register can wrap (``a·Γ > π``: a span that meets the lobe
+  ``|a·x| <= π/2`` runs to ``|a·x| <= π/2 + aΓ`` and past ``3π/2`` reads the lit cells again),
+  :func:`wrap_error` on the boxes whose ``N_s·H`` is low enough for ``|x| >= 3π/(2a)``;
+* **approximation** (float form against Phong at ``N̂``): ``N_s`` is within
+  ``ε`` (:func:`~phongfx.certify.span.slerp_gap`) of ``N̂``, so ``N_s·H`` lies in the box's
+  ``N̂·H`` range widened by ``ε`` (:func:`~phongfx.certify.span.widen`);
+  ``|A^n'g(a·x) - (A·cos x)₊^n'| <= A^n'·E(n')`` (:func:`lobe_error`, equation 19's fit of
+  ``cos^n'`` by ``cos²(a·x)``); and ``(N_s·H)₊^n'`` against ``max(R̂·L, 0)^n`` (Lyon's
+  appendix: ``(N·H)^4n`` stands for ``(R·L)^n``) is bounded on the box by monotonicity, both
+  rising with their cosine.  The diffuse term is ``ε``-Lipschitz: ``|N_s·L - N̂·L| <= ε``.
+
+The per-light terms sum at the outputs as :func:`~phongfx.certify.outputs.light_rounding`
+says (its backside gate: the hardware's ``diff > 0``), over boxes of ``N̂``
+(:mod:`.sphere`) refined by :func:`~phongfx.certify.branch.bound_boxes`.  Lights and viewer
+at infinity, the viewer along +z (the unit's setup takes ``V = (0, 0, 1)``).
+"""
+
+import math
+
+import numpy as np
+
+from phongfx.golden.spherical import rom_contents
+from phongfx.golden.spherical_setup import solve_a
+from phongfx.scene.span_inputs import VIEWER, halfway
+
+from .branch import bound_boxes, cases
+from .figures import directional_why_not
+from .interval import rounding_error
+from .lobe import diffuse_rom, lobe_range, psi_max, rom_table, wrap_error
+from .outputs import coefficient_tables, light_rounding
+from .span import max_pixels, slerp_gap, widen
+from .sphere import cover, frame, projection
+
+__all__ = ["Spherical", "SPHERICAL"]
+
+
+def _coded(fmt):
+    """Largest distance from a value in ``[0, 1]`` to its code (rounded, saturated)."""
+    top = fmt.max_raw * fmt.lsb
+    return max(fmt.lsb / 2, 1.0 - top)
+
+
+class _Copy:
+    """One copy of the unit (one light): its constant error parts and its tables per ``n``."""
+
+    def __init__(self, unit, pixels, span_deg, fed):
+        theta, rom, c, out = (unit.fmt(name) for name in ("theta", "rom", "c", "out"))
+        self.unit, self.rom = unit, str(rom)
+        #: the register's drift: Q(b) and k·Q(s), k <= L_max - 1, each within half an lsb (units of π)
+        self.delta = math.pi * theta.lsb / 2 * pixels * (1 + 1e-12)
+        product = rounding_error(c.mul(rom), out, unit.rounding) + max(0.0, 1.0 - out.max_raw * out.lsb)
+        w_max = float(rom_contents(unit.addr_bits, self.rom, "cos2").max()) * rom.lsb
+        self.e_s, self.e_d = product + _coded(c) * w_max, product + _coded(c)
+        self.tables = {n: rom_table(unit.addr_bits, self.rom, v, self.delta) for n, v in fed.items()}
+        self.wraps = {n: wrap_error(v, span_deg, self.delta) for n, v in fed.items()}
+        #: past ψ = π/2 the angle a·x passes π/2 + δ (no ROM error) unless a is near 1
+        self.beyond = {n: (0.0 if solve_a(v) * math.pi / 2 >= math.pi / 2 + self.delta else self.tables[n][1])
+                       for n, v in fed.items()}
+
+    def specular(self, boxes, h):
+        """Per box ``(e_s, u_lo, u_hi)``: the hardware's distance from the float form (wrap
+        included) and the float form's range, ``N_s·H ∈ h``."""
+        e_s, u_lo, u_hi = np.zeros(len(boxes)), np.zeros(len(boxes)), np.zeros(len(boxes))
+        for n in self.tables:
+            pick = boxes.n == n
+            part = (h[0][pick], h[1][pick])
+            bound, cut = self.wraps[n]
+            rom = np.where(part[0] <= 0, np.maximum(psi_max(self.tables[n][0], part), self.beyond[n]),
+                           psi_max(self.tables[n][0], part))
+            e_s[pick] = self.e_s + rom + np.where(part[0] > cut, 0.0, bound)
+            u_lo[pick], u_hi[pick] = lobe_range(4.0 * n, part)
+        return e_s, u_lo, u_hi
+
+    def diffuse(self, cosine):
+        """Per box the hardware's distance from ``(N_s·L)₊`` where ``N_s·L >= cosine``."""
+        return self.e_d + diffuse_rom(self.unit.addr_bits, self.rom, self.delta, cosine)
+
+
+class Spherical:
+    """Bounds the ``spherical`` unit (module docstring), one copy per light."""
+
+    #: what the certificate names as its method
+    name = "interval"
+
+    def why_not(self, shader, domain):
+        """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
+        why = directional_why_not(domain)
+        if why:
+            return why
+        if not np.allclose(domain.camera[1], VIEWER):
+            return "the spherical unit's setup takes the viewer along +z"
+        if domain.max_span_angle_deg >= 180.0:
+            return "span ends may be 180° apart, where Phong's interpolated normal is undefined"
+        return None
+
+    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
+        """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
+        basis = frame(VIEWER)
+        lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
+        eps = slerp_gap(domain.max_span_angle_deg)
+        pixels = max_pixels(spec, domain)
+        fed = {n: 4.0 * n for n, _ in cases(domain)}  # the units are fed n' = 4n
+        copies = [_Copy(unit, pixels, domain.max_span_angle_deg, fed) for unit in shader.units]
+        tables = coefficient_tables(shader.blend)
+        levels, against = shader.blend.levels, spec.requirement.against
+
+        def errors(boxes):
+            m = boxes.material
+            rounding = np.abs(tables[0][0] - tables[1][0])[m].copy()
+            approximation = np.zeros_like(rounding)
+            gate = np.zeros(len(boxes))
+            for i, (light, copy) in enumerate(zip(lights, copies)):
+                q = projection(boxes, basis, light)
+                # N_s is within ε of N̂: its N·L within ε of q, its N·H in the widened range
+                e_d = copy.diffuse(q[0] - eps)
+                d_ideal = np.clip(q[1] + eps, 0.0, 1.0)
+                margin = np.maximum(e_d, copy.delta) + eps
+                e_s, u_lo, u_hi = copy.specular(boxes, widen(projection(boxes, basis, halfway(light)), eps))
+                add, off = light_rounding(tables, m, i, levels, d_ideal + e_d, e_d, u_hi + e_s, e_s, q, margin,
+                                          ideal=(d_ideal, u_hi))
+                rounding += add
+                gate = np.maximum(gate, off)
+                shift_d = np.where(q[1] + eps > 0, eps, 0.0)
+                if against == "self":
+                    shift_s = np.zeros(len(boxes))
+                else:
+                    c = projection(boxes, basis, light, reflected=True)
+                    n = boxes.n.astype(np.float64)
+                    g_lo, g_hi = np.maximum(c[0], 0.0) ** n, np.maximum(c[1], 0.0) ** n
+                    shift_s = np.maximum(np.maximum(u_hi - g_lo, g_hi - u_lo), 0.0)
+                de, se = tables[1][1][m, i], tables[1][2][m, i]
+                approximation += (de * shift_d[:, None] + se * shift_s[:, None]) * (1 + 1e-12)
+            return rounding, approximation, set(), gate
+
+        boxes = cover(domain.view_cos_min, 1.0, cases(domain))
+        bound, parts = bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)
+        parts.update(slerp_gap_rad=eps, max_span_pixels=pixels)
+        return bound, parts
+
+
+SPHERICAL = Spherical()
