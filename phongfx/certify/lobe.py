@@ -11,6 +11,9 @@ cos ψ`` (``A <= 1``, so ``|x| <= ψ`` and ``A = cos ψ/cos x``), its diffuse on
   for ``cos^n'``, times equation 18's ``A^n'``);
 * :func:`rom_table`: the most ``A^n'·|W - g_per(θ)|`` (the ROM word against the exact angle's
   value) can be, each cell's error weighted by the largest ``A^n'`` its ``x`` allows;
+* :func:`read_table`: the range of ``A^n'·W`` itself, the float form and the word's error at
+  the same ``x`` (tighter against Phong than the two apart: the ROM errs most on the lobe's
+  flanks, the fit at its ends);
 * :func:`diffuse_rom`: the cos ROM's error over the cells an ``|x_d|`` up to a bound reaches;
 * :func:`wrap_error`: what a register that wraps past ``±π`` can add.
 """
@@ -24,7 +27,8 @@ from phongfx.core.format import Format
 from phongfx.golden.spherical import rom_angles, rom_contents
 from phongfx.golden.spherical_setup import solve_a
 
-__all__ = ["PSI_CELLS", "X_CELLS", "cell_errors", "lobe_table", "lobe_range", "rom_table", "psi_max",
+__all__ = ["PSI_CELLS", "X_CELLS", "cell_errors", "lobe_table", "lobe_range", "rom_table", "read_table",
+           "read_range", "psi_max",
            "diffuse_rom", "wrap_error"]
 
 
@@ -149,27 +153,69 @@ def cell_errors(addr_bits, rom, function, delta):
 
 
 @functools.lru_cache(maxsize=64)
-def rom_table(addr_bits, rom, n_fed, delta):
-    """Per cell ``j`` of ``ψ``, a bound on ``A^n'·|W - g_per(a·x)|`` (the specular ROM), as a
-    :func:`_sparse` max table.  A pixel's exact angle ``a·x`` with ``a·x > π/2 + δ`` reads a
-    zero cell where ``g_per`` is 0 too (up to ``3π/2``: :func:`wrap_error`), so only
-    ``x <= X = (π/2 + δ)/a`` counts, cut into :data:`X_CELLS` bins; a bin takes the largest
-    error of the cells whose ``δ``-widened angles meet it, times ``min(1, cos ψ_j/cos x_b+1)^n'``
-    (``A = cos ψ/cos x``), over the bins with ``x_b <= ψ_j+1``."""
+def _binned(addr_bits, rom, n_fed, delta):
+    """``(x, err)``: :data:`X_CELLS` bins of ``x ∈ [0, (π/2 + δ)/a]`` and per bin the largest
+    error of the specular ROM's cells whose ``δ``-widened angles meet ``a·x`` there."""
     lo, hi, err = cell_errors(addr_bits, rom, "cos2", delta)
     a = solve_a(n_fed)
     x = np.linspace(0.0, (np.pi / 2 + delta) / a, X_CELLS + 1)
     first = np.clip(np.searchsorted(hi + delta, a * x[:-1], side="left"), 0, len(err) - 1)
     last = np.clip(np.searchsorted(lo - delta, a * x[1:], side="right") - 1, 0, len(err) - 1)
-    cells = _sparse(err, np.maximum, 0.0)
-    binned = np.maximum(*_query(cells, first, np.maximum(first, last)))
+    return x, np.maximum(*_query(_sparse(err, np.maximum, 0.0), first, np.maximum(first, last)))
+
+
+def _per_psi(x, bound, reduce):
+    """Per cell ``j`` of ``ψ``, ``reduce`` over the bins with ``x_b <= ψ_j+1`` of
+    ``bound(cos ψ_j, cos ψ_j+1)`` (each (J, X_CELLS)), in blocks of 256 cells."""
     psi = np.linspace(0.0, np.pi / 2, PSI_CELLS + 1)
     out = np.empty(PSI_CELLS)
     for start in range(0, PSI_CELLS, 256):
         j = np.arange(start, min(start + 256, PSI_CELLS))
-        weight = np.minimum(1.0, np.cos(psi[j, None]) / np.cos(x[None, 1:])) ** n_fed
-        out[j] = np.max(np.where(x[None, :-1] <= psi[j + 1, None], weight * binned[None, :], 0.0), axis=1)
-    return _sparse(out * (1 + 1e-12) + 1e-15, np.maximum, 0.0), float(binned.max())
+        values = bound(np.cos(psi[j, None]), np.cos(psi[j + 1, None]))
+        reach = x[None, :-1] <= psi[j + 1, None]
+        out[j] = reduce(np.where(reach, values, np.inf if reduce is np.min else 0.0), axis=1)
+    return out, psi
+
+
+@functools.lru_cache(maxsize=64)
+def rom_table(addr_bits, rom, n_fed, delta):
+    """Per cell ``j`` of ``ψ``, a bound on ``A^n'·|W - g_per(a·x)|`` (the specular ROM), as a
+    :func:`_sparse` max table.  A pixel's exact angle ``a·x`` with ``a·x > π/2 + δ`` reads a
+    zero cell where ``g_per`` is 0 too (up to ``3π/2``: :func:`wrap_error`), so only
+    ``x <= X = (π/2 + δ)/a`` counts, cut into :data:`X_CELLS` bins (:func:`_binned`); a bin
+    takes its error times ``min(1, cos ψ_j/cos x_b+1)^n'`` (``A = cos ψ/cos x``), over the
+    bins with ``x_b <= ψ_j+1``."""
+    x, err = _binned(addr_bits, rom, n_fed, delta)
+    out, _ = _per_psi(x, lambda c0, c1: np.minimum(1.0, c0 / np.cos(x[None, 1:])) ** n_fed * err[None, :],
+                      np.max)
+    return _sparse(out * (1 + 1e-12) + 1e-15, np.maximum, 0.0), float(err.max())
+
+
+@functools.lru_cache(maxsize=64)
+def read_table(addr_bits, rom, n_fed, delta):
+    """Per cell ``j`` of ``ψ``, ``(lo, hi)`` :func:`_sparse` tables bounding ``A^n'·W``, the exact
+    constant times the word the hardware reads: the float form and the ROM's error at one
+    ``x`` together (:func:`lobe_table`'s bounds with ``g ± err`` of each bin of
+    :func:`_binned`; ``W >= 0``; ``W = 0`` past ``X``, which ``x`` reaches once ``ψ`` does)."""
+    x, err = _binned(addr_bits, rom, n_fed, delta)
+    a = solve_a(n_fed)
+    g = np.cos(np.minimum(a * x, np.pi / 2)) ** 2
+    hi, psi = _per_psi(x, lambda c0, c1: np.minimum(1.0, c0 / np.cos(x[None, 1:])) ** n_fed
+                       * (g[None, :-1] + err[None, :]), np.max)
+    lo, _ = _per_psi(x, lambda c0, c1: np.minimum(1.0, c1 / np.cos(x[None, :-1])) ** n_fed
+                     * np.maximum(0.0, g[None, 1:] - err[None, :]), np.min)
+    lo = np.where(psi[1:] > x[-1], 0.0, lo)
+    return (_sparse(np.maximum(lo * (1 - 1e-12) - 1e-15, 0.0), np.minimum, 1.0),
+            _sparse(hi * (1 + 1e-12) + 1e-15, np.maximum, 0.0))
+
+
+def read_range(tables, h):
+    """Per box ``(lo, hi)`` of ``A^n'·W`` where ``N_s·H ∈ h`` (:func:`read_table`'s ``tables``);
+    where ``N_s·H <= 0`` the angle is past ``π/2 + δ`` (the caller checks ``a``) and ``W = 0``."""
+    first, last = _cells(h)
+    lo = np.minimum(*_query(tables[0], first, last))
+    hi = np.maximum(*_query(tables[1], first, last))
+    return np.where(h[0] <= 0, 0.0, lo), np.where(h[1] <= 0, 0.0, hi)
 
 
 def psi_max(table, h):

@@ -41,7 +41,7 @@ from phongfx.scene.span_inputs import VIEWER, halfway
 from .branch import bound_boxes, cases
 from .figures import directional_why_not
 from .interval import rounding_error
-from .lobe import diffuse_rom, lobe_range, psi_max, rom_table, wrap_error
+from .lobe import cell_errors, diffuse_rom, lobe_range, psi_max, read_range, read_table, rom_table, wrap_error
 from .outputs import coefficient_tables, light_rounding
 from .span import max_pixels, slerp_gap, widen
 from .sphere import cover, frame, projection
@@ -60,31 +60,41 @@ class _Copy:
 
     def __init__(self, unit, pixels, span_deg, fed):
         theta, rom, c, out = (unit.fmt(name) for name in ("theta", "rom", "c", "out"))
-        self.unit, self.rom = unit, str(rom)
+        self.unit, self.rom, self.fed = unit, str(rom), fed
         #: the register's drift: Q(b) and k·Q(s), k <= L_max - 1, each within half an lsb (units of π)
         self.delta = math.pi * theta.lsb / 2 * pixels * (1 + 1e-12)
         product = rounding_error(c.mul(rom), out, unit.rounding) + max(0.0, 1.0 - out.max_raw * out.lsb)
         w_max = float(rom_contents(unit.addr_bits, self.rom, "cos2").max()) * rom.lsb
         self.e_s, self.e_d = product + _coded(c) * w_max, product + _coded(c)
-        self.tables = {n: rom_table(unit.addr_bits, self.rom, v, self.delta) for n, v in fed.items()}
-        self.wraps = {n: wrap_error(v, span_deg, self.delta) for n, v in fed.items()}
-        #: past ψ = π/2 the angle a·x passes π/2 + δ (no ROM error) unless a is near 1
-        self.beyond = {n: (0.0 if solve_a(v) * math.pi / 2 >= math.pi / 2 + self.delta else self.tables[n][1])
-                       for n, v in fed.items()}
+        # a wrapped read: the lit cell's value and its word's error
+        worst = float(cell_errors(unit.addr_bits, self.rom, "cos2", self.delta)[2].max())
+        self.wraps = {n: (lambda b, cut: (b + worst if b else 0.0, cut))(*wrap_error(v, span_deg, self.delta))
+                      for n, v in fed.items()}
+        #: past ψ = π/2 the angle a·x passes π/2 + δ (a zero cell, no ROM error) unless a is near 1
+        self.near = {n: solve_a(v) * math.pi / 2 < math.pi / 2 + self.delta for n, v in fed.items()}
 
-    def specular(self, boxes, h):
-        """Per box ``(e_s, u_lo, u_hi)``: the hardware's distance from the float form (wrap
-        included) and the float form's range, ``N_s·H ∈ h``."""
-        e_s, u_lo, u_hi = np.zeros(len(boxes)), np.zeros(len(boxes)), np.zeros(len(boxes))
-        for n in self.tables:
+    def specular(self, boxes, h, against):
+        """Per box ``(e_s, lo, hi)`` where ``N_s·H ∈ h``: against ``"self"`` the hardware's
+        distance from the float form (the ROM's and a wrap's error in it) and the float form's
+        range (:func:`~phongfx.certify.lobe.lobe_range`); against Phong the distance from
+        ``A^n'·W`` (the product's and ``C``'s rounding) and the range of ``A^n'·W``
+        (:func:`~phongfx.certify.lobe.read_range`, a wrap's read added)."""
+        e_s, lo, hi = np.full(len(boxes), self.e_s), np.zeros(len(boxes)), np.zeros(len(boxes))
+        for n, v in self.fed.items():
             pick = boxes.n == n
             part = (h[0][pick], h[1][pick])
             bound, cut = self.wraps[n]
-            rom = np.where(part[0] <= 0, np.maximum(psi_max(self.tables[n][0], part), self.beyond[n]),
-                           psi_max(self.tables[n][0], part))
-            e_s[pick] = self.e_s + rom + np.where(part[0] > cut, 0.0, bound)
-            u_lo[pick], u_hi[pick] = lobe_range(4.0 * n, part)
-        return e_s, u_lo, u_hi
+            wrap = np.where(part[0] > cut, 0.0, bound)
+            past = part[0] <= 0
+            if against == "self":
+                table, top = rom_table(self.unit.addr_bits, self.rom, v, self.delta)
+                rom = np.where(past & self.near[n], top, psi_max(table, part))
+                e_s[pick] += rom + wrap
+                lo[pick], hi[pick] = lobe_range(v, part)
+            else:
+                lo[pick], hi[pick] = read_range(read_table(self.unit.addr_bits, self.rom, v, self.delta), part)
+                hi[pick] = np.where(past & self.near[n], 1.0, hi[pick]) + wrap
+        return e_s, lo, hi
 
     def diffuse(self, cosine):
         """Per box the hardware's distance from ``(N_s·L)₊`` where ``N_s·L >= cosine``."""
@@ -112,7 +122,8 @@ class Spherical:
         """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
         basis = frame(VIEWER)
         lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
-        eps = slerp_gap(domain.max_span_angle_deg)
+        # the host's setup takes a span under sin γ = 1e-9 as not turning: 1e-8 covers its N·H
+        eps = slerp_gap(domain.max_span_angle_deg) + 1e-8
         pixels = max_pixels(spec, domain)
         fed = {n: 4.0 * n for n, _ in cases(domain)}  # the units are fed n' = 4n
         copies = [_Copy(unit, pixels, domain.max_span_angle_deg, fed) for unit in shader.units]
@@ -130,9 +141,9 @@ class Spherical:
                 e_d = copy.diffuse(q[0] - eps)
                 d_ideal = np.clip(q[1] + eps, 0.0, 1.0)
                 margin = np.maximum(e_d, copy.delta) + eps
-                e_s, u_lo, u_hi = copy.specular(boxes, widen(projection(boxes, basis, halfway(light)), eps))
-                add, off = light_rounding(tables, m, i, levels, d_ideal + e_d, e_d, u_hi + e_s, e_s, q, margin,
-                                          ideal=(d_ideal, u_hi))
+                e_s, lo, hi = copy.specular(boxes, widen(projection(boxes, basis, halfway(light)), eps), against)
+                add, off = light_rounding(tables, m, i, levels, d_ideal + e_d, e_d, hi + e_s, e_s, q, margin,
+                                          ideal=(d_ideal, hi))
                 rounding += add
                 gate = np.maximum(gate, off)
                 shift_d = np.where(q[1] + eps > 0, eps, 0.0)
@@ -142,7 +153,7 @@ class Spherical:
                     c = projection(boxes, basis, light, reflected=True)
                     n = boxes.n.astype(np.float64)
                     g_lo, g_hi = np.maximum(c[0], 0.0) ** n, np.maximum(c[1], 0.0) ** n
-                    shift_s = np.maximum(np.maximum(u_hi - g_lo, g_hi - u_lo), 0.0)
+                    shift_s = np.maximum(np.maximum(hi - g_lo, g_hi - lo), 0.0)
                 de, se = tables[1][1][m, i], tables[1][2][m, i]
                 approximation += (de * shift_d[:, None] + se * shift_s[:, None]) * (1 + 1e-12)
             return rounding, approximation, set(), gate
