@@ -6,6 +6,8 @@
   arithmetic through the golden blocks (:mod:`.interval`, :mod:`.datapath`), the ideal
   datapath's distance from the reference (:mod:`.approximation`), both on boxes of the domain's
   normals (:mod:`.sphere`) refined by branch and bound (:mod:`.branch`), summed at the outputs (:mod:`.outputs`);
+  :mod:`.spherical`, the spherical unit's, fed per span (:mod:`.span`), its one-angle tables
+  (:mod:`.lobe`) on the same boxes and sum;
 * :mod:`.exhaustive`: every input code the host can send, where the domain is small enough
   (exact per-pixel normals, one ``n``, lights and viewer at infinity);
 * :mod:`.gappa`: Gappa's proof of the rounding error of Lyon's Figure 7c–d chain.

@@ -10,7 +10,10 @@ A bounding method is an object with
   quantize may overflow, ``parts["faults"]`` naming them), refined until it falls below
   ``enough`` when that is given (:func:`phongfx.certify.branch.bound_boxes`).
 
-Adding a unit's bounding method is one module and one line in :data:`BOUNDING`.
+Adding a unit's bounding method is one module and one line in :data:`BOUNDING`.  None is
+registered for ``euler`` and ``gouraud`` (Hast, Barrera & Bengtsson: the diffuse ``N·L`` alone,
+no place in a shader and never compiled) nor for ``schlick`` (its compile hooks build no input
+stream): no compiled design is one of them (docs/certificate.rst).
 """
 
 from .figures import LYON_DATAPATHS

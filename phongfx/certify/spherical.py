@@ -10,19 +10,22 @@ of the span's end normals at ``t = k/(L - 1)``, :mod:`.span`; ``a = a(n')``, §4
 ``A^n'·g(a·x)``, ``g(y) = cos²y`` for ``|y| <= π/2``, else 0 (0 on a dark span, whose ``C``
 the host loads as 0), and ``(N_s·L)₊`` for the diffuse channel.  Per term:
 
-* **rounding** (hardware against its float form): the product's rounding, ``|C_q - C|·W``,
-  and ``A^n'·|W - g_per(θ)|``, which :func:`rom_error` bounds over every cell with its
-  angle widened by ``δ`` (``g_per`` the 2π-periodic ``cos₊²``, what a wrapping register
-  reads); plus, where the register can wrap (``a·Γ > π``: a span that meets the lobe
-  ``|a·x| <= π/2`` runs to ``|a·x| <= π/2 + aΓ`` and past ``3π/2`` reads the lit cells again),
-  :func:`wrap_error` on the boxes whose ``N_s·H`` is low enough for ``|x| >= 3π/(2a)``;
-* **approximation** (float form against Phong at ``N̂``): ``N_s`` is within
-  ``ε`` (:func:`~phongfx.certify.span.slerp_gap`) of ``N̂``, so ``N_s·H`` lies in the box's
-  ``N̂·H`` range widened by ``ε`` (:func:`~phongfx.certify.span.widen`);
-  ``|A^n'g(a·x) - (A·cos x)₊^n'| <= A^n'·E(n')`` (:func:`lobe_error`, equation 19's fit of
-  ``cos^n'`` by ``cos²(a·x)``); and ``(N_s·H)₊^n'`` against ``max(R̂·L, 0)^n`` (Lyon's
-  appendix: ``(N·H)^4n`` stands for ``(R·L)^n``) is bounded on the box by monotonicity, both
-  rising with their cosine.  The diffuse term is ``ε``-Lipschitz: ``|N_s·L - N̂·L| <= ε``.
+* **rounding** (hardware against ``A^n'·W``, the exact constant times the word read): the
+  product's rounding and ``|C_q - C|·W``; the diffuse channel's also holds ``A_d·|W - g_per|``
+  (:func:`~phongfx.certify.lobe.diffuse_rom`, ``g_per`` the 2π-periodic ``cos₊`` a wrapping
+  register reads, each cell's angle widened by ``δ``);
+* **approximation** (``A^n'·W`` against Phong at ``N̂``): ``N_s`` is within ``ε``
+  (:func:`~phongfx.certify.span.slerp_gap`) of ``N̂``, so ``N_s·H`` lies in the box's ``N̂·H``
+  range widened by ``ε`` (:func:`~phongfx.certify.span.widen`), over which
+  :func:`~phongfx.certify.lobe.read_table` bounds ``A^n'·W``: equation 19's ``cos²(a·x)`` for
+  ``cos^n' x`` and the word's error at the same ``x`` together; against ``max(R̂·L, 0)^n``
+  (Lyon's appendix: ``(N·H)^4n`` stands for ``(R·L)^n``) both rise with their cosine.  Where
+  the register can wrap (``a·Γ > π``: a span that meets the lobe ``|a·x| <= π/2`` runs to
+  ``|a·x| <= π/2 + aΓ``, and past ``3π/2`` reads the lit cells again) :func:`~phongfx.certify.lobe.wrap_error`
+  is added on the boxes whose ``N_s·H`` is low enough.  The diffuse term is ``ε``-Lipschitz:
+  ``|N_s·L - N̂·L| <= ε``.  Against the unit's own float form (``"self"``) the ROM's error
+  (:func:`~phongfx.certify.lobe.rom_table`) and a wrap are the rounding part instead, and the
+  specular approximation is 0.
 
 The per-light terms sum at the outputs as :func:`~phongfx.certify.outputs.light_rounding`
 says (its backside gate: the hardware's ``diff > 0``), over boxes of ``N̂``
@@ -101,6 +104,15 @@ class _Copy:
         return self.e_d + diffuse_rom(self.unit.addr_bits, self.rom, self.delta, cosine)
 
 
+def _span_why_not(domain):
+    """Why the spherical unit's own assumptions miss ``domain`` (None when they hold)."""
+    if not np.allclose(domain.camera[1], VIEWER):
+        return "the spherical unit's setup takes the viewer along +z"
+    if domain.max_span_angle_deg >= 180.0:
+        return "span ends may be 180° apart, where Phong's interpolated normal is undefined"
+    return None
+
+
 class Spherical:
     """Bounds the ``spherical`` unit (module docstring), one copy per light."""
 
@@ -109,14 +121,7 @@ class Spherical:
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
-        why = directional_why_not(domain)
-        if why:
-            return why
-        if not np.allclose(domain.camera[1], VIEWER):
-            return "the spherical unit's setup takes the viewer along +z"
-        if domain.max_span_angle_deg >= 180.0:
-            return "span ends may be 180° apart, where Phong's interpolated normal is undefined"
-        return None
+        return directional_why_not(domain) or _span_why_not(domain)
 
     def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
         """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
