@@ -18,7 +18,7 @@ from phongfx.scene.domain import domain
 from phongfx.scene.geometry import FrameGeometry, frames
 from phongfx.scene.mesh import Spans, unit
 from phongfx.scene.span_inputs import VIEWER, halfway
-from phongfx.scene.file import load_scene
+from phongfx.scene.file import load_scene, parse_scene
 
 #: The widest point of the compiler's spherical search on torus (its manifest's "widest").
 WIDEST = {"addr_bits": 16, "coef": 16, "rom_bits": 16, "theta_frac": 20}
@@ -155,3 +155,43 @@ def test_the_viewer_must_be_along_z():
     moved = replace(dom, camera=("infinity", (0.0, 0.6, 0.8)))
     got = certify("spherical", {}, spec, moved)
     assert not got.certified and got.why == "the spherical unit's setup takes the viewer along +z"
+
+
+def test_a_wrapping_register_is_bounded():
+    """At n = 40 (fed n' = 160, a = 7.7) a span of the torus that meets the highlight lobe can
+    run past 3π/2 and read lit cells again: spans drawn through the highlight show it, far over
+    the unit's own error, and the bound counts it."""
+    spec = parse_scene(open("scenes/torus.toml").read().replace("n = 16", "n = 40"))
+    dom = domain(spec)
+    params = {"addr_bits": 12, "rom_bits": 12, "theta_frac": 16}
+    shader = shader_config("spherical", params, spec)
+    got = certify("spherical", params, spec, dom, shader=shader, max_boxes=50_000)
+    hard = _measured(spec, shader, params, [_hard_spans(spec, dom, 20_000, 13)])
+    assert 50 < hard <= got.bound_levels
+    assert _measured(spec, shader, params) < 20  # the frames never show it
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n", [1, 4, 16, 40])
+@pytest.mark.parametrize("params", [{}, {"addr_bits": 8, "rom_bits": 8, "theta_frac": 12}, WIDEST])
+def test_the_bound_holds_on_many_hard_spans(n, params):
+    spec = parse_scene(open("scenes/torus.toml").read().replace("n = 16", f"n = {n}"))
+    dom = domain(spec)
+    shader = shader_config("spherical", params, spec)
+    got = certify("spherical", params, spec, dom, shader=shader)
+    poses = [g for _, g in pose_frames(spec, dom, 100_000, 2)]
+    measured = max(_measured(spec, shader, params, poses),
+                   _measured(spec, shader, params, [_hard_spans(spec, dom, 100_000, 17)]))
+    assert measured <= got.bound_levels
+
+
+def test_against_its_own_float_form_it_certifies():
+    """Against the unit's own float form (``against = "self"``) only the hardware's rounding is
+    left: at 12 address bits and 16 angle bits the bound certifies 1 level, and holds."""
+    spec = parse_scene(open("scenes/torus.toml").read().replace('against = "phong"', 'against = "self"'))
+    dom = domain(spec)
+    params = {"addr_bits": 12, "rom_bits": 12, "theta_frac": 16}
+    shader = shader_config("spherical", params, spec)
+    got = certify("spherical", params, spec, dom, shader=shader, max_boxes=50_000)
+    measured = max(_measured(spec, shader, params), _measured(spec, shader, params, [_hard_spans(spec, dom, 20_000, 13)]))
+    assert 0.8 < measured <= got.bound_levels < 1.5 and got.certified
