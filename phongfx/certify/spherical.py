@@ -71,8 +71,10 @@ class _Copy:
         self.e_s, self.e_d = product + _coded(c) * w_max, product + _coded(c)
         # a wrapped read: the lit cell's value and its word's error
         worst = float(cell_errors(unit.addr_bits, self.rom, "cos2", self.delta)[2].max())
-        self.wraps = {n: (lambda b, cut: (b + worst if b else 0.0, cut))(*wrap_error(v, span_deg, self.delta))
-                      for n, v in fed.items()}
+        self.wraps = {}
+        for n, v in fed.items():
+            bound, cut = wrap_error(v, span_deg, self.delta)
+            self.wraps[n] = (bound + worst if bound else 0.0, cut)
         #: past ψ = π/2 the angle a·x passes π/2 + δ (a zero cell, no ROM error) unless a is near 1
         self.near = {n: solve_a(v) * math.pi / 2 < math.pi / 2 + self.delta for n, v in fed.items()}
 

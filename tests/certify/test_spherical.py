@@ -17,8 +17,8 @@ from phongfx.golden.spherical_setup import solve_a
 from phongfx.scene.domain import domain
 from phongfx.scene.geometry import FrameGeometry, frames
 from phongfx.scene.mesh import Spans, unit
-from phongfx.scene.span_inputs import VIEWER, halfway
 from phongfx.scene.file import load_scene, parse_scene
+from phongfx.scene.span_inputs import VIEWER, halfway
 
 #: The widest point of the compiler's spherical search on torus (its manifest's "widest").
 WIDEST = {"addr_bits": 16, "coef": 16, "rom_bits": 16, "theta_frac": 20}
