@@ -14,6 +14,7 @@ Adding a unit's bounding method is one module and one line in :data:`BOUNDING`.
 """
 
 from .figures import LYON_DATAPATHS
+from .table_units import BLINN_BOUND, CONVENTIONAL_BOUND
 
 __all__ = ["BOUNDING", "bounding"]
 
@@ -22,6 +23,8 @@ BOUNDING = {
     "fig7": LYON_DATAPATHS,
     "fig8": LYON_DATAPATHS,
     "halfway": LYON_DATAPATHS,
+    "conventional": CONVENTIONAL_BOUND,
+    "blinn": BLINN_BOUND,
 }
 
 

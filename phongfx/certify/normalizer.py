@@ -1,0 +1,133 @@
+"""The table units' normalizer and cosines on :class:`~phongfx.certify.interval.Interval` values,
+box by box of the domain's normals.
+
+The conventional and Blinn units (:mod:`phongfx.golden.conventional`, :mod:`phongfx.golden.blinn`;
+Lyon 1993, "Background": the direct design that normalizes ``N`` per pixel) take the interpolated
+normal ``N' = √z·N̂`` as the host rounds it (:func:`phongfx.scene.span_inputs.conventional_codes`:
+to nearest in ``vec``, saturated) and form each cosine as
+``c = round(round(d·2^(j-h))·y1)`` with ``d = N·X`` exact, ``2^(j-h)·y1 = (1 + r)/sqrt(q)``
+(``q = N·N``, ``r`` the seed table's and Newton step's relative error, known per mantissa code:
+:func:`~phongfx.certify.tables.rsqrt_factor`).  Against the ideal ``N̂·X`` (exact unit normal,
+exact unit ``X``):
+
+* :func:`normal_codes`: ``N = N' + δ``, one shared noise symbol per component of ``δ`` (the
+  host's rounding), so that the normalizer's division takes out the part of ``δ`` along ``N'``
+  (``d`` and ``1/sqrt(q)`` carry the same symbols);
+* :func:`inverse_length`: ``1/sqrt(q)`` in affine form about the box's middle ``q`` (slope there
+  times ``q``'s terms, the slope's spread over the range times its deviation as remainder), and
+  the table's ``r`` as remainder;
+* :func:`cosine`: ``d·k`` by the Interval product, plus the ``dot`` rounding (times ``y1 < 2``)
+  and the output rounding;
+* :func:`clamp`: the hardware's clamps (to 1, to 0 by an unsigned format's saturation), which
+  move no value toward the outside of ``[low, high]``: with the ideal inside, the distance does
+  not grow, and the terms stay where the range is inside.
+"""
+
+import numpy as np
+
+from phongfx.core.format import Format
+
+from phongfx.golden.fixed import Fixed
+
+from .interval import Interval, rounding_error
+from .sphere import product, projection
+from .tables import rsqrt_factor
+
+__all__ = ["SYMBOLS", "normal_codes", "direction", "product_of", "inverse_length", "cosine", "clamp", "rounded"]
+
+#: A format finer than any the units' exact products have: rounding from it costs a full half LSB
+_EXACT = Format(2, 40, signed=True)
+
+
+#: Noise symbols of a cosine stage: the three components of the host's rounding of ``N``, then
+#: one per constant vector (its code's error, a fixed offset: one symbol for all of its
+#: components keeps where it points)
+SYMBOLS = 5
+
+
+def normal_codes(vec, boxes, basis):
+    """The host's ``N`` codes (B, 3) as an Interval over ``boxes`` (:mod:`.sphere`): ``N' =
+    √z·N̂`` rounded to nearest in ``vec`` (``|δ| <= lsb/2``) and saturated (a component over the
+    largest code moves by its excess); symbols ``0..2`` of :data:`SYMBOLS`."""
+    root = (np.sqrt(np.clip(boxes.z[:, 0], 0, 1)), np.sqrt(np.clip(boxes.z[:, 1], 0, 1)))
+    parts = [product(root, projection(boxes, basis, axis)) for axis in np.eye(3)]
+    lo, hi = np.stack([p[0] for p in parts], -1), np.stack([p[1] for p in parts], -1)
+    top, low = vec.max_raw * vec.lsb, vec.min_raw * vec.lsb
+    e = np.maximum(vec.lsb / 2, np.maximum(hi - top, low - lo)) * (1 + 1e-12)
+    terms = np.zeros(lo.shape + (SYMBOLS,))
+    terms[..., :3] = e[..., None] * np.eye(3)
+    return Interval(np.clip(lo - e, low, top), np.clip(hi + e, low, top), 0.0, vec, terms=terms)
+
+
+def direction(vector, fmt, count, symbol):
+    """A constant unit ``vector`` (a light or viewer at infinity) as the host encodes it (to
+    nearest, saturated), (count, 3): its code, whose error is the ``symbol``-th term."""
+    vector = np.asarray(vector, dtype=np.float64)
+    code = Fixed.from_float(vector, fmt, rounding="round_half_up", overflow="saturate").to_float()
+    terms = np.zeros((count, 3, SYMBOLS))
+    terms[..., symbol] = code - vector
+    wide = np.broadcast_to(code, (count, 3))
+    return Interval(wide, wide, 0.0, fmt, terms=terms)
+
+
+def product_of(a, b, count):
+    """``A·B`` of two constant directions (:func:`direction`) as the hardware forms it, exact,
+    against the exact ``A·B``: ``ΔA·B_code + A·ΔB`` on their two symbols."""
+    code_a, code_b = a.lo[0], b.lo[0]
+    delta_a, delta_b = a.terms[0].sum(axis=-1), b.terms[0].sum(axis=-1)
+    exact_a = code_a - delta_a
+    terms = np.zeros((count, SYMBOLS))
+    terms[:, np.flatnonzero(a.terms[0].any(axis=0))] += float(delta_a @ code_b)
+    terms[:, np.flatnonzero(b.terms[0].any(axis=0))] += float(exact_a @ delta_b)
+    value = np.full(count, float(code_a @ code_b))
+    return Interval(value, value, 0.0, a.fmt.mul(b.fmt).add(a.fmt.mul(b.fmt)), terms=terms)
+
+
+def inverse_length(config, normal):
+    """``(k, y_max)``: the hardware's ``k = 2^(j-h)·y1`` (B,) as an Interval against the ideal
+    ``1/|N'|`` (module docstring), and a bound on ``y1`` itself."""
+    q = normal.dot(normal)
+    f_lo, f_hi = rsqrt_factor(config, (np.maximum(q.lo, 1e-300), q.hi))
+    dev = q.dev
+    low = q.lo - dev
+    if np.any(low <= 0):
+        raise ValueError("the domain's normals must be longer than the rounding of their codes")
+    mid = q.mid
+    slope = -0.5 * mid ** -1.5
+    # the slope of q^-1/2 is monotone: its spread over the range is largest at an end
+    spread = np.maximum(np.abs(-0.5 * low ** -1.5 - slope), np.abs(-0.5 * (q.hi + dev) ** -1.5 - slope))
+    table = np.maximum(np.abs(f_lo - 1), np.abs(f_hi - 1)) / np.sqrt(q.lo)
+    err = np.abs(slope) * q.err + spread * dev + table
+    k = Interval(f_lo / np.sqrt(q.hi), f_hi / np.sqrt(q.lo), err * (1 + 1e-12), config.fmt("y"), q.faults,
+                 None if q.terms is None else q.terms * slope[..., None])
+    y_max = 2.0 * np.maximum(f_hi, 1.0)  # y1 = (1 + r)/sqrt(m), m >= 1/4
+    return k, y_max
+
+
+def rounded(x, error):
+    """``x`` after a rounding that moves it by at most ``error``."""
+    return Interval(x.lo - error, x.hi + error, (x.err + error) * (1 + 1e-12), x.fmt, x.faults, x.terms)
+
+
+def cosine(config, normal, k, y_max, vector, fmt):
+    """``round(round(N·X·2^(j-h))·y1)`` in ``fmt`` before its clamps: ``N·X`` exact (``vector``
+    the constant ``X`` as an Interval, its code's distance to the exact one as remainder),
+    times ``k``, and the two roundings.  The scaled ``N·X`` must fit ``dot`` (it does for
+    ``|X| < 2``: ``|N·X·2^(j-h)| <= sqrt(m)·|X|``)."""
+    dot = config.fmt("dot")
+    d = normal.dot(vector)
+    c = d * k
+    faults = c.faults
+    if np.max(np.linalg.norm(vector.magnitude, axis=-1)) >= dot.max_raw * dot.lsb:
+        faults = faults | {"blinn d'"}
+    error = y_max * rounding_error(_EXACT, dot, config.rounding) + rounding_error(_EXACT, fmt, config.rounding)
+    c = rounded(c, error)
+    return Interval(c.lo, c.hi, c.err, fmt, faults, c.terms)
+
+
+def clamp(x, low=-np.inf, high=np.inf):
+    """``x`` clamped to ``[low, high]``, against an ideal inside it (module docstring)."""
+    inside = (x.lo >= low) & (x.hi <= high)
+    err = np.where(inside, x.err, x.dev)
+    terms = None if x.terms is None else np.where(inside[..., None], x.terms, 0.0)
+    return Interval(np.clip(x.lo, low, high), np.clip(x.hi, low, high), err, x.fmt, x.faults, terms)
