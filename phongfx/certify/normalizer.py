@@ -39,10 +39,12 @@ __all__ = ["SYMBOLS", "normal_codes", "direction", "product_of", "inverse_length
 _EXACT = Format(2, 40, signed=True)
 
 
-#: Noise symbols of a cosine stage: the three components of the host's rounding of ``N``, then
-#: one per constant vector (its code's error, a fixed offset: one symbol for all of its
-#: components keeps where it points)
-SYMBOLS = 5
+#: Noise symbols of a cosine stage: the three components of the host's rounding of ``N``;
+#: :data:`OFFSET`, whose value is 1: the fixed offsets (the light's and viewer's code errors,
+#: the middle of the seed table's ``r``), each the same wherever it enters, so that they cancel
+#: where the datapath cancels them; :data:`TABLE`, the rest of ``r`` (the same in every cosine
+#: of a pixel: they share ``y1``)
+SYMBOLS, OFFSET, TABLE = 5, 3, 4
 
 
 def normal_codes(vec, boxes, basis):
@@ -59,35 +61,41 @@ def normal_codes(vec, boxes, basis):
     return Interval(np.clip(lo - e, low, top), np.clip(hi + e, low, top), 0.0, vec, terms=terms)
 
 
-def direction(vector, fmt, count, symbol):
+def direction(vector, fmt, count):
     """A constant unit ``vector`` (a light or viewer at infinity) as the host encodes it (to
-    nearest, saturated), (count, 3): its code, whose error is the ``symbol``-th term."""
+    nearest, saturated), (count, 3): its code, whose error is a term on :data:`OFFSET`."""
     vector = np.asarray(vector, dtype=np.float64)
     code = Fixed.from_float(vector, fmt, rounding="round_half_up", overflow="saturate").to_float()
     terms = np.zeros((count, 3, SYMBOLS))
-    terms[..., symbol] = code - vector
+    terms[..., OFFSET] = code - vector
     wide = np.broadcast_to(code, (count, 3))
     return Interval(wide, wide, 0.0, fmt, terms=terms)
 
 
 def product_of(a, b, count):
     """``A·B`` of two constant directions (:func:`direction`) as the hardware forms it, exact,
-    against the exact ``A·B``: ``ΔA·B_code + A·ΔB`` on their two symbols."""
+    against the exact ``A·B``: ``ΔA·B_code + A·ΔB`` on :data:`OFFSET`."""
     code_a, code_b = a.lo[0], b.lo[0]
-    delta_a, delta_b = a.terms[0].sum(axis=-1), b.terms[0].sum(axis=-1)
-    exact_a = code_a - delta_a
+    delta_a, delta_b = a.terms[0, :, OFFSET], b.terms[0, :, OFFSET]
     terms = np.zeros((count, SYMBOLS))
-    terms[:, np.flatnonzero(a.terms[0].any(axis=0))] += float(delta_a @ code_b)
-    terms[:, np.flatnonzero(b.terms[0].any(axis=0))] += float(exact_a @ delta_b)
+    terms[:, OFFSET] = float(delta_a @ code_b) + float((code_a - delta_a) @ delta_b)
     value = np.full(count, float(code_a @ code_b))
     return Interval(value, value, 0.0, a.fmt.mul(b.fmt).add(a.fmt.mul(b.fmt)), terms=terms)
 
 
-def inverse_length(config, normal):
+def inverse_length(config, normal, z):
     """``(k, y_max)``: the hardware's ``k = 2^(j-h)·y1`` (B,) as an Interval against the ideal
-    ``1/|N'|`` (module docstring), and a bound on ``y1`` itself."""
+    ``1/|N'|`` (module docstring), and a bound on ``y1`` itself; ``z`` (B, 2) the range of
+    ``|N'|²`` (:func:`normal_codes`' ``normal``): ``|N| = |N' + δ|`` is within ``|δ|`` of
+    ``|N'|``, which bounds ``q``'s range closer than the Interval's sum of squares (whose
+    components' ranges move together), and decides which mantissas the table sees."""
     q = normal.dot(normal)
-    f_lo, f_hi = rsqrt_factor(config, (np.maximum(q.lo, 1e-300), q.hi))
+    shift = np.sqrt(np.sum(np.diagonal(normal.terms[..., :3], axis1=-2, axis2=-1) ** 2, axis=-1))
+    length = np.sqrt(np.clip(z, 0.0, None))
+    q_lo = np.maximum(q.lo, np.maximum(length[:, 0] - shift, 0.0) ** 2 * (1 - 1e-12))
+    q_hi = np.minimum(q.hi, (length[:, 1] + shift) ** 2 * (1 + 1e-12))
+    q = Interval(q_lo, q_hi, q.err, q.fmt, q.faults, q.terms)
+    f_lo, f_hi, m_min = rsqrt_factor(config, (np.maximum(q.lo, 1e-300), q.hi))
     dev = q.dev
     low = q.lo - dev
     if np.any(low <= 0):
@@ -96,11 +104,16 @@ def inverse_length(config, normal):
     slope = -0.5 * mid ** -1.5
     # the slope of q^-1/2 is monotone: its spread over the range is largest at an end
     spread = np.maximum(np.abs(-0.5 * low ** -1.5 - slope), np.abs(-0.5 * (q.hi + dev) ** -1.5 - slope))
-    table = np.maximum(np.abs(f_lo - 1), np.abs(f_hi - 1)) / np.sqrt(q.lo)
+    # r·q^-1/2 with r = r_mid + r_rad·ε: about the middle of q^-1/2's range, the rest as remainder
+    g_lo, g_hi = q.hi ** -0.5, q.lo ** -0.5
+    g_mid, r_mid, r_rad = (g_lo + g_hi) / 2, (f_lo + f_hi) / 2 - 1, (f_hi - f_lo) / 2
+    table = np.maximum(np.abs(f_lo - 1), np.abs(f_hi - 1)) * (g_hi - g_lo) / 2
     err = np.abs(slope) * q.err + spread * dev + table
-    k = Interval(f_lo / np.sqrt(q.hi), f_hi / np.sqrt(q.lo), err * (1 + 1e-12), config.fmt("y"), q.faults,
-                 None if q.terms is None else q.terms * slope[..., None])
-    y_max = 2.0 * np.maximum(f_hi, 1.0)  # y1 = (1 + r)/sqrt(m), m >= 1/4
+    terms = q.terms * slope[..., None]
+    terms[..., OFFSET] += r_mid * g_mid
+    terms[..., TABLE] += r_rad * g_mid
+    k = Interval(f_lo * g_lo, f_hi * g_hi, err * (1 + 1e-12), config.fmt("y"), q.faults, terms)
+    y_max = f_hi / np.sqrt(m_min) * (1 + 1e-12)  # y1 = (1 + r)/sqrt(m)
     return k, y_max
 
 

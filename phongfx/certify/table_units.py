@@ -35,44 +35,77 @@ from .figures import directional_why_not
 from .interval import rounding_error
 from .normalizer import clamp, cosine, direction, inverse_length, normal_codes, product_of, rounded
 from .outputs import coefficient_tables
-from .sphere import frame, projection
+from .sphere import cos_range, frame, projection
 from .tables import power_bound
 
-__all__ = ["TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
+__all__ = ["TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "cosine_range", "light_terms", "blend_errors"]
 
 
 def _t(config, pre):
     """``(lo, hi, dev)`` of a cosine ``pre`` rounded to ``t`` and clamped to ``[0, 1]``."""
     t = clamp(rounded(pre, rounding_error(pre.fmt, config.fmt("t"), config.rounding)), 0.0, 1.0)
-    return t.lo, t.hi, t.dev
+    return (t.lo, t.hi), t.dev
 
 
 def _conventional(unit, normal, k, y_max, light, view, light_view):
     c_light = clamp(cosine(unit, normal, k, y_max, light, unit.fmt("cos")), high=1.0)
     c_view = clamp(cosine(unit, normal, k, y_max, view, unit.fmt("cos")), high=1.0)
-    return c_light, _t(unit, (c_light * c_view).shift(1) - light_view)
+    return (c_light, *_t(unit, (c_light * c_view).shift(1) - light_view))
 
 
 def _blinn(unit, normal, k, y_max, light, half, light_view):
     c_light = clamp(cosine(unit, normal, k, y_max, light, unit.fmt("out")), 0.0, 1.0)
-    return c_light, _t(unit, clamp(cosine(unit, normal, k, y_max, half, unit.fmt("t")), 0.0, 1.0))
+    return (c_light, *_t(unit, clamp(cosine(unit, normal, k, y_max, half, unit.fmt("t")), 0.0, 1.0)))
 
 
-def light_terms(unit, boxes, basis, light, second, specular, n_hw):
+def cosine_range(boxes, basis, w, reflected=False):
+    """Exact ``(lo, hi)`` of ``W·N̂`` (or ``R̂·W``, ``reflected``) over each box: the form of
+    :func:`~phongfx.certify.sphere.projection`, ``a·cos(sθ) + b·sin(sθ)·C`` with ``C = cos(φ - ψ)``,
+    is linear in ``C``, so its extremes are at ``C``'s ends, and at a fixed ``C`` it is
+    ``A·cos(sθ - α)``, whose range over ``θ`` is exact (:func:`~phongfx.certify.sphere.cos_range`).
+    Interval products of the two factors would lose the first order at a cosine's peak, where a
+    large ``n`` needs it."""
+    v, e1, e2 = basis
+    w = np.asarray(w, dtype=np.float64)
+    a, b, psi = float(w @ v), float(np.hypot(w @ e1, w @ e2)), float(np.arctan2(w @ e2, w @ e1))
+    s = 2.0 if reflected else 1.0
+    turn = cos_range(boxes.phi[:, 0] - psi, boxes.phi[:, 1] - psi)
+    lo, hi = np.full(len(boxes), np.inf), np.full(len(boxes), -np.inf)
+    for c in turn:
+        c = np.clip(c, -1.0, 1.0)
+        size, alpha = np.hypot(a, b * c), np.arctan2(b * c, a)
+        low, high = cos_range(s * boxes.theta[:, 0] - alpha, s * boxes.theta[:, 1] - alpha)
+        lo, hi = np.minimum(lo, size * low), np.maximum(hi, size * high)
+    return lo - 1e-14, hi + 1e-14
+
+
+def _reflected(boxes, basis, light, view):
+    """Phong's ``R·V`` over each box."""
+    return cosine_range(boxes, basis, light, reflected=True)
+
+
+def _direct(boxes, basis, light, half):
+    """``N̂·H`` over each box."""
+    return cosine_range(boxes, basis, half)
+
+
+def light_terms(unit, boxes, basis, light, second, specular, cosine_range, n_hw):
     """Per box the unit's terms for one light (B,) each: ``(e_d, d_hi, e_s, ideal_hi, hw_hi,
     faults)``, the diffuse term's deviation from ``max(N̂·L, 0)`` and its largest value, the
     specular term's deviation from the ideal ``t^n'`` and the largest ideal and hardware
     values; ``second`` the unit's other vector (``V`` or ``H``), ``specular`` the unit's
-    cosine stage (:func:`_conventional`, :func:`_blinn`), ``n_hw`` the applied ``n'``."""
+    cosine stage (:func:`_conventional`, :func:`_blinn`), ``cosine_range`` the exact range
+    of its ideal cosine over each box (:func:`_reflected`, :func:`_direct`), ``n_hw`` the
+    applied ``n'``."""
     count, vec = len(boxes), unit.fmt("vec")
     normal = normal_codes(vec, boxes, basis)
-    k, y_max = inverse_length(unit, normal)
-    l_code, s_code = direction(light, vec, count, 3), direction(second, vec, count, 4)
+    k, y_max = inverse_length(unit, normal, boxes.z)
+    l_code, s_code = direction(light, vec, count), direction(second, vec, count)
     light_view = product_of(l_code, s_code, count)
-    c_light, (lo, hi, dev) = specular(unit, normal, k, y_max, l_code, s_code, light_view)
+    c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view)
     out = unit.fmt("out")
     diff = clamp(rounded(c_light, rounding_error(c_light.fmt, out, unit.rounding)), 0.0, 1.0)
-    e_s, hw_hi, ideal_hi = power_bound(unit, n_hw, (lo, hi), dev)
+    e_s, hw_hi, ideal_hi = power_bound(unit, n_hw, cosine_range(boxes, basis, light, second), dev, hardware)
     return diff.dev, diff.hi, e_s, ideal_hi, hw_hi, normal.faults | diff.faults | c_light.faults
 
 
@@ -116,8 +149,9 @@ class TableUnit:
     #: what the certificate names as its method
     name = "interval+tables"
 
-    def __init__(self, hooks, specular, halfway):
+    def __init__(self, hooks, specular, cosine_range, halfway):
         self.n_scale, self.specular, self.halfway = hooks.n_scale, specular, halfway
+        self.cosine_range = cosine_range
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
@@ -140,7 +174,7 @@ class TableUnit:
         for unit, light in zip(shader.units, lights):
             second = _unit(light + view) if self.halfway else view
             e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, light, second,
-                                                                 self.specular, n_hw)
+                                                                 self.specular, self.cosine_range, n_hw)
             faults |= found
             approx = (_phong_distance(boxes, basis, light, second, n_hw, n)
                       if self.halfway and against == "phong" else np.zeros(len(boxes)))
@@ -164,5 +198,5 @@ def _unit(v):
     return v / np.linalg.norm(v)
 
 
-CONVENTIONAL_BOUND = TableUnit(CONVENTIONAL, _conventional, halfway=False)
-BLINN_BOUND = TableUnit(BLINN, _blinn, halfway=True)
+CONVENTIONAL_BOUND = TableUnit(CONVENTIONAL, _conventional, _reflected, halfway=False)
+BLINN_BOUND = TableUnit(BLINN, _blinn, _direct, halfway=True)

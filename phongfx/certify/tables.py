@@ -99,8 +99,8 @@ def _shift(q):
 
 
 def rsqrt_factor(config, q):
-    """``(lo, hi)`` of ``1 + r = 2^(j-h)·y1·sqrt(q)`` over the exact ``q = N·N`` in ``q = (lo,
-    hi)`` (arrays, ``lo > 0``): the even shift takes ``q`` in ``[4^(e-1), 4^e)`` to ``m =
+    """``(lo, hi, m_min)``: the range of ``1 + r = 2^(j-h)·y1·sqrt(q)`` over the exact ``q = N·N``
+    in ``q = (lo, hi)`` (arrays, ``lo > 0``) and the smallest mantissa ``m`` there: the even shift takes ``q`` in ``[4^(e-1), 4^e)`` to ``m =
     q·4^-e`` in ``[1/4, 1)``, so a range across one power of 4 meets two runs of mantissas (the
     top ones and the bottom ones), and across more, every mantissa."""
     first, low, high = _rsqrt_tables(_key(config, "m", "rsqrt_addr", "y", "nr", "rounding"))
@@ -116,7 +116,7 @@ def rsqrt_factor(config, q):
         a, b = _code_range(run, fmt, config.rounding)
         lo = np.minimum(lo, -low.max(a - first, b - first))
         hi = np.maximum(hi, high.max(a - first, b - first))
-    return lo, hi
+    return lo, hi, np.minimum(runs[0][0], runs[1][0])
 
 
 @functools.lru_cache(maxsize=4)
@@ -144,30 +144,40 @@ def power_error(config, n):
     return _power_tables(_key(config, "t", "log", "log_addr", "exp", "exp_addr", "out", "rounding"), int(n))
 
 
-def power_bound(config, n, t_range, dev):
-    """``(bound, spec_hi, ref_hi)`` per element: ``|P(t_hw, n) - t^n|`` for hardware codes
-    ``t_hw`` in ``t_range = (lo, hi)`` (values of ``config.t`` in ``[0, 1]``) and ideal
-    ``t`` in ``[0, 1]`` within ``dev`` of ``t_hw``, the largest ``P`` there and the largest
-    ``t^n``; ``n`` an int array (one value or per element).
+def power_bound(config, n, ideal, dev, hardware=None):
+    """``(bound, spec_hi, ideal_hi)`` per element: a bound on ``|P(t_hw, n) - t^n|`` for an
+    ideal ``t`` in ``ideal = (a, b)`` (within ``[0, 1]``) and a hardware code ``t_hw`` within
+    ``dev`` of it (and in ``hardware = (lo, hi)`` when given), the largest ``P(t_hw)`` and the
+    largest ``t^n``; ``n`` an int array (one value or per element).
 
-    ``P(t_hw) - t^n = E(t_hw) + (t_hw^n - t^n)``: ``E`` from :func:`power_error` over the codes,
-    the second term between ``-max(min(x + dev, 1)^n - x^n)`` and ``max(x^n - (x - dev)^n)`` over
-    ``x`` in the range (convexity puts the largest at ``x = hi``, and at ``x = clip(1 - dev, lo,
-    hi)`` for the first), so the signs of both parts are kept."""
+    ``P(t_hw) - t^n = E(t_hw) + (t_hw^n - t^n)``: ``E`` over the codes from :func:`power_error`,
+    the second term at most ``max min(t + dev, 1)^n - t^n`` (rising with ``t`` until ``t + dev``
+    reaches 1, falling after: largest at ``t = clip(1 - dev, a, b)``) and at least
+    ``-max(t^n - max(t - dev, 0)^n)`` (rising with ``t``: at ``b``), with ``t_hw`` between the
+    first and the last code of its range (near ``t = 1`` at a large ``n``, where the code's own
+    step is most of ``dev``, that is what a bound needs); the signs of both parts are kept, as the
+    table's error is mostly one-signed."""
     fmt = config.fmt("t")
-    lo, hi = (np.asarray(v, dtype=np.float64) for v in t_range)
-    n = np.broadcast_to(np.asarray(n, dtype=np.int64), lo.shape)
-    first = np.round(lo * 2.0 ** fmt.frac_bits).astype(np.int64)
-    last = np.round(hi * 2.0 ** fmt.frac_bits).astype(np.int64)
-    e_hi, e_lo, spec_hi = (np.empty(lo.shape) for _ in range(3))
+    a, b = (np.clip(np.asarray(v, dtype=np.float64), 0.0, 1.0) for v in ideal)
+    lo, hi = np.maximum(a - dev, 0.0), np.minimum(b + dev, 1.0)
+    if hardware is not None:
+        lo, hi = np.maximum(lo, hardware[0]), np.minimum(hi, hardware[1])
+    # the hardware's t is a code: the first and last codes in the range (a hair of slack for
+    # float64's rounding of lo and hi)
+    scale = 2.0 ** fmt.frac_bits
+    first = np.ceil(lo * scale - 1e-6).astype(np.int64)
+    last = np.maximum(np.floor(hi * scale + 1e-6).astype(np.int64), first)
+    low, top = first / scale, last / scale
+    n = np.broadcast_to(np.asarray(n, dtype=np.int64), a.shape)
+    e_hi, e_lo, spec_hi = (np.empty(a.shape) for _ in range(3))
     for value in np.unique(n):
         pick = n == value
         up, down, spec = power_error(config, int(value))
         e_hi[pick] = up.max(first[pick], last[pick])
         e_lo[pick] = -down.max(first[pick], last[pick])
         spec_hi[pick] = spec.max(first[pick], last[pick])
-    x = np.clip(1.0 - dev, lo, hi)
-    rise = (np.minimum(x + dev, 1.0) ** n - x ** n) * (1 + 1e-12)
-    fall = (hi ** n - np.maximum(hi - dev, 0.0) ** n) * (1 + 1e-12)
-    bound = np.maximum(np.abs(e_hi + fall), np.abs(e_lo - rise))
-    return bound, spec_hi, np.minimum(hi + dev, 1.0) ** n * (1 + 1e-12)
+    x = np.clip(top - dev, a, b)
+    rise = np.maximum(np.minimum(x + dev, top) ** n - x ** n, 0.0) * (1 + 1e-12)
+    fall = np.maximum(b ** n - np.maximum(b - dev, low) ** n, 0.0) * (1 + 1e-12)
+    bound = np.maximum(np.abs(e_hi + rise), np.abs(e_lo - fall))
+    return bound, spec_hi, b ** n * (1 + 1e-12)
