@@ -33,7 +33,7 @@ from .interval import Interval, rounding_error
 from .sphere import product, projection
 from .tables import rsqrt_factor
 
-__all__ = ["SYMBOLS", "normal_codes", "direction", "product_of", "inverse_length", "cosine", "clamp", "rounded"]
+__all__ = ["SYMBOLS", "normal_codes", "direction", "product_of", "squared_length", "length_cases", "inverse_length", "cosine", "clamp", "rounded"]
 
 #: A format finer than any the units' exact products have: rounding from it costs a full half LSB
 _EXACT = Format(2, 40, signed=True)
@@ -83,23 +83,39 @@ def product_of(a, b, count):
     return Interval(value, value, 0.0, a.fmt.mul(b.fmt).add(a.fmt.mul(b.fmt)), terms=terms)
 
 
-def inverse_length(config, normal, z):
-    """``(k, y_max)``: the hardware's ``k = 2^(j-h)·y1`` (B,) as an Interval against the ideal
-    ``1/|N'|`` (module docstring), and a bound on ``y1`` itself; ``z`` (B, 2) the range of
-    ``|N'|²`` (:func:`normal_codes`' ``normal``): ``|N| = |N' + δ|`` is within ``|δ|`` of
-    ``|N'|``, which bounds ``q``'s range closer than the Interval's sum of squares (whose
-    components' ranges move together), and decides which mantissas the table sees."""
+def squared_length(normal, z):
+    """``q = N·N`` (B,) as an Interval against ``|N'|²``; ``z`` (B, 2) the range of ``|N'|²``
+    (:func:`normal_codes`' ``normal``): ``|N| = |N' + δ|`` is within ``|δ|`` of ``|N'|``, which
+    bounds ``q``'s range closer than the Interval's sum of squares (whose components' ranges
+    move together)."""
     q = normal.dot(normal)
     shift = np.sqrt(np.sum(np.diagonal(normal.terms[..., :3], axis1=-2, axis2=-1) ** 2, axis=-1))
     length = np.sqrt(np.clip(z, 0.0, None))
     q_lo = np.maximum(q.lo, np.maximum(length[:, 0] - shift, 0.0) ** 2 * (1 - 1e-12))
     q_hi = np.minimum(q.hi, (length[:, 1] + shift) ** 2 * (1 + 1e-12))
-    q = Interval(q_lo, q_hi, q.err, q.fmt, q.faults, q.terms)
-    f_lo, f_hi, m_min = rsqrt_factor(config, (np.maximum(q.lo, 1e-300), q.hi))
+    if np.any(q_lo - q.dev <= 0):
+        raise ValueError("the domain's normals must be longer than the rounding of their codes")
+    return Interval(q_lo, q_hi, q.err, q.fmt, q.faults, q.terms)
+
+
+def length_cases(q):
+    """``q`` split where its range meets a power of 4, below and above it (the even shift's
+    mantissa jumps there from near 1 to 1/4, and with it the seed table's error and ``y1``): two
+    Intervals (B,), the same where the range holds no power of 4."""
+    edge = 4.0 ** ((np.frexp(q.hi)[1] - 1) // 2)
+    across = (q.lo < edge) & (edge <= q.hi)
+    below = Interval(q.lo, np.where(across, edge * (1 - 1e-15), q.hi), q.err, q.fmt, q.faults, q.terms)
+    above = Interval(np.where(across, edge, q.lo), q.hi, q.err, q.fmt, q.faults, q.terms)
+    return below, above
+
+
+def inverse_length(config, q):
+    """``(k, y_max)``: the hardware's ``k = 2^(j-h)·y1`` (B,) for ``q = N·N`` (an Interval in
+    :data:`SYMBOLS`, :func:`squared_length`) against the ideal ``1/|N'|`` (module docstring),
+    and a bound on ``y1`` itself."""
+    f_lo, f_hi, m_min = rsqrt_factor(config, (q.lo, q.hi))
     dev = q.dev
     low = q.lo - dev
-    if np.any(low <= 0):
-        raise ValueError("the domain's normals must be longer than the rounding of their codes")
     mid = q.mid
     slope = -0.5 * mid ** -1.5
     # the slope of q^-1/2 is monotone: its spread over the range is largest at an end

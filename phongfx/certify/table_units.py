@@ -30,15 +30,26 @@ import numpy as np
 
 from phongfx.explore.compile.units import BLINN, CONVENTIONAL
 
+from phongfx.golden.blinn import blinn
+from phongfx.golden.conventional import conventional
+
 from .branch import bound_boxes
+from .codes import code_errors, code_ranges
 from .figures import directional_why_not
 from .interval import rounding_error
-from .normalizer import clamp, cosine, direction, inverse_length, normal_codes, product_of, rounded
+from .normalizer import (clamp, cosine, direction, inverse_length, length_cases, normal_codes, product_of, rounded,
+                         squared_length)
 from .outputs import coefficient_tables
 from .sphere import cos_range, frame, projection
 from .tables import power_bound
 
-__all__ = ["TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "cosine_range", "light_terms", "blend_errors"]
+__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "cosine_range", "light_terms", "blend_errors"]
+
+
+#: A box holding at most this many normal codes is bounded code by code (:mod:`.codes`) ...
+CODES_PER_BOX = 256
+#: ... up to this many codes per call of the branch and bound
+CODES_PER_CALL = 1 << 20
 
 
 def _t(config, pre):
@@ -99,14 +110,19 @@ def light_terms(unit, boxes, basis, light, second, specular, cosine_range, n_hw)
     applied ``n'``."""
     count, vec = len(boxes), unit.fmt("vec")
     normal = normal_codes(vec, boxes, basis)
-    k, y_max = inverse_length(unit, normal, boxes.z)
     l_code, s_code = direction(light, vec, count), direction(second, vec, count)
     light_view = product_of(l_code, s_code, count)
-    c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view)
-    out = unit.fmt("out")
-    diff = clamp(rounded(c_light, rounding_error(c_light.fmt, out, unit.rounding)), 0.0, 1.0)
-    e_s, hw_hi, ideal_hi = power_bound(unit, n_hw, cosine_range(boxes, basis, light, second), dev, hardware)
-    return diff.dev, diff.hi, e_s, ideal_hi, hw_hi, normal.faults | diff.faults | c_light.faults
+    ideal = cosine_range(boxes, basis, light, second)
+    out, faults, worst = unit.fmt("out"), set(normal.faults), None
+    for q in length_cases(squared_length(normal, boxes.z)):  # each point is in one of them
+        k, y_max = inverse_length(unit, q)
+        c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view)
+        diff = clamp(rounded(c_light, rounding_error(c_light.fmt, out, unit.rounding)), 0.0, 1.0)
+        case = (diff.dev, diff.hi, *power_bound(unit, n_hw, ideal, dev, hardware))
+        worst = case if worst is None else tuple(np.maximum(a, b) for a, b in zip(worst, case))
+        faults |= diff.faults | c_light.faults
+    e_d, d_hi, e_s, hw_hi, ideal_hi = worst
+    return e_d, d_hi, e_s, ideal_hi, hw_hi, faults
 
 
 def blend_errors(blend, material, terms, levels):
@@ -149,9 +165,9 @@ class TableUnit:
     #: what the certificate names as its method
     name = "interval+tables"
 
-    def __init__(self, hooks, specular, cosine_range, halfway):
+    def __init__(self, hooks, golden, specular, cosine_range, halfway):
         self.n_scale, self.specular, self.halfway = hooks.n_scale, specular, halfway
-        self.cosine_range = cosine_range
+        self.golden, self.cosine_range = golden, cosine_range
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
@@ -180,7 +196,31 @@ class TableUnit:
                       if self.halfway and against == "phong" else np.zeros(len(boxes)))
             terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx, projection(boxes, basis, light)))
         rounding, approximation, gate = blend_errors(shader.blend, boxes.material, terms, shader.blend.levels)
+        self._listed(shader, against, boxes, basis, lights, (rounding, approximation, gate))
         return rounding, approximation, faults, gate
+
+    def _listed(self, shader, against, boxes, basis, lights, parts):
+        """Where a box holds at most :data:`CODES_PER_BOX` normal codes, every one of them through
+        the golden model (:func:`~phongfx.certify.codes.code_errors`, up to :data:`CODES_PER_CALL`
+        codes, the boxes of largest bound first); its bound replaces the interval one where lower
+        (both hold), as rounding: it bounds rounding and approximation together."""
+        rounding, approximation, gate = parts
+        total = np.max(rounding + approximation, axis=-1)
+        count = code_ranges(shader.units[0].fmt("vec"), boxes, basis)[2]
+        order = np.argsort(-total)
+        order = order[count[order] <= CODES_PER_BOX]
+        order = order[np.cumsum(count[order]) <= CODES_PER_CALL]
+        if not len(order):
+            return
+        n = boxes.n.astype(np.int64)[order]
+        reflected = not self.halfway or against == "phong"
+        seconds = [_unit(light + basis[0]) if self.halfway else basis[0] for light in lights]
+        n_ref = n if reflected else self.n_scale * n
+        listed = code_errors(shader, self.golden, boxes.take(order), basis, lights, seconds, reflected,
+                             self.n_scale * n, n_ref)
+        better = listed.max(axis=-1) < total[order]
+        pick = order[better]
+        rounding[pick], approximation[pick], gate[pick] = listed[better], 0.0, 0.0
 
     def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
         """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
@@ -198,5 +238,5 @@ def _unit(v):
     return v / np.linalg.norm(v)
 
 
-CONVENTIONAL_BOUND = TableUnit(CONVENTIONAL, _conventional, _reflected, halfway=False)
-BLINN_BOUND = TableUnit(BLINN, _blinn, _direct, halfway=True)
+CONVENTIONAL_BOUND = TableUnit(CONVENTIONAL, conventional, _conventional, _reflected, halfway=False)
+BLINN_BOUND = TableUnit(BLINN, blinn, _blinn, _direct, halfway=True)

@@ -10,13 +10,17 @@ from phongfx.certify import certify
 from phongfx.certify.bound import shader_config
 from phongfx.certify.methods import BOUNDING
 from phongfx.certify.sphere import Boxes, frame
-from phongfx.certify.table_units import cosine_range
+from phongfx.certify.codes import code_errors, code_ranges
+from phongfx.certify.outputs import coefficient_tables
+from phongfx.certify.table_units import CODES_PER_BOX, cosine_range
 from phongfx.certify.tables import RangeTable, power_bound, rsqrt_factor
 from phongfx.config import ConventionalConfig
 from phongfx.golden.blinn import even_shift, power, reciprocal_sqrt
+from phongfx.golden.conventional import conventional
 from phongfx.golden.fixed import Fixed
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene
+from phongfx.scene.geometry import terminator_lit
 from tests.certify.test_bound import sampled
 
 #: The widths ``phongfx compile`` chooses for conventional (its manifests' "widths").
@@ -103,19 +107,21 @@ def test_cosine_range_is_exact_and_sound(reflected):
         assert hi[0] - lo[0] - (value.max() - value.min()) < 2e-3
 
 
-@pytest.mark.parametrize("method, name, params, ratio", [
-    ("conventional", "torus", TORUS, 1.5), ("conventional", "lyon-balls", LYON, 2.5),
-    ("blinn", "torus", {}, 3.5), ("blinn", "lyon-balls", {}, 3.0),
+@pytest.mark.parametrize("method, name, params, ratio, certified", [
+    ("conventional", "torus", TORUS, 1.5, True), ("conventional", "lyon-balls", LYON, 2.5, False),
+    ("blinn", "torus", {}, 3.5, False), ("blinn", "lyon-balls", {}, 3.0, False),
 ])
-def test_the_bound_holds_on_frames_and_domain_smoke(method, name, params, ratio):
+def test_the_bound_holds_on_frames_and_domain_smoke(method, name, params, ratio, certified):
     """A small budget and sample: the bound is above what is measured, and within ``ratio`` of
     it (loose where a sample of 20000 points misses the rare worst: Lyon's n = 256; Blinn against
-    Phong on the torus, its (N·H)^4n form against (R·V)^n box by box)."""
+    Phong on the torus, its (N·H)^4n form against (R·V)^n box by box); the torus's conventional
+    design, the compiler's choice, is certified (its boxes near the worst error listed code by
+    code)."""
     spec, dom = _scene(name)
     shader = shader_config(method, params, spec)
     got = certify(method, params, spec, dom, shader=shader, max_boxes=100_000)
     measured = sampled(spec, dom, shader, params, 20_000, method=method)
-    assert got.method == "interval+tables" and not got.certified
+    assert got.method == "interval+tables" and got.certified == certified
     assert measured <= got.bound_levels < ratio * measured
     assert got.bound_levels == pytest.approx(got.parts["rounding"] + got.parts["approximation"] + 0.5, rel=1e-9)
 
@@ -133,6 +139,38 @@ def test_a_worse_quantize_breaks_the_old_bound_and_raises_the_new_one(method, na
     measured = sampled(spec, dom, worse, params, 20_000, method=method)
     after = certify(method, params, spec, dom, shader=worse, max_boxes=100_000).bound_levels
     assert before + 2 < measured <= after
+
+
+def test_every_code_of_a_small_box_bounds_the_error_there():
+    """Near the torus's largest error, the code-by-code bound of a box is over the error of every
+    sampled point in it, and within 0.1 level of the largest."""
+    spec, dom = _scene("torus")
+    shader = shader_config("conventional", TORUS, spec)
+    basis = frame(dom.camera[1])
+    light = np.asarray(dom.lights[0][1])
+    theta, phi, z = np.radians([24.5, 24.6]), np.radians([316.0, 316.2]), np.array([0.998, 1.0])
+    box = Boxes(theta[None], phi[None], z[None], np.array([16]), np.array([0]))
+    assert code_ranges(shader.units[0].fmt("vec"), box, basis)[2][0] <= CODES_PER_BOX
+    bound = code_errors(shader, conventional, box, basis, [light], [basis[0]], True, np.array([16]),
+                        np.array([16]))[0].max()
+    rng = np.random.default_rng(12)
+    count = 200_000
+    t, p, length = rng.uniform(*theta, count), rng.uniform(*phi, count), np.sqrt(rng.uniform(*z, count))
+    v, e1, e2 = basis
+    unit_normal = np.cos(t)[:, None] * v + np.sin(t)[:, None] * (np.cos(p)[:, None] * e1 + np.sin(p)[:, None] * e2)
+    vec = shader.units[0].fmt("vec")
+    codes = [Fixed.from_float(np.broadcast_to(x, (count, 3)), vec, "round_half_up", "saturate")
+             for x in (length[:, None] * unit_normal, light, v)]
+    out = conventional(shader.units[0], *codes, Fixed(np.full(count, 16), shader.units[0].fmt("n")))
+    diff, spec_hw = out["diffuse"].to_float(), out["specular"].to_float()
+    (ac, dc, sc), (ae, de, se) = coefficient_tables(shader.blend)
+    cosine = unit_normal @ light
+    reflected = np.maximum(2 * cosine * (unit_normal @ v) - light @ v, 0.0) ** 16
+    lit = terminator_lit(cosine, diff > 0, spec.output.bits)
+    acc = ac[0, 0] + dc[0, 0, 0] * diff + sc[0, 0, 0] * np.where(diff > 0, spec_hw, 0.0)
+    ref = ae[0, 0] + de[0, 0, 0] * np.maximum(cosine, 0.0) + se[0, 0, 0] * np.where(lit, reflected, 0.0)
+    worst = np.max(np.abs(acc - ref))
+    assert 0.5 < worst <= bound < worst + 0.1
 
 
 def test_a_wide_conventional_unit_is_certified_on_the_torus():
