@@ -187,13 +187,15 @@ def test_point_lights_are_not_bounded_yet():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("method, name, params", [
-    ("conventional", "torus", TORUS), ("conventional", "torus", {}), ("conventional", "lyon-balls", LYON),
-    ("conventional", "lyon-balls", {}), ("blinn", "torus", {}), ("blinn", "lyon-balls", {}),
+@pytest.mark.parametrize("method, name, params, most", [
+    ("conventional", "torus", TORUS, 1.3), ("conventional", "torus", {}, 3.0), ("conventional", "lyon-balls", LYON, 2.5),
+    ("conventional", "lyon-balls", {}, 3.0), ("blinn", "torus", {}, 3.0), ("blinn", "lyon-balls", {}, 3.0),
 ])
-def test_the_bound_holds_and_is_tight(method, name, params):
+def test_the_bound_holds_and_is_tight(method, name, params, most):
+    """The full budget over 300000 domain points: the bound over the largest error measured is at
+    least 1, and at most ``most``."""
     spec, dom = _scene(name)
     shader = shader_config(method, params, spec)
-    got = certify(method, params, spec, dom, shader=shader)
-    measured = sampled(spec, dom, shader, params, 300_000, method=method)
-    assert got.bound_levels is not None and measured <= got.bound_levels
+    ratio = certify(method, params, spec, dom, shader=shader).bound_levels / sampled(
+        spec, dom, shader, params, 300_000, method=method)
+    assert 1.0 <= ratio < most
