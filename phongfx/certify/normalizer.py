@@ -93,8 +93,9 @@ def squared_length(normal, z):
     length = np.sqrt(np.clip(z, 0.0, None))
     q_lo = np.maximum(q.lo, np.maximum(length[:, 0] - shift, 0.0) ** 2 * (1 - 1e-12))
     q_hi = np.minimum(q.hi, (length[:, 1] + shift) ** 2 * (1 + 1e-12))
-    if np.any(q_lo - q.dev <= 0):
-        raise ValueError("the domain's normals must be longer than the rounding of their codes")
+    if np.any(q_lo - q.dev <= 0) or np.any(q_hi >= 4):
+        raise ValueError("the domain's normals must be longer than the rounding of their codes, and "
+                         "shorter than 2")
     return Interval(q_lo, q_hi, q.err, q.fmt, q.faults, q.terms)
 
 
@@ -142,14 +143,23 @@ def cosine(config, normal, k, y_max, vector, fmt):
     """``round(round(N·X·2^(j-h))·y1)`` in ``fmt`` before its clamps: ``N·X`` exact (``vector``
     the constant ``X`` as an Interval, its code's distance to the exact one as remainder),
     times ``k``, and the two roundings.  The scaled ``N·X`` must fit ``dot`` (it does for
-    ``|X| < 2``: ``|N·X·2^(j-h)| <= sqrt(m)·|X|``)."""
+    ``|X| < 2``: ``|N·X·2^(j-h)| <= sqrt(m)·|X|``).  Its rounding to ``dot`` costs nothing where
+    it is on ``dot``'s grid already: with ``X``'s codes multiples of ``2^t`` LSBs, ``N·X`` is on
+    a grid of ``2F - t`` fraction bits, and ``2^(j-h)`` moves it right by at most one bit
+    (``q < 4``), so an axis-aligned viewer's ``N·V`` is exact there."""
     dot = config.fmt("dot")
     d = normal.dot(vector)
     c = d * k
     faults = c.faults
     if np.max(np.linalg.norm(vector.magnitude, axis=-1)) >= dot.max_raw * dot.lsb:
         faults = faults | {"blinn d'"}
-    error = y_max * rounding_error(_EXACT, dot, config.rounding) + rounding_error(_EXACT, fmt, config.rounding)
+    frac = normal.fmt.frac_bits
+    codes = np.round(np.asarray(vector.lo).reshape(-1, 3)[0] * 2.0 ** frac).astype(np.int64)
+    codes = codes[codes != 0]
+    zeros = min(((int(x) & -int(x)).bit_length() - 1 for x in codes), default=None)
+    scaled = 0.0 if zeros is None else rounding_error(Format(2, 2 * frac - zeros + 1, signed=True), dot,
+                                                      config.rounding)  # X = 0: N·X = 0, exact
+    error = y_max * scaled + rounding_error(_EXACT, fmt, config.rounding)
     c = rounded(c, error)
     return Interval(c.lo, c.hi, c.err, fmt, faults, c.terms)
 
