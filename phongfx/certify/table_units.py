@@ -149,8 +149,7 @@ def blend_errors(blend, material, terms, levels):
 
 def _phong_distance(boxes, basis, light, half, n_hw, n):
     """Per box a bound on ``|max(N̂·H, 0)^n' - max(R·V, 0)^n|`` (module docstring)."""
-    w = projection(boxes, basis, half)
-    c = projection(boxes, basis, light, reflected=True)
+    w, c = cosine_range(boxes, basis, half), cosine_range(boxes, basis, light, reflected=True)
 
     def power(x, e):
         return np.maximum(x, 0.0) ** e
