@@ -16,7 +16,9 @@ viewer at infinity:
 * the power ``P(t, n)`` against ``t^n`` by :func:`~phongfx.certify.tables.power_bound`
   (exhaustive over the ``t`` codes the box's range meets);
 * the diffuse term, the backside test and the blend as :mod:`.outputs` states them, with the
-  ideal's scale ``s = 1`` (the unit normalizes exactly but for the rounding bounded here).
+  ideal's scale ``s = 1`` (the unit normalizes exactly but for the rounding bounded here);
+* where a box holds few normal codes, each through the golden model (:mod:`.codes`), which
+  replaces the interval bound where lower.
 
 The ideal is Phong itself for the conventional unit (against ``"phong"`` and ``"self"`` alike:
 its ``"self"`` is Phong with the same backside test), so its approximation part is 0.  Blinn's
