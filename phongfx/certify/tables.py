@@ -127,7 +127,7 @@ def _log2_codes(key):
     return log2_t(config, Fixed(codes, fmt))
 
 
-@functools.lru_cache(maxsize=512)
+@functools.lru_cache(maxsize=128)  # about 0.8 MB each
 def _power_tables(key, n):
     config = BlinnConfig(**dict(key))
     fmt = config.fmt("t")
