@@ -25,7 +25,8 @@ import numpy as np
 from phongfx.golden.fixed import Fixed
 
 from .outputs import coefficient_tables
-from .sphere import product, projection
+from .normalizer import cosine_range
+from .sphere import product
 
 __all__ = ["code_ranges", "cell_cosine", "code_errors"]
 
@@ -35,7 +36,7 @@ def code_ranges(vec, boxes, basis):
     host's rounding (half up) of ``N'`` over the box, and their number of combinations (B,)
     (inf where a code may saturate)."""
     root = (np.sqrt(np.clip(boxes.z[:, 0], 0, 1)), np.sqrt(np.clip(boxes.z[:, 1], 0, 1)))
-    parts = [product(root, projection(boxes, basis, axis)) for axis in np.eye(3)]
+    parts = [product(root, cosine_range(boxes, basis, axis)) for axis in np.eye(3)]
     scale = 2.0 ** vec.frac_bits
     first = np.stack([np.floor(p[0] * scale + 0.5) for p in parts], -1)
     last = np.stack([np.floor(p[1] * scale + 0.5) for p in parts], -1)

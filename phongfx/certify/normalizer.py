@@ -30,10 +30,10 @@ from phongfx.core.format import Format
 from phongfx.golden.fixed import Fixed
 
 from .interval import Interval, rounding_error
-from .sphere import product, projection
+from .sphere import cos_range, product
 from .tables import rsqrt_factor
 
-__all__ = ["SYMBOLS", "normal_codes", "direction", "product_of", "squared_length", "length_cases", "inverse_length", "cosine", "clamp", "rounded"]
+__all__ = ["SYMBOLS", "cosine_range", "normal_codes", "direction", "product_of", "squared_length", "length_cases", "inverse_length", "cosine", "clamp", "rounded"]
 
 #: A format finer than any the units' exact products have: rounding from it costs a full half LSB
 _EXACT = Format(2, 40, signed=True)
@@ -47,12 +47,33 @@ _EXACT = Format(2, 40, signed=True)
 SYMBOLS, OFFSET, TABLE = 5, 3, 4
 
 
+def cosine_range(boxes, basis, w, reflected=False):
+    """Exact ``(lo, hi)`` of ``W·N̂`` (or ``R̂·W``, ``reflected``) over each box: the form of
+    :func:`~phongfx.certify.sphere.projection`, ``a·cos(sθ) + b·sin(sθ)·C`` with ``C = cos(φ - ψ)``,
+    is linear in ``C``, so its extremes are at ``C``'s ends, and at a fixed ``C`` it is
+    ``A·cos(sθ - α)``, whose range over ``θ`` is exact (:func:`~phongfx.certify.sphere.cos_range`).
+    Interval products of the two factors would lose the first order at a cosine's peak, where a
+    large ``n`` needs it."""
+    v, e1, e2 = basis
+    w = np.asarray(w, dtype=np.float64)
+    a, b, psi = float(w @ v), float(np.hypot(w @ e1, w @ e2)), float(np.arctan2(w @ e2, w @ e1))
+    s = 2.0 if reflected else 1.0
+    turn = cos_range(boxes.phi[:, 0] - psi, boxes.phi[:, 1] - psi)
+    lo, hi = np.full(len(boxes), np.inf), np.full(len(boxes), -np.inf)
+    for c in turn:
+        c = np.clip(c, -1.0, 1.0)
+        size, alpha = np.hypot(a, b * c), np.arctan2(b * c, a)
+        low, high = cos_range(s * boxes.theta[:, 0] - alpha, s * boxes.theta[:, 1] - alpha)
+        lo, hi = np.minimum(lo, size * low), np.maximum(hi, size * high)
+    return lo - 1e-14, hi + 1e-14
+
+
 def normal_codes(vec, boxes, basis):
     """The host's ``N`` codes (B, 3) as an Interval over ``boxes`` (:mod:`.sphere`): ``N' =
     √z·N̂`` rounded to nearest in ``vec`` (``|δ| <= lsb/2``) and saturated (a component over the
     largest code moves by its excess); symbols ``0..2`` of :data:`SYMBOLS`."""
     root = (np.sqrt(np.clip(boxes.z[:, 0], 0, 1)), np.sqrt(np.clip(boxes.z[:, 1], 0, 1)))
-    parts = [product(root, projection(boxes, basis, axis)) for axis in np.eye(3)]
+    parts = [product(root, cosine_range(boxes, basis, axis)) for axis in np.eye(3)]
     lo, hi = np.stack([p[0] for p in parts], -1), np.stack([p[1] for p in parts], -1)
     top, low = vec.max_raw * vec.lsb, vec.min_raw * vec.lsb
     e = np.maximum(vec.lsb / 2, np.maximum(hi - top, low - lo)) * (1 + 1e-12)

@@ -39,13 +39,13 @@ from .branch import bound_boxes
 from .codes import code_errors, code_ranges
 from .figures import directional_why_not
 from .interval import rounding_error
-from .normalizer import (clamp, cosine, direction, inverse_length, length_cases, normal_codes, product_of, rounded,
+from .normalizer import (clamp, cosine, cosine_range, direction, inverse_length, length_cases, normal_codes, product_of, rounded,
                          squared_length)
 from .outputs import coefficient_tables
-from .sphere import cos_range, frame, projection
+from .sphere import frame
 from .tables import power_bound
 
-__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "cosine_range", "light_terms", "blend_errors"]
+__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
 
 
 #: A box holding at most this many normal codes is bounded code by code (:mod:`.codes`) ...
@@ -69,27 +69,6 @@ def _conventional(unit, normal, k, y_max, light, view, light_view):
 def _blinn(unit, normal, k, y_max, light, half, light_view):
     c_light = clamp(cosine(unit, normal, k, y_max, light, unit.fmt("out")), 0.0, 1.0)
     return (c_light, *_t(unit, clamp(cosine(unit, normal, k, y_max, half, unit.fmt("t")), 0.0, 1.0)))
-
-
-def cosine_range(boxes, basis, w, reflected=False):
-    """Exact ``(lo, hi)`` of ``W·N̂`` (or ``R̂·W``, ``reflected``) over each box: the form of
-    :func:`~phongfx.certify.sphere.projection`, ``a·cos(sθ) + b·sin(sθ)·C`` with ``C = cos(φ - ψ)``,
-    is linear in ``C``, so its extremes are at ``C``'s ends, and at a fixed ``C`` it is
-    ``A·cos(sθ - α)``, whose range over ``θ`` is exact (:func:`~phongfx.certify.sphere.cos_range`).
-    Interval products of the two factors would lose the first order at a cosine's peak, where a
-    large ``n`` needs it."""
-    v, e1, e2 = basis
-    w = np.asarray(w, dtype=np.float64)
-    a, b, psi = float(w @ v), float(np.hypot(w @ e1, w @ e2)), float(np.arctan2(w @ e2, w @ e1))
-    s = 2.0 if reflected else 1.0
-    turn = cos_range(boxes.phi[:, 0] - psi, boxes.phi[:, 1] - psi)
-    lo, hi = np.full(len(boxes), np.inf), np.full(len(boxes), -np.inf)
-    for c in turn:
-        c = np.clip(c, -1.0, 1.0)
-        size, alpha = np.hypot(a, b * c), np.arctan2(b * c, a)
-        low, high = cos_range(s * boxes.theta[:, 0] - alpha, s * boxes.theta[:, 1] - alpha)
-        lo, hi = np.minimum(lo, size * low), np.maximum(hi, size * high)
-    return lo - 1e-14, hi + 1e-14
 
 
 def _reflected(boxes, basis, light, view):
@@ -195,7 +174,7 @@ class TableUnit:
             faults |= found
             approx = (_phong_distance(boxes, basis, light, second, n_hw, n)
                       if self.halfway and against == "phong" else np.zeros(len(boxes)))
-            terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx, projection(boxes, basis, light)))
+            terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx, cosine_range(boxes, basis, light)))
         rounding, approximation, gate = blend_errors(shader.blend, boxes.material, terms, shader.blend.levels)
         self._listed(shader, against, boxes, basis, lights, (rounding, approximation, gate))
         return rounding, approximation, faults, gate

@@ -12,7 +12,8 @@ from phongfx.certify.methods import BOUNDING
 from phongfx.certify.sphere import Boxes, frame
 from phongfx.certify.codes import code_errors, code_ranges
 from phongfx.certify.outputs import coefficient_tables
-from phongfx.certify.table_units import CODES_PER_BOX, cosine_range
+from phongfx.certify.normalizer import cosine_range
+from phongfx.certify.table_units import CODES_PER_BOX
 from phongfx.certify.tables import RangeTable, power_bound, rsqrt_factor
 from phongfx.config import ConventionalConfig
 from phongfx.golden.blinn import even_shift, power, reciprocal_sqrt
