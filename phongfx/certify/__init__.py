@@ -8,6 +8,9 @@
   normals (:mod:`.sphere`) refined by branch and bound (:mod:`.branch`), summed at the outputs (:mod:`.outputs`);
   :mod:`.spherical`, the spherical unit's, fed per span (:mod:`.span`), its one-angle tables
   (:mod:`.lobe`) on the same boxes and sum;
+  :mod:`.table_units`, the ``"interval+tables"`` method of the conventional and Blinn units: the
+  normalizer's cosines on intervals (:mod:`.normalizer`), its seed table and the power's log and
+  exp tables run on every code (:mod:`.tables`);
 * :mod:`.exhaustive`: every input code the host can send, where the domain is small enough
   (exact per-pixel normals, one ``n``, lights and viewer at infinity);
 * :mod:`.gappa`: Gappa's proof of the rounding error of Lyon's Figure 7c–d chain.

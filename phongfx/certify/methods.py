@@ -18,6 +18,7 @@ stream): no compiled design is one of them (docs/certificate.rst).
 
 from .figures import LYON_DATAPATHS
 from .spherical import SPHERICAL
+from .table_units import BLINN_BOUND, CONVENTIONAL_BOUND
 
 __all__ = ["BOUNDING", "bounding"]
 
@@ -27,6 +28,8 @@ BOUNDING = {
     "fig8": LYON_DATAPATHS,
     "halfway": LYON_DATAPATHS,
     "spherical": SPHERICAL,
+    "conventional": CONVENTIONAL_BOUND,
+    "blinn": BLINN_BOUND,
 }
 
 

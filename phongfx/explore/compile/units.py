@@ -27,7 +27,7 @@ as it is.
   (``local_viewer``), the un-normalized ``(1-a)·X0 + a·X1`` of the span ends' unit vectors
   toward the light or viewer (what a Phong shader interpolates, Lyon 1993 Figure 1, and
   what the datapaths' L and V LIRPs are fed), which the unit normalizes itself.  Its
-  ``"self"`` is float Phong with its backside test (0 where ``N̂·L <= 0``).
+  ``"self"`` is float Phong, whose backside test is the reference's, as for ``"phong"``.
 * ``schlick`` has no diffuse path and ``euler``/``gouraud`` no specular one (they
   interpolate ``N·L``, Hast et al.): rejected for scenes that need the missing term.
 """
@@ -216,9 +216,12 @@ class _Conventional(_PerPixel):
                                    view, n.astype(np.int64), sub)
                 for l0, l1, light, sub in zip(geometry.l0, geometry.l1, geometry.light, config.units)]
 
-    def own_specular(self, method, config, params, geometry, n):  # Phong with the unit's backside test
-        normal, viewer = geometry.normal, geometry.viewer
-        return np.stack([np.where(np.sum(normal * light, -1) > 0, specular("phong", normal, light, viewer, n), 0.0)
+    def own_specular(self, method, config, params, geometry, n):
+        # Phong itself: the reference's backside test (terminator_lit) is the unit's, as for every
+        # unit; a gate on N̂·L here too would overrule that test's band, where the unit's exact
+        # N·L > 0 on its codes may light what N̂·L <= 0 does not (the whole (R·V)^n, 37 levels
+        # on Lyon's n = 1 ball)
+        return np.stack([specular("phong", geometry.normal, light, geometry.viewer, n)
                          for light in np.asarray(geometry.light)])
 
 

@@ -1,0 +1,222 @@
+"""The bounding method of the table units: conventional Phong and Blinn–Phong.
+
+Both normalize the interpolated normal per pixel and raise a 16-bit cosine to ``n`` by log and
+exp tables (Lyon 1993, "Background"; :mod:`phongfx.golden.conventional`,
+:mod:`phongfx.golden.blinn`).  Per box of the domain's normals (:mod:`.sphere`), lights and
+viewer at infinity:
+
+* the cosines by :mod:`.normalizer` (Intervals with the host's rounding of ``N`` as shared
+  symbols), so against the exact ``N̂·L``, ``N̂·V`` (``N̂·H`` for Blinn) each has a range and a
+  deviation ``e``;
+* the conventional unit's ``t = 2·c_L·c_V - L·V`` by the Interval product (the shared symbols
+  cancel where ``R·V`` is flat in ``N̂``: at the highlight's peak), against Phong's
+  ``R·V = 2(N̂·L)(N̂·V) - L·V`` (exact algebra, :func:`phongfx.golden.conventional.reflection`),
+  then rounded to ``t`` and clamped to ``[0, 1]`` (which moves no value away from Phong's
+  ``max(R·V, 0) <= 1``); Blinn's ``t`` is its clamped cosine;
+* the power ``P(t, n)`` against ``t^n`` by :func:`~phongfx.certify.tables.power_bound`
+  (exhaustive over the ``t`` codes the box's range meets);
+* the diffuse term, the backside test and the blend as :mod:`.outputs` states them, with the
+  ideal's scale ``s = 1`` (the unit normalizes exactly but for the rounding bounded here);
+* where a box holds few normal codes, each through the golden model (:mod:`.codes`), which
+  replaces the interval bound where lower.
+
+The ideal is Phong itself for the conventional unit (against ``"phong"`` and ``"self"`` alike:
+its ``"self"`` is Phong with the same backside test), so its approximation part is 0.  Blinn's
+ideal is ``(N̂·H)^n'`` with ``n' = 4n`` (:data:`~phongfx.explore.compile.units.BLINN`), its own
+``"self"``; against ``"phong"`` its distance from ``max(R·V, 0)^n`` is bounded by the two
+ranges over the box (both rise with their cosine), as :mod:`.approximation` does for the
+halfway unit.
+"""
+
+import numpy as np
+
+from phongfx.explore.compile.units import BLINN, CONVENTIONAL
+
+from phongfx.golden.blinn import blinn
+from phongfx.golden.conventional import conventional
+
+from .branch import bound_boxes
+from .codes import code_errors, code_ranges
+from .figures import directional_why_not
+from .interval import rounding_error
+from .normalizer import (clamp, cosine, cosine_range, direction, inverse_length, length_cases, normal_codes, product_of, rounded,
+                         squared_length)
+from .outputs import coefficient_tables
+from .sphere import frame
+from .tables import power_bound
+
+__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
+
+
+#: A box holding at most this many normal codes is bounded code by code (:mod:`.codes`) ...
+CODES_PER_BOX = 256
+#: ... up to this many codes per call of the branch and bound
+CODES_PER_CALL = 1 << 20
+
+
+def _t(config, pre):
+    """``(lo, hi, dev)`` of a cosine ``pre`` rounded to ``t`` and clamped to ``[0, 1]``."""
+    t = clamp(rounded(pre, rounding_error(pre.fmt, config.fmt("t"), config.rounding)), 0.0, 1.0)
+    return (t.lo, t.hi), t.dev
+
+
+def _conventional(unit, normal, k, y_max, light, view, light_view):
+    c_light = clamp(cosine(unit, normal, k, y_max, light, unit.fmt("cos")), high=1.0)
+    c_view = clamp(cosine(unit, normal, k, y_max, view, unit.fmt("cos")), high=1.0)
+    return (c_light, *_t(unit, (c_light * c_view).shift(1) - light_view))
+
+
+def _blinn(unit, normal, k, y_max, light, half, light_view):
+    c_light = clamp(cosine(unit, normal, k, y_max, light, unit.fmt("out")), 0.0, 1.0)
+    return (c_light, *_t(unit, clamp(cosine(unit, normal, k, y_max, half, unit.fmt("t")), 0.0, 1.0)))
+
+
+def _reflected(boxes, basis, light, view):
+    """Phong's ``R·V`` over each box."""
+    return cosine_range(boxes, basis, light, reflected=True)
+
+
+def _direct(boxes, basis, light, half):
+    """``N̂·H`` over each box."""
+    return cosine_range(boxes, basis, half)
+
+
+def light_terms(unit, boxes, basis, light, second, specular, cosine_range, n_hw):
+    """Per box the unit's terms for one light (B,) each: ``(e_d, d_hi, e_s, ideal_hi, hw_hi,
+    faults)``, the diffuse term's deviation from ``max(N̂·L, 0)`` and its largest value, the
+    specular term's deviation from the ideal ``t^n'`` and the largest ideal and hardware
+    values; ``second`` the unit's other vector (``V`` or ``H``), ``specular`` the unit's
+    cosine stage (:func:`_conventional`, :func:`_blinn`), ``cosine_range`` the exact range
+    of its ideal cosine over each box (:func:`_reflected`, :func:`_direct`), ``n_hw`` the
+    applied ``n'``."""
+    count, vec = len(boxes), unit.fmt("vec")
+    normal = normal_codes(vec, boxes, basis)
+    l_code, s_code = direction(light, vec, count), direction(second, vec, count)
+    light_view = product_of(l_code, s_code, count)
+    ideal = cosine_range(boxes, basis, light, second)
+    out, faults, worst = unit.fmt("out"), set(normal.faults), None
+    for q in length_cases(squared_length(normal, boxes.z)):  # each point is in one of them
+        k, y_max = inverse_length(unit, q)
+        c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view)
+        diff = clamp(rounded(c_light, rounding_error(c_light.fmt, out, unit.rounding)), 0.0, 1.0)
+        case = (diff.dev, diff.hi, *power_bound(unit, n_hw, ideal, dev, hardware))
+        worst = case if worst is None else tuple(np.maximum(a, b) for a, b in zip(worst, case))
+        faults |= diff.faults | c_light.faults
+    e_d, d_hi, e_s, hw_hi, ideal_hi = worst
+    return e_d, d_hi, e_s, ideal_hi, hw_hi, faults
+
+
+def blend_errors(blend, material, terms, levels):
+    """``(rounding, approximation, gate)`` (B, 3), (B, 3), (B,) at the outputs (as
+    :mod:`.outputs` states it, with ``s = 1``) from per light ``(e_d, d_hi, e_s, ideal_hi,
+    hw_hi, approximation, q)``: ``q`` the range of the exact ``N̂·L``."""
+    (ac, dc, sc), (ae, de, se) = coefficient_tables(blend)
+    m = material
+    rounding = np.abs(ac - ae)[m].copy()
+    approximation = np.zeros_like(rounding)
+    gate = np.zeros(len(m))
+    for i, (e_d, d_hi, e_s, ideal_hi, hw_hi, approx, q) in enumerate(terms):
+        d, s = dc[m, i], sc[m, i]
+        rounding += d * e_d[:, None] + np.abs(d - de[m, i]) * (d_hi + e_d)[:, None]
+        both = s * e_s[:, None] + np.abs(s - se[m, i]) * ideal_hi[:, None]
+        # the hardware's lit (diff > 0) is the reference's outside the terminator band
+        agree = (e_d < 1.0 / levels) | (q[0] > e_d) | (q[1] < -e_d)
+        mismatch = np.maximum(s * hw_hi[:, None], se[m, i] * (ideal_hi + approx)[:, None])
+        rounding += np.where(agree[:, None], both, np.maximum(both, mismatch))
+        gate = np.where(agree, gate, np.maximum(gate, e_d))
+        approximation += se[m, i] * approx[:, None]
+    return rounding, approximation, gate
+
+
+def _phong_distance(boxes, basis, light, half, n_hw, n):
+    """Per box a bound on ``|max(N̂·H, 0)^n' - max(R·V, 0)^n|`` (module docstring)."""
+    w, c = cosine_range(boxes, basis, half), cosine_range(boxes, basis, light, reflected=True)
+
+    def power(x, e):
+        return np.maximum(x, 0.0) ** e
+
+    form = np.maximum(power(w[1], n_hw) - power(c[0], n), power(c[1], n) - power(w[0], n_hw))
+    return np.maximum(form, 0.0) * (1 + 1e-12) + 1e-15
+
+
+class TableUnit:
+    """Bounds the ``conventional`` or ``blinn`` unit (module docstring)."""
+
+    #: what the certificate names as its method
+    name = "interval+tables"
+
+    def __init__(self, hooks, golden, specular, cosine_range, halfway):
+        self.n_scale, self.specular, self.halfway = hooks.n_scale, specular, halfway
+        self.golden, self.cosine_range = golden, cosine_range
+
+    def why_not(self, shader, domain):
+        """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
+        why = directional_why_not(domain)
+        if why:
+            return why
+        if any(getattr(unit, "local_light", False) or getattr(unit, "local_viewer", False)
+               for unit in shader.units):
+            return "a unit normalizing its own L or V (a point light, a local viewer) is not bounded yet"
+        if len(shader.units) != len(domain.lights):
+            return f"the shader holds {len(shader.units)} copies of the unit for {len(domain.lights)} lights"
+        return None
+
+    def errors(self, shader, against, boxes, basis, lights):
+        """``errors(boxes)`` of :func:`~phongfx.certify.branch.bound_boxes`."""
+        n = boxes.n.astype(np.int64)
+        n_hw = self.n_scale * n
+        view = basis[0]
+        terms, faults = [], set()
+        for unit, light in zip(shader.units, lights):
+            second = _unit(light + view) if self.halfway else view
+            e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, light, second,
+                                                                 self.specular, self.cosine_range, n_hw)
+            faults |= found
+            approx = (_phong_distance(boxes, basis, light, second, n_hw, n)
+                      if self.halfway and against == "phong" else np.zeros(len(boxes)))
+            terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx, cosine_range(boxes, basis, light)))
+        rounding, approximation, gate = blend_errors(shader.blend, boxes.material, terms, shader.blend.levels)
+        self._listed(shader, against, boxes, basis, lights, (rounding, approximation, gate))
+        return rounding, approximation, faults, gate
+
+    def _listed(self, shader, against, boxes, basis, lights, parts):
+        """Where a box holds at most :data:`CODES_PER_BOX` normal codes, every one of them through
+        the golden model (:func:`~phongfx.certify.codes.code_errors`, up to :data:`CODES_PER_CALL`
+        codes, the boxes of largest bound first); its bound replaces the interval one where lower
+        (both hold), as rounding: it bounds rounding and approximation together."""
+        rounding, approximation, gate = parts
+        total = np.max(rounding + approximation, axis=-1)
+        count = code_ranges(shader.units[0].fmt("vec"), boxes, basis)[2]
+        order = np.argsort(-total)
+        order = order[count[order] <= CODES_PER_BOX]
+        order = order[np.cumsum(count[order]) <= CODES_PER_CALL]
+        if not len(order):
+            return
+        n = boxes.n.astype(np.int64)[order]
+        reflected = not self.halfway or against == "phong"
+        seconds = [_unit(light + basis[0]) if self.halfway else basis[0] for light in lights]
+        n_ref = n if reflected else self.n_scale * n
+        listed = code_errors(shader, self.golden, boxes.take(order), basis, lights, seconds, reflected,
+                             self.n_scale * n, n_ref)
+        better = listed.max(axis=-1) < total[order]
+        pick = order[better]
+        rounding[pick], approximation[pick], gate[pick] = listed[better], 0.0, 0.0
+
+    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
+        """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
+        basis = frame(domain.camera[1])
+        lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
+        against = spec.requirement.against
+
+        def errors(boxes):
+            return self.errors(shader, against, boxes, basis, lights)
+
+        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough)
+
+
+def _unit(v):
+    return v / np.linalg.norm(v)
+
+
+CONVENTIONAL_BOUND = TableUnit(CONVENTIONAL, conventional, _conventional, _reflected, halfway=False)
+BLINN_BOUND = TableUnit(BLINN, blinn, _blinn, _direct, halfway=True)
