@@ -65,19 +65,22 @@ class Direction:
     bend: float = 0.0
 
 
-def _local(ball, max_span_length, positions):
+def _local(domain, positions):
     """The :class:`Direction` toward a point light or local camera at ``positions`` (one, or a
-    camera path's), seen from ``ball``: one cone about the mean axis holding every position's."""
-    centre, radius = np.asarray(ball[0], dtype=np.float64), float(ball[1])
+    camera path's): one cone about the mean of the domain's cones' axes (:meth:`Domain.cone
+    <phongfx.scene.domain.Domain.cone>`) holding every one of them."""
+    centre, radius = np.asarray(domain.ball[0], dtype=np.float64), float(domain.ball[1])
     offsets = [np.asarray(p, dtype=np.float64) - centre for p in positions]
-    axes = [d / np.linalg.norm(d) for d in offsets]
-    mean = np.sum(axes, axis=0)
-    axis = mean / np.linalg.norm(mean)
-    half = max(math.acos(min(1.0, float(axis @ a))) + math.asin(radius / float(np.linalg.norm(d)))
-               for a, d in zip(axes, offsets))
+    cones = [domain.cone(p) for p in positions]
+    mean = np.sum([np.asarray(a) for a, _ in cones], axis=0)
+    axis = mean / max(float(np.linalg.norm(mean)), 1e-300)
+    half = max(math.acos(min(1.0, max(-1.0, float(axis @ np.asarray(a))))) + math.radians(h) for a, h in cones)
+    if float(np.linalg.norm(mean)) < 1e-9:
+        half = math.pi
+    half = min(math.pi, half)
     near = min(float(np.linalg.norm(d)) for d in offsets) - radius
     far = max(float(np.linalg.norm(d)) for d in offsets) + radius
-    span = min(float(max_span_length), 2 * radius)
+    span = min(float(domain.max_span_length), 2 * radius)
     cap = 2 * math.sin(min(half, math.pi / 2))
     chord = min(span / near, cap)
     # sin of the bend (module docstring); as a chord when the angle is below 90°
@@ -198,7 +201,7 @@ def directions(domain):
             return Direction(tuple(float(x) for x in vector))
         if kind == "infinity":
             return Direction(tuple(float(x) for x in frame(vector)[0]))
-        return _local(domain.ball, domain.max_span_length, positions)
+        return _local(domain, positions)
 
     view = toward(domain.camera[0], domain.camera[1], domain.camera_path or (domain.camera[1],))
     lights = [toward(kind, vector, (vector,)) for kind, vector, _ in domain.lights]

@@ -53,7 +53,9 @@ class LyonDatapaths:
         if unit.local_viewer != (domain.camera[0] == "point"):
             return f"the camera is {domain.camera[0]} but the datapath's local_viewer is {unit.local_viewer}"
         if unit.specular == "halfway" and (unit.any_local):
-            return "the halfway unit with point lights or a local viewer is not bounded yet"
+            return ("the halfway unit with point lights or a local viewer is not bounded yet (its form "
+                    "against Phong's R·L takes N·H and R·L together, which the light and viewer cones "
+                    "decouple in every box of normals)")
         if unit.specular == "halfway" and unit.halfway.variant not in ("g2proj", "d3"):
             return f"the halfway unit's {unit.halfway.variant} variant is not bounded yet"
         return None

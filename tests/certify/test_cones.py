@@ -126,3 +126,17 @@ def test_directional_scenes_take_the_old_geometry():
     new = box_errors(shader, "phong", boxes, cones.basis, None, dom.min_normal_length, cones)
     for a, b in zip(old[:2] + old[3:], new[:2] + new[3:]):
         assert np.array_equal(a, b)
+
+
+def test_a_camera_path_gets_one_cone_holding_every_position():
+    spec = load_scene("scenes/local-mesh.toml")
+    dom = domain(spec)
+    path = ((0.0, 0.0, 4.0), (2.0, 0.0, 3.5), (-1.0, 1.5, 4.5))
+    moving = replace(dom, camera_path=path)
+    view, still = directions(moving).view, directions(dom).view
+    assert view.local and view.half > still.half
+    g = np.random.default_rng(9)
+    axis = np.asarray(view.axis)
+    for position in path:
+        _, v0, _, ref = _spans(moving, np.asarray(position), 20_000, g)
+        assert np.min(np.concatenate([v0, ref]) @ axis) >= np.cos(view.half)
