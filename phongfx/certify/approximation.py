@@ -38,7 +38,7 @@ __all__ = ["CELLS", "BEND_PIECES", "PIECES", "scale_range", "shape_shift", "bend
 CELLS = 1 << 20
 
 #: Pieces of a box's ``|D|`` range in :func:`bend_shift` (cheap: a few array operations each).
-BEND_PIECES = 64
+BEND_PIECES = 256
 
 #: Pieces of a box's ``|D|`` range that the rounding part takes apart
 #: (:func:`phongfx.certify.datapath.unit_terms`: the shape function runs once per piece).
