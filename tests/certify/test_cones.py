@@ -7,6 +7,7 @@ import numpy as np
 from phongfx.certify.bound import shader_config
 from phongfx.certify.cones import Direction, Directions, directions
 from phongfx.certify.datapath import interpolated
+from phongfx.certify.figures import LYON_DATAPATHS
 from phongfx.certify.outputs import box_errors
 from phongfx.certify.sphere import cover, frame
 from phongfx.golden.fixed import Fixed
@@ -140,3 +141,14 @@ def test_a_camera_path_gets_one_cone_holding_every_position():
     for position in path:
         _, v0, _, ref = _spans(moving, np.asarray(position), 20_000, g)
         assert np.min(np.concatenate([v0, ref]) @ axis) >= np.cos(view.half)
+
+
+def test_a_light_inside_the_ball_or_a_constant_input_says_why_not():
+    spec = load_scene("scenes/local-mesh.toml")
+    dom = domain(spec)
+    shader = shader_config("fig7", {}, spec)
+    assert LYON_DATAPATHS.why_not(shader, dom) is None
+    inside = replace(dom, lights=(("point", (0.0, 0.0, 0.5), (1.0, 1.0, 1.0)),))
+    assert LYON_DATAPATHS.why_not(shader, inside).startswith("the point light 0 lies inside the objects' bounding ball")
+    constant = replace(shader, units=(shader.units[0].replace(local_lights=False),))
+    assert LYON_DATAPATHS.why_not(constant, dom) == "light 0 is a point light but the datapath takes it as a constant"
