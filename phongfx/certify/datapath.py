@@ -1,7 +1,7 @@
 """Lyon's datapaths run on :class:`~phongfx.certify.interval.Interval` values, box by box.
 
 The golden blocks (:mod:`phongfx.golden`: normalize, reflect, difference, halfway, diffuse) run
-unchanged on intervals; two steps are written here instead:
+unchanged on intervals; these steps are written here instead:
 
 * **The inputs and the LIRP** (Figure 7a).  The host encodes the span-end unit normals ``n0``,
   ``n1`` and ``a`` (:func:`phongfx.sim.stimulus.datapath.encode`: rounded to nearest, each
@@ -27,6 +27,13 @@ unchanged on intervals; two steps are written here instead:
   hardware's ``u_i`` are all below 1 the fractions are the ``u_i``, and where one reaches 1 the
   ideal's ``x/2^k >= (1 - e_u)^2``, whose ``f_k`` is at most ``(2e_u)^(2^k)``.  Its ideal is
   Figure 7's with ``n = m²`` (the comparator only zeroes where ``f_k`` is 0 already).
+* **Reflect and difference with a point light or a local viewer** (:mod:`.cones`): ``L`` and
+  ``V`` then range over cones, and interval arithmetic would let ``R`` and ``D·D`` wander far
+  past what the geometry allows (and saturate there).  Their hardware ranges are cut to the
+  ideal's geometric range widened by their deviation (:func:`within`) before the golden
+  blocks' saturating quantizes, which are otherwise the golden ones; Figure 7's shape function
+  runs per piece of the ideal ``|D|`` (:func:`_pieces`).  With lights and viewer at infinity
+  the golden blocks run unchanged.
 """
 
 import functools
