@@ -31,11 +31,18 @@ import functools
 
 import numpy as np
 
-__all__ = ["CELLS", "scale_range", "shape_shift", "diffuse_shift", "form_table", "form_distance", "halfway_vectors",
+__all__ = ["CELLS", "BEND_PIECES", "PIECES", "scale_range", "shape_shift", "bend_shift", "diffuse_shift", "form_table", "form_distance", "halfway_vectors",
            "halfway_distance"]
 
 #: Cells of ``c ∈ [-1, 1]`` in :func:`form_table`.
 CELLS = 1 << 20
+
+#: Pieces of a box's ``|D|`` range in :func:`bend_shift` (cheap: a few array operations each).
+BEND_PIECES = 256
+
+#: Pieces of a box's ``|D|`` range that the rounding part takes apart
+#: (:func:`phongfx.certify.datapath.unit_terms`: the shape function runs once per piece).
+PIECES = 16
 
 
 def _g(y, order):
@@ -76,6 +83,27 @@ def shape_shift(s, p, q, c, n_eff, k):
     x_min = np.maximum(0.0, n_eff * (1 - c[1]) - dx)
     slope = np.maximum(0.0, 1 - x_min / big) ** (big - 1)
     return slope * dx * (1 + 1e-12)
+
+
+def bend_shift(t, delta, n_eff, k):
+    """Bound on ``|f_k(x') - f_k(x)|`` per box, ``x = (n_eff/2)|D|²`` with ``|D|`` in ``t = (lo,
+    hi)`` and ``x'`` the same of a ``D'`` within ``delta`` of ``D`` (a point light's or local
+    viewer's ideal against the reference's directions, :mod:`.cones`): ``|x' - x| <=
+    n_eff(|D|δ + δ²/2)`` and ``|f_k'|`` falls with ``x``, so on each of :data:`BEND_PIECES` pieces
+    ``[a, b]`` of ``t`` the shift is at most ``|f_k'(n_eff·a²/2 - Δ)|·Δ``, ``Δ = n_eff(bδ +
+    δ²/2)``; the largest piece bounds the box (at most 1: ``f_k`` lies in ``[0, 1]``)."""
+    delta = np.broadcast_to(np.asarray(delta, dtype=np.float64), np.shape(t[0]))[:, None]
+    if not np.any(delta > 0):
+        return np.zeros(np.shape(t[0]))
+    cut = np.linspace(0.0, 1.0, BEND_PIECES + 1)
+    a = t[0][:, None] + (t[1] - t[0])[:, None] * cut[:-1]
+    b = t[0][:, None] + (t[1] - t[0])[:, None] * cut[1:]
+    a[:, 0], b[:, -1] = t[0], t[1]  # the pieces share their float ends: they cover the range
+    n = np.asarray(n_eff, dtype=np.float64)[:, None]
+    reach = n * (b * delta + delta * delta / 2)
+    big = 2.0 ** k
+    slope = np.maximum(0.0, 1 - np.maximum(0.0, n * a * a / 2 - reach) / big) ** (big - 1)
+    return np.minimum(np.max(slope * reach, axis=-1) * (1 + 1e-12), 1.0)
 
 
 def diffuse_shift(s, q):

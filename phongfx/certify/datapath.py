@@ -1,7 +1,7 @@
 """Lyon's datapaths run on :class:`~phongfx.certify.interval.Interval` values, box by box.
 
 The golden blocks (:mod:`phongfx.golden`: normalize, reflect, difference, halfway, diffuse) run
-unchanged on intervals; two steps are written here instead:
+unchanged on intervals; these steps are written here instead:
 
 * **The inputs and the LIRP** (Figure 7a).  The host encodes the span-end unit normals ``n0``,
   ``n1`` and ``a`` (:func:`phongfx.sim.stimulus.datapath.encode`: rounded to nearest, each
@@ -11,7 +11,9 @@ unchanged on intervals; two steps are written here instead:
   ``e_n + e_a·|n1 - n0|`` per component, ``|n1 - n0| <= 2·sin(θ/2)`` for span ends up to the
   domain's ``θ`` apart (``= 2·√(1 - min_normal_length²)``), plus the LIRP's rounding.  (The
   interval rule for products would count ``e_n`` twice, once per end.)  ``L`` and ``V`` at
-  infinity are constants: their codes, each within its own exact distance of the float.
+  infinity are constants: their codes, each within its own exact distance of the float; a point
+  light's or local viewer's go through their own LIRP and normalizer (:func:`interpolated`,
+  the bounds of :mod:`.cones`).
 * **The shape function** (Figure 7d, :func:`phongfx.golden.shape.shape`), whose comparator
   ``v = x/2^k >= 1`` drives a multiplexer to 0 and whose "1-" block takes ``v``'s fraction
   (a wrap that only the masked case uses).  Where the hardware's ``v < 1`` the fraction is ``v``
@@ -25,25 +27,39 @@ unchanged on intervals; two steps are written here instead:
   hardware's ``u_i`` are all below 1 the fractions are the ``u_i``, and where one reaches 1 the
   ideal's ``x/2^k >= (1 - e_u)^2``, whose ``f_k`` is at most ``(2e_u)^(2^k)``.  Its ideal is
   Figure 7's with ``n = m²`` (the comparator only zeroes where ``f_k`` is 0 already).
+* **Reflect and difference with a point light or a local viewer** (:mod:`.cones`): ``L`` and
+  ``V`` then range over cones, and interval arithmetic would let ``R`` and ``D·D`` wander far
+  past what the geometry allows (and saturate there).  Their hardware ranges are cut to the
+  ideal's geometric range widened by their deviation (:func:`within`) before the golden
+  blocks' saturating quantizes, which are otherwise the golden ones; Figure 7's shape function
+  runs per piece of the ideal ``|D|`` (:func:`_pieces`).  With lights and viewer at infinity
+  the golden blocks run unchanged.
 """
+
+import functools
 
 import numpy as np
 
 from phongfx.core.format import Format
 from phongfx.golden.diffuse import diffuse
-from phongfx.golden.difference import difference
+from phongfx.golden.difference import difference, shininess_input
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.halfway import halfway
 from phongfx.golden.normalize import normalize
 from phongfx.golden.reflect import reflect
 
+from .approximation import PIECES, scale_range
+from .cones import at_infinity
 from .interval import Interval, rounding_error
-from .sphere import product, projection
+from .sphere import cover, frame, product, projection
 
-__all__ = ["UNITS", "encoding_error", "front", "constant", "shape", "magnitude", "root", "unit_terms"]
+__all__ = ["UNITS", "SUB_CONES", "encoding_error", "lirp_error", "front", "interpolated", "within", "constant", "shape", "magnitude", "root", "unit_terms"]
 
 #: The specular units bounded here (Lyon's Figures 7 and 8 and the halfway unit of Figure 5).
 UNITS = ("fig7", "fig8", "halfway")
+
+#: sub-cones of a local L or V (:func:`interpolated`): cuts in the angle from the axis and about it
+SUB_CONES = (4, 16)
 
 
 def encoding_error(fmt):
@@ -53,13 +69,18 @@ def encoding_error(fmt):
     return max(fmt.lsb / 2, 1.0 - top, (low + 1.0) if low > -1 else 0.0)
 
 
+def lirp_error(lirp, chord):
+    """Bound on each component of the LIRP's output from the exact ``(1-a)·x0 + a·x1`` of unit
+    span ends up to ``chord`` apart (module docstring)."""
+    vec, a, out = lirp.fmt("vec"), lirp.fmt("a"), lirp.fmt("out")
+    return (encoding_error(vec) + (a.lsb / 2) * chord + rounding_error(vec.mul(a), out, lirp.rounding)) * (1 + 1e-12)
+
+
 def front(config, boxes, basis, min_normal_length):
     """The LIRP's output ``N'`` (B, 3) as an Interval over ``boxes`` (module docstring)."""
-    vec, a, out = config.lirp.fmt("vec"), config.lirp.fmt("a"), config.lirp.fmt("out")
+    out = config.lirp.fmt("out")
     chord = 2.0 * np.sqrt(max(0.0, 1.0 - min(1.0, min_normal_length) ** 2))
-    product_fmt = vec.mul(a)
-    e = (encoding_error(vec) + (a.lsb / 2) * chord
-         + rounding_error(product_fmt, out, config.lirp.rounding)) * (1 + 1e-12)
+    e = lirp_error(config.lirp, chord)
     root = (np.sqrt(np.clip(boxes.z[:, 0], 0, 1)), np.sqrt(np.clip(boxes.z[:, 1], 0, 1)))
     lo, hi = [], []
     for axis in np.eye(3):
@@ -70,6 +91,33 @@ def front(config, boxes, basis, min_normal_length):
     # one shared symbol per component: the normalizer sees where an error points
     terms = np.broadcast_to(e * np.eye(3), lo.shape + (3,))
     return Interval(np.clip(lo, -1.0, 1.0), np.clip(hi, -1.0, 1.0), 0.0, out, terms=terms)
+
+
+def interpolated(config, direction, count):
+    """The hardware's normalized L (or V) toward a local :class:`~.cones.Direction` as an
+    Interval (count, 3) whose deviation is from the ideal's ``s·unit(L')`` (the exact LIRP
+    output normalized by the ideal normalizer; the sub-cones and bounds of :mod:`.cones`);
+    ``config`` the datapath's (its ``lirp`` and ``direction_normalize``)."""
+    lo, hi, err, faults = _interpolated(config.lirp, config.direction_normalize, direction)
+    wide = (count, 3)
+    return Interval(np.broadcast_to(lo, wide), np.broadcast_to(hi, wide), np.broadcast_to(err, wide),
+                    config.direction_normalize.fmt("out"), faults)
+
+
+@functools.lru_cache(maxsize=64)
+def _interpolated(lirp, normalizer, direction):
+    """``(lo, hi, err, faults)`` of :func:`interpolated`, each component over the sub-cones."""
+    e = lirp_error(lirp, direction.chord)
+    shortest = np.sqrt(max(0.0, 1.0 - direction.chord ** 2 / 4))
+    cones = cover(np.cos(direction.half), 1.0, [(0, 0)], *SUB_CONES)
+    basis, length = frame(direction.axis), (np.full(len(cones), shortest), np.ones(len(cones)))
+    parts = [product(length, projection(cones, basis, axis)) for axis in np.eye(3)]
+    lo = np.stack([part[0] for part in parts], -1) - e
+    hi = np.stack([part[1] for part in parts], -1) + e
+    terms = np.broadcast_to(e * np.eye(3), lo.shape + (3,))
+    entry = Interval(np.clip(lo, -1.0, 1.0), np.clip(hi, -1.0, 1.0), 0.0, lirp.fmt("out"), terms=terms)
+    unit = normalize(normalizer, entry)["n"]
+    return unit.lo.min(axis=0), unit.hi.max(axis=0), float(np.max(unit.dev)) * (1 + 1e-12), unit.faults
 
 
 def constant(vector, fmt, count):
@@ -98,7 +146,9 @@ def shape(config, x2):
     err = np.maximum(np.where(used, t.dev + near, 0.0), np.where(masked, past, 0.0))
     lo = np.where(used & ~masked, t.lo, 0.0)
     hi = np.where(used, t.hi, 0.0)
-    return Interval(lo, hi, err * (1 + 1e-12), config.t, t.faults if np.any(used) else v.faults)
+    # hardware and ideal both lie in [0, 1] (a shape function's value): never further apart
+    err = np.minimum(err * (1 + 1e-12), np.maximum(hi, 1.0))
+    return Interval(lo, hi, err, config.t, t.faults if np.any(used) else v.faults)
 
 
 def magnitude(x):
@@ -135,7 +185,8 @@ def root(config, r, l, m):
     err = np.maximum(np.where(small, spec.dev, 0.0), np.where(big, past, 0.0))
     lo = np.where(small & ~big, spec.lo, 0.0)
     hi = np.where(small, spec.hi, 0.0)
-    return Interval(lo, hi, err * (1 + 1e-12), config.t, spec.faults if np.any(small) else u.faults)
+    err = np.minimum(err * (1 + 1e-12), np.maximum(hi, 1.0))  # both in [0, 1], as for shape
+    return Interval(lo, hi, err, config.t, spec.faults if np.any(small) else u.faults)
 
 
 def _shininess(config, n):
@@ -147,7 +198,58 @@ def _shininess(config, n):
     return Fixed(np.clip(np.round(value), 1, top).astype(np.int64), fmt)
 
 
-def _halfway_specular(config, normal, view, lights, shininess):
+def within(x, lo, hi):
+    """``x`` with its hardware range cut to ``[lo - dev, hi + dev]``: where the hardware can be
+    when the ideal value is known to lie in ``[lo, hi]`` (a bound from the geometry, tighter
+    than interval arithmetic's where L and V range over cones, :mod:`.cones`)."""
+    dev = x.dev
+    low = np.minimum(np.maximum(x.lo, lo - dev), x.hi)
+    return Interval(low, np.maximum(np.minimum(x.hi, hi + dev), low), x.err, x.fmt, x.faults, x.terms)
+
+
+def _reflected(config, normal, view, hints):
+    """:func:`phongfx.golden.reflect.reflect`'s ``R``, cut by :func:`within` to the ideal's range
+    ``hints["r"]`` before its saturating quantize (``hints`` None: the golden block)."""
+    if hints is None:
+        return reflect(config.reflect, normal, view)["r"]
+    cfg = config.reflect
+    dot = normal.dot(view).quantize(cfg.dot, cfg.rounding, "saturate", op="reflect N·V")
+    r = within(normal * (dot << 1)[:, None] - view, *hints["r"])
+    return r.quantize(cfg.out, cfg.rounding, "saturate", op="reflect R")
+
+
+def _pieces(config, r, l, n, span):
+    """The shape function's ``spec`` (Figure 7c–d) from ``R`` and ``L``, taken in
+    :data:`~.approximation.PIECES` pieces ``[a, b]`` of the ideal ``|D|``'s range ``span``
+    (``hints["d"]``): in each, ``D·D`` lies in ``[a² - dev, b² + dev]`` (:func:`within`) and
+    ``|D·D - D'·D'| <= |δ|(2b + |δ|)`` for ``D`` within ``|δ|`` of the ideal ``D'``, so a
+    large ``D`` (a steep ``x``) and a small one (a steep shape function) are bounded apart.
+    Every point of a box lies in one piece: the box's Interval is their hull and their
+    largest deviation."""
+    n = shininess_input("n", n, config.n_const, config.n, config.n_max, len(r))
+    d = (r - l).quantize(config.d, config.rounding, "saturate", op="difference D")
+    dd = d.dot(d)
+    count, cut = len(dd), np.linspace(0.0, 1.0, PIECES + 1)
+    a = span[0][:, None] + (span[1] - span[0])[:, None] * cut[:-1]
+    b = span[0][:, None] + (span[1] - span[0])[:, None] * cut[1:]
+    a[:, 0], b[:, -1] = span[0], span[1]  # the pieces share their float ends: they cover the range
+    norm = np.sqrt(np.sum(d.dev ** 2, axis=-1))[:, None]
+    err = np.minimum(dd.dev[:, None], norm * (2 * b + norm)) * (1 + 1e-12)
+    wide = Interval(np.repeat(dd.lo, PIECES), np.repeat(dd.hi, PIECES), err.ravel(), dd.fmt, dd.faults)
+    dd = within(wide, (a * a).ravel(), (b * b).ravel())
+    dd = dd.quantize(config.dd, config.rounding, "saturate", op="difference D·D")
+    x2 = (Fixed(np.repeat(n.raw, PIECES), n.fmt) * dd).quantize(config.x2, config.rounding, "saturate",
+                                                                 op="difference 2x")
+    return x2, count
+
+
+def _hull(x, count):
+    """One Interval per box from :func:`_pieces`' ``PIECES`` per box: their hull and largest deviation."""
+    lo, hi, dev = (v.reshape(count, PIECES) for v in (x.lo, x.hi, x.dev))
+    return Interval(lo.min(axis=-1), hi.max(axis=-1), dev.max(axis=-1), x.fmt, x.faults)
+
+
+def _halfway_specular(config, normal, view, lights, shininess, hints):
     scaled = shininess.shift(config.halfway_shift) if shininess is not None else None
     out = []
     for light in lights:
@@ -156,15 +258,19 @@ def _halfway_specular(config, normal, view, lights, shininess):
     return out
 
 
-def _fig7_specular(config, normal, view, lights, shininess):
+def _fig7_specular(config, normal, view, lights, shininess, hints):
     # as phongfx.golden.datapath.fig7: R once, then per light 2x → shape
-    r = reflect(config.reflect, normal, view)["r"]
-    return [shape(config.shape, difference(config.difference, r, light, shininess)["x2"]) for light in lights]
+    r = _reflected(config, normal, view, hints)
+    if hints is None:
+        return [shape(config.shape, difference(config.difference, r, light, shininess)["x2"]) for light in lights]
+    return [_hull(shape(config.shape, x2), count)
+            for x2, count in (_pieces(config.difference, r, light, shininess, span)
+                              for light, span in zip(lights, hints["d"]))]
 
 
-def _fig8_specular(config, normal, view, lights, shininess):
+def _fig8_specular(config, normal, view, lights, shininess, hints):
     # as phongfx.golden.datapath.fig8: R once, then per light the root-shininess unit
-    r = reflect(config.reflect, normal, view)["r"]
+    r = _reflected(config, normal, view, hints)
     m = shininess if shininess is not None else Fixed(np.full(len(r), config.root.m_const), config.root.m)
     return [root(config.root, r, light, m) for light in lights]
 
@@ -172,14 +278,30 @@ def _fig8_specular(config, normal, view, lights, shininess):
 _SPECULAR = {"fig7": _fig7_specular, "fig8": _fig8_specular, "halfway": _halfway_specular}
 
 
-def unit_terms(config, boxes, basis, lights, min_normal_length):
+def unit_terms(config, boxes, basis, lights, min_normal_length, cones=None):
     """``(spec, diff)``: per light the Intervals (B,) of the unit's ``spec<i>`` and ``diff<i>``
-    over ``boxes`` (directional ``lights``: unit vectors; the viewer ``basis[0]``)."""
+    over ``boxes`` (directional ``lights``: unit vectors; the viewer ``basis[0]``); ``cones``
+    (:class:`~.cones.Directions`), when given, says which are local instead."""
     count = len(boxes)
     vec = config.normalize.fmt("out")
-    normal = normalize(config.normalize, front(config, boxes, basis, min_normal_length))["n"]
-    view = constant(basis[0], vec, count)
-    light_in = [constant(light, vec, count) for light in lights]
-    spec = _SPECULAR[config.specular](config, normal, view, light_in, _shininess(config, boxes.n))
+    cones = cones or at_infinity(basis, lights, -1.0)
+    normal = normalize(config.normalize, front(config, boxes, cones.basis, min_normal_length))["n"]
+
+    def hardware(direction):
+        if direction.local:
+            return interpolated(config, direction, count)
+        return constant(direction.axis, vec, count)
+
+    view = hardware(cones.view)
+    light_in = [hardware(light) for light in cones.lights]
+    hints = None
+    if cones.local:  # the geometry's ranges of R and D·D (:mod:`.cones`)
+        s, order = scale_range(boxes.z, config.normalize.order), config.direction_normalize.order
+        spans = []
+        for index in range(len(cones.lights)):
+            (lo, hi), delta = cones.difference(boxes, s, order, index)
+            spans.append((np.maximum(lo - delta, 0.0), hi + delta))
+        hints = {"r": cones.reflected(boxes, s, order), "d": spans}
+    spec = _SPECULAR[config.specular](config, normal, view, light_in, _shininess(config, boxes.n), hints)
     diff = [diffuse(config.diffuse, normal, light)["diff"] for light in light_in]
     return spec, diff

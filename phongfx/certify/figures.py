@@ -3,14 +3,16 @@
 Intervals through the golden blocks (:mod:`.datapath`) give the rounding part, the ideal
 datapath's distance from the reference (:mod:`.approximation`) the approximation part, both per
 box of the domain's normals (:mod:`.sphere`), summed at the outputs (:mod:`.outputs`) and
-refined by :func:`~phongfx.certify.branch.bound_boxes`.  Lights and viewer at infinity.
+refined by :func:`~phongfx.certify.branch.bound_boxes`.  Lights and viewer at infinity, or
+point lights and a local viewer seen from the domain's ball (:mod:`.cones`).
 """
 
 import numpy as np
 
-from .branch import bound_boxes
+from .branch import bound_boxes, cases
+from .cones import cone_why_not, directions
 from .outputs import box_errors
-from .sphere import frame
+from .sphere import cover
 
 __all__ = ["LyonDatapaths", "LYON_DATAPATHS", "directional_why_not"]
 
@@ -38,24 +40,49 @@ class LyonDatapaths:
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
-        why = directional_why_not(domain)
+        why = cone_why_not(domain) or _directional_units(domain)
         if why:
             return why
+        if not any(values for _, values in domain.materials):
+            return "the domain admits no shininess n"
         unit = shader.units[0]
+        for index, (kind, _, _) in enumerate(domain.lights):
+            if unit.local_light(index) != (kind == "point"):
+                return (f"light {index} is a {kind} light but the datapath takes it "
+                        f"{'interpolated' if unit.local_light(index) else 'as a constant'}")
+        if unit.local_viewer != (domain.camera[0] == "point"):
+            return f"the camera is {domain.camera[0]} but the datapath's local_viewer is {unit.local_viewer}"
+        if unit.specular == "halfway" and (unit.any_local):
+            return ("the halfway unit with point lights or a local viewer is not bounded yet (its form "
+                    "against Phong's R·L takes N·H and R·L together, which the light and viewer cones "
+                    "decouple in every box of normals)")
         if unit.specular == "halfway" and unit.halfway.variant not in ("g2proj", "d3"):
             return f"the halfway unit's {unit.halfway.variant} variant is not bounded yet"
         return None
 
     def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
-        """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
-        basis = frame(domain.camera[1])
-        lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
+        """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`);
+        point lights and a local viewer as :mod:`.cones` bounds them."""
+        cones = directions(domain)
         against = spec.requirement.against
+        boxes = None
+        if cones.view.half:  # the boxes cover the normals about the viewer cone's axis
+            boxes = cover(cones.cover_cos_min, domain.min_normal_length, cases(domain))
 
         def errors(boxes):
-            return box_errors(shader, against, boxes, basis, lights, domain.min_normal_length)
+            return box_errors(shader, against, boxes, cones.basis, None, domain.min_normal_length, cones)
 
-        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough)
+        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)
+
+
+def _directional_units(domain):
+    """Why the directions at infinity are outside the bound's geometry (None when inside)."""
+    vectors = [vector for kind, vector, _ in domain.lights if kind == "directional"]
+    if domain.camera[0] == "infinity":
+        vectors.append(domain.camera[1])
+    if any(abs(float(np.linalg.norm(v)) - 1.0) > 1e-9 for v in vectors):
+        return "the light and camera directions must be unit vectors, as the bound's geometry takes them"
+    return None
 
 
 LYON_DATAPATHS = LyonDatapaths()

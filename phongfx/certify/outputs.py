@@ -24,8 +24,9 @@ code range moves neither side apart) ``+ rounding + approximation``, with
 
 import numpy as np
 
-from .approximation import (diffuse_shift, form_distance, halfway_distance, halfway_vectors, scale_range,
+from .approximation import (bend_shift, diffuse_shift, form_distance, halfway_distance, halfway_vectors, scale_range,
                             shape_shift)
+from .cones import at_infinity
 from .datapath import unit_terms
 from .sphere import projection
 
@@ -56,6 +57,8 @@ def light_rounding(tables, m, i, levels, d_hi, e_d, t_hi, e_s, q, margin, ideal=
     e_d, e_s, d_top, t_hi, t_top = e_d[:, None], e_s[:, None], d_top[:, None], t_hi[:, None], t_top[:, None]
     rounding = dc[m, i] * e_d + np.abs(dc[m, i] - de[m, i]) * d_top
     both = sc[m, i] * e_s + np.abs(sc[m, i] - se[m, i]) * t_top
+    # behind the light (q < -margin) both gates close: no specular term on either side
+    both = np.where((q[1] < -margin)[:, None], 0.0, both)
     agree = (margin < 1.0 / levels) | (q[0] > margin) | (q[1] < -margin)
     mismatch = np.maximum(sc[m, i] * t_hi, se[m, i] * t_top)
     rounding = rounding + np.where(agree[:, None], both, np.maximum(both, mismatch))
@@ -79,42 +82,50 @@ def _form(against, unit, n_hw, n, k, c):
     return out
 
 
-def _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k):
-    target, target_ref = halfway_vectors(unit, basis[0], light)
-    w, w_ref = projection(boxes, basis, target), projection(boxes, basis, target_ref)
+def _halfway(against, unit, boxes, cones, i, s, c, n_hw, n, k):
+    target, target_ref = halfway_vectors(unit, cones.basis[0], cones.light_axes[i])
+    w, w_ref = projection(boxes, cones.basis, target), projection(boxes, cones.basis, target_ref)
     return halfway_distance(against, s, w, w_ref, c, float(target @ target), float(target_ref @ target_ref),
                             n_hw * 2.0 ** unit.halfway_shift, n, k)
 
 
-def box_errors(shader, against, boxes, basis, lights, min_normal_length):
+def box_errors(shader, against, boxes, basis, lights, min_normal_length, cones=None):
     """Per box and channel ``(rounding, approximation)`` arrays (B, 3), in levels, the unit's
     ``faults`` (quantizes that may overflow: :class:`~phongfx.certify.interval.Interval`) and per
-    box ``gate``: 0 where the backside tests agree, else the ``|N·L|`` below which they may not."""
+    box ``gate``: 0 where the backside tests agree, else the ``|N·L|`` below which they may not.
+    ``cones`` (:class:`~phongfx.certify.cones.Directions`): point lights and a local viewer,
+    whose projections it widens; None: ``lights`` directional, the viewer ``basis[0]``."""
     unit, blend = shader.units[0], shader.blend
-    spec, diff = unit_terms(unit, boxes, basis, lights, min_normal_length)
+    cones = cones or at_infinity(basis, lights, -1.0)
+    spec, diff = unit_terms(unit, boxes, cones.basis, None, min_normal_length, cones)
     tables = coefficient_tables(blend)
     (ac, _, _), (ae, de, se) = tables
     m = boxes.material
     s = scale_range(boxes.z, unit.normalize.order)
-    p = projection(boxes, basis, basis[0])
+    p = cones.p(boxes)
     n = boxes.n.astype(np.float64)
     n_hw = _applied_n(unit, n)
     k = unit.root.k if unit.specular == "fig8" else unit.shape.k
     rounding = np.abs(ac - ae)[m].copy()
     approximation = np.zeros_like(rounding)
     faults, gate = set(), np.zeros(len(boxes))
-    for i, light in enumerate(lights):
-        q = projection(boxes, basis, light)
-        c = projection(boxes, basis, light, reflected=True)
+    for i in range(len(cones.lights)):
+        q, c = cones.q(boxes, i), cones.c(boxes, i)
         d, t = diff[i], spec[i]
         faults |= d.faults | t.faults
-        # where |q| exceeds d.dev/s, the hardware's N·L has the ideal's sign
-        add, off = light_rounding(tables, m, i, blend.levels, d.hi, d.dev, t.hi, t.dev, q, d.dev / s[0])
+        # where |q| exceeds the margin, the hardware's N·L has the reference's sign (its own L within ε)
+        slack = cones.slack(cones.lights[i], unit.direction_normalize.order)
+        margin = (d.dev + s[1] * slack) / s[0]
+        add, off = light_rounding(tables, m, i, blend.levels, d.hi, d.dev, t.hi, t.dev, q, margin)
         rounding += add
         gate = np.maximum(gate, off)
         if unit.specular == "halfway":
-            shift = _halfway(against, unit, boxes, basis, s, light, c, n_hw, n, k)
+            shift = _halfway(against, unit, boxes, cones, i, s, c, n_hw, n, k)
+        elif cones.local:  # N's scale and the ideal's own L and V against the reference's (:mod:`.cones`)
+            shift = (bend_shift(*cones.difference(boxes, s, unit.direction_normalize.order, i), n_hw, k)
+                     + _form(against, unit, n_hw, n, k, c))
         else:
             shift = shape_shift(s, p, q, c, n_hw, k) + _form(against, unit, n_hw, n, k, c)
-        approximation += de[m, i] * diffuse_shift(s, q)[:, None] + se[m, i] * shift[:, None]
+        bent = s[1] * slack * (q[1] > -margin)  # |N·L' - N·L| where some L lights the box
+        approximation += de[m, i] * (diffuse_shift(s, q) + bent)[:, None] + se[m, i] * shift[:, None]
     return rounding, approximation, faults, gate

@@ -16,6 +16,8 @@ from phongfx.scene.file import load_scene
 #: The widths ``phongfx compile`` chooses for fig7 (its manifests' "widths").
 TORUS = {"vec_frac": 10, "x2_frac": 5, "shape_t_frac": 10, "coef": 0, "order": 1, "k": 4}
 LYON = {"vec_frac": 10, "x2_frac": 5, "shape_t_frac": 8, "coef": 0, "order": 2}
+#: ... and on local-mesh (where conventional Phong is cheaper)
+LOCAL = {"vec_frac": 16, "x2_frac": 11, "shape_t_frac": 17, "coef": 1, "order": 2, "k": 5}
 #: ... and for fig8, the runner-up on both scenes.
 TORUS_FIG8 = {"vec_frac": 10, "root_frac": 10, "t_frac": 11, "coef": 0, "order": 1, "k": 4}
 LYON_FIG8 = {"vec_frac": 10, "root_frac": 8, "t_frac": 8, "coef": 2, "order": 1}
@@ -55,11 +57,23 @@ def test_methods_without_a_bounding_method_say_so():
     assert got.why == "no bounding method for the schlick unit yet"
 
 
-def test_point_lights_are_not_bounded_yet():
+def test_point_lights_and_a_local_viewer_are_bounded():
+    """local-mesh (a point light and a local camera) gets a bound, above what its frames and
+    domain samples measure, at the compiler's widths and at the defaults."""
     spec, dom = _scene("local-mesh")
-    got = certify("fig7", {}, spec, dom)
-    assert got.bound_levels is None and not got.certified
-    assert got.why == "point lights are not bounded yet"
+    for params, top in ((LOCAL, 8), ({}, 60)):
+        shader = shader_config("fig7", params, spec)
+        got = certify("fig7", params, spec, dom, shader=shader, max_boxes=20_000)
+        measured = _sampled(spec, dom, shader, params, 20_000)
+        assert 1.0 < measured <= got.bound_levels < top
+        assert not got.certified and "over the required 1" in got.why
+
+
+def test_the_halfway_unit_with_a_point_light_says_why_not():
+    spec, dom = _scene("local-mesh")
+    got = certify("halfway", {}, spec, dom)
+    assert got.bound_levels is None
+    assert got.why.startswith("the halfway unit with point lights or a local viewer is not bounded yet")
 
 
 def test_the_bound_holds_on_the_torus_smoke():
@@ -90,6 +104,7 @@ def test_the_bound_holds_for_the_other_units_smoke(method, name, params):
     ("fig7", "lyon-balls", LYON), ("fig7", "lyon-balls", {}), ("fig7", "lyon-balls", {**LYON, "vec_frac": 11}),
     ("fig8", "torus", TORUS_FIG8), ("fig8", "torus", {}), ("fig8", "lyon-balls", LYON_FIG8),
     ("halfway", "torus", {}), ("halfway", "lyon-balls", {}),
+    ("fig7", "local-mesh", LOCAL), ("fig7", "local-mesh", {}), ("fig8", "local-mesh", {}),
 ])
 def test_the_bound_holds_on_frames_and_domain(method, name, params):
     spec, dom = _scene(name)
@@ -110,15 +125,17 @@ def _worse(shader, frac_drop):
     return replace(shader, units=(unit,), blend=shader.blend.replace(spec=narrow))
 
 
-def test_a_worse_quantize_breaks_the_old_bound_and_raises_the_new_one():
-    """The check has teeth: a hardware whose squarers truncate 4 fraction bits shorter is
-    measured over the unchanged bound, and the bound computed over it rises above that."""
-    spec, dom = _scene("torus")
-    shader = shader_config("fig7", TORUS, spec)
-    worse = _worse(shader, 4)
-    before = certify("fig7", TORUS, spec, dom, shader=shader, max_boxes=100_000).bound_levels
-    measured = _sampled(spec, dom, worse, TORUS, 20_000)
-    after = certify("fig7", TORUS, spec, dom, shader=worse, max_boxes=20_000).bound_levels
+@pytest.mark.parametrize("name, params, drop, boxes", [("torus", TORUS, 4, 100_000), ("local-mesh", LOCAL, 10, 20_000)])
+def test_a_worse_quantize_breaks_the_old_bound_and_raises_the_new_one(name, params, drop, boxes):
+    """The check has teeth: a hardware whose squarers truncate ``drop`` fraction bits shorter is
+    measured over the unchanged bound, and the bound computed over it rises above that (the
+    torus: lights and viewer at infinity; local-mesh: a point light and a local viewer)."""
+    spec, dom = _scene(name)
+    shader = shader_config("fig7", params, spec)
+    worse = _worse(shader, drop)
+    before = certify("fig7", params, spec, dom, shader=shader, max_boxes=boxes).bound_levels
+    measured = _sampled(spec, dom, worse, params, 20_000)
+    after = certify("fig7", params, spec, dom, shader=worse, max_boxes=20_000).bound_levels
     assert before + 5 < measured <= after
 
 
