@@ -17,6 +17,7 @@ from phongfx.scene.geometry import frames
 
 from .certificate import Certificate, meets
 from .methods import bounding
+from .regions import by_region
 
 __all__ = ["certify", "shader_config"]
 
@@ -51,7 +52,7 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
         return done(False, None, why=why)
     need = spec.requirement.max_error_levels
     # floor(B + 1/2) <= need exactly when B < floor(need) + 1/2
-    bound, parts = how.bound(shader, spec, domain, max_boxes=max_boxes,
+    bound, parts = by_region(how, shader, spec, domain, max_boxes=max_boxes,
                              enough=np.floor(need) + 0.5 if early else None)
     if not np.isfinite(bound):
         faults = ", ".join(parts.get("faults", [])) or "a quantize"
@@ -59,6 +60,11 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
     ok = meets(bound, need)
     why = "" if ok else (f"the bound {bound:.3f} levels rounds to {int(np.floor(bound + 0.5))}, over the "
                          f"required {need:g}")
+    if not ok and "region" in parts:
+        why += f"; at its largest in region {parts['region']}"
+        if parts.get("unbounded_regions"):
+            why += (f" ({len(parts['unbounded_regions'])} regions not bounded once one failed: the bound is "
+                    f"the largest so far, not one over the whole domain)")
     if not ok and "backside" in parts:
         why += (f"; at its largest the hardware's backside test may differ from the reference's: its "
                 f"N·L error bound {parts['backside']:.4f} is wider than the terminator band "

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .geometry import FrameGeometry
+from .zones import band_points, cap
 
 __all__ = ["CHUNK", "ENDS", "GROUP", "draw", "draw_chunks", "sample_chunk", "Surface", "FaceTable", "face_table",
            "random_poses", "random_rotations", "cap", "span_end"]
@@ -89,26 +90,6 @@ def _directions(rng, count):
     return out
 
 
-def cap(centre, degrees, rng):
-    """(P, 3) unit vectors uniform (by area) in the caps of half-angle ``degrees`` about the
-    unit rows of ``centre``."""
-    count = len(centre)
-    cos = rng.uniform(np.cos(np.radians(degrees)), 1.0, count)
-    sin = np.sqrt(np.maximum(1 - cos * cos, 0.0))
-    phi = rng.uniform(0, 2 * np.pi, count)
-    u, v = sin * np.cos(phi), sin * np.sin(phi)
-    # a tangent basis without branches (Duff et al., "Building an Orthonormal Basis, Revisited")
-    x, y, z = centre[:, 0], centre[:, 1], centre[:, 2]
-    sign = np.where(z >= 0, 1.0, -1.0)
-    a = -1.0 / (sign + z)
-    b = x * y * a
-    out = np.empty((count, 3))
-    out[:, 0] = cos * x + u * (1 + sign * x * x * a) + v * b
-    out[:, 1] = cos * y + u * (sign * b) + v * (sign + y * y * a)
-    out[:, 2] = cos * z - u * (sign * x) - v * y
-    return out
-
-
 def random_rotations(domain, count, rng):
     """(count, 3, 3) rotation matrices drawn from the domain's pose set (:func:`random_poses`),
     for whoever rasterizes whole frames of random poses."""
@@ -127,10 +108,11 @@ def _matrices(q):
 class Surface:
     """What :func:`sample_chunk` draws surface points from (:mod:`phongfx.scene.domain`):
     meshes, per material index their :class:`FaceTable` (None: no face); Lyon's spheres
-    (``lyon`` True), the ``shininess`` of each sphere."""
+    (``lyon`` True), the ``shininess`` of each sphere from sphere ``first`` on."""
     lyon: bool
     tables: tuple = ()
     shininess: tuple = ()
+    first: int = 0  # Lyon: the index of the sphere ``shininess[0]`` is (a region holds one sphere)
 
 
 @dataclass(frozen=True)
@@ -212,7 +194,7 @@ def _lyon_points(domain, rng, count):
     phi = rng.uniform(0, 2 * np.pi, count)
     rho = np.sqrt(1 - z * z)
     n0 = np.stack([rho * np.cos(phi), rho * np.sin(phi), z], -1)
-    return sphere, n0, n0 + np.stack([sphere, np.zeros(count), np.zeros(count)], -1)
+    return sphere, n0, n0 + np.stack([sphere + domain.surface.first, np.zeros(count), np.zeros(count)], -1)
 
 
 def _in_ball(domain, rng, count):
@@ -265,13 +247,14 @@ def _second_normal(domain, n0, a, views, rng):
 
 
 def _meets(domain, normals, views, index):
-    """(P,) whether every one of ``normals`` has N·V >= view_cos_min for every one of ``views``
-    (a fixed vector, or per point, taken at ``index`` unless None)."""
+    """(P,) whether every one of ``normals`` has N·V in [view_cos_min, view_cos_max] for every
+    one of ``views`` (a fixed vector, or per point, taken at ``index`` unless None)."""
     ok = np.ones(len(normals[0]), dtype=bool)
     for v in views:
         v = v if v.ndim == 1 or index is None else v[index]
         for n in normals:
-            ok &= (n @ v if v.ndim == 1 else _dot(n, v)) >= domain.view_cos_min
+            cos = n @ v if v.ndim == 1 else _dot(n, v)
+            ok &= (cos >= domain.view_cos_min) & (cos <= domain.view_cos_max)
     return ok
 
 
@@ -279,6 +262,8 @@ def sample_chunk(domain, count, rng):
     """``{name: array}`` of ``count`` domain points, the fields of a
     :class:`~phongfx.scene.geometry.FrameGeometry` that vary (``l0``, ``l1``, ``light`` are
     (lights, count, 3); fixed directions are read-only broadcasts)."""
+    if domain.regions:
+        return _by_region(domain, count, rng)
     used = np.array([i for i, (_, values) in enumerate(domain.materials) if values], dtype=np.int64)
     if not len(used):
         raise ValueError("no material admits an n: the domain is empty")
@@ -296,6 +281,9 @@ def sample_chunk(domain, count, rng):
         n0, surface = _mesh_points(domain, material, rng)
     end = rng.random(count)
     a = np.where(end < ENDS, 0.0, np.where(end >= 1 - ENDS, 1.0, rng.random(count)))
+    band = band_points(domain, a, rng) if domain.surface.lyon and domain.region_name else None
+    if band is not None:  # the surface point at the pixel's normal, as Lyon's image has it
+        surface = surface - n0 + band[2]
     if domain.camera[0] == "point" or any(kind == "point" for kind, _, _ in domain.lights):
         x0 = surface
         inside = np.flatnonzero(rng.random(count) < 0.5)
@@ -310,9 +298,12 @@ def sample_chunk(domain, count, rng):
         views = _toward("point", path[rng.integers(len(path), size=count)], points)
     else:
         views = _toward(domain.camera[0], domain.camera[1], points)
-    checks = [] if domain.view_cos_min <= -1 else (
+    checks = [] if domain.view_cos_min <= -1 and domain.view_cos_max >= 1 else (
         [np.asarray(domain.camera[1], dtype=np.float64)] if views[0].strides[0] == 0 else views)
-    n1, normal = _second_normal(domain, n0, a, checks, rng)
+    if band is not None:
+        n0, n1, normal = band
+    else:
+        n1, normal = _second_normal(domain, n0, a, checks, rng)
     if all(kind == "directional" for kind, _, _ in domain.lights):
         fixed = np.array([vector for _, vector, _ in domain.lights], dtype=np.float64)[:, None, :]
         l0 = l1 = light = np.broadcast_to(fixed, (len(domain.lights), count, 3))
@@ -323,6 +314,25 @@ def sample_chunk(domain, count, rng):
     return {"a": a, "n0": n0, "n1": n1, "normal": normal, "position": position, "l0": l0, "l1": l1,
             "light": light, "v0": views[0], "v1": views[1], "viewer": views[2], "n": n, "kd": kd,
             "ks": ks, "ka": ka, "colour": colour.reshape(-1, 3), "material": material}
+
+
+def _by_region(domain, count, rng):
+    """:func:`sample_chunk` of a domain with regions: a uniform region per point (each region,
+    narrow or wide, gets its share of the hard points at its own limits), then a point of it."""
+    region = rng.integers(len(domain.regions), size=count)
+    out = None
+    for r in np.unique(region):
+        mine = np.flatnonzero(region == r)
+        part = sample_chunk(domain.region(int(r)), len(mine), rng)
+        if out is None:
+            out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
+        for key, value in part.items():
+            axis = 1 if key in _PER_LIGHT else 0
+            if out[key].strides[axis] != 0:
+                np.moveaxis(out[key], axis, 0)[mine] = np.moveaxis(value, axis, 0)
+    if out is None:  # no point: any region's empty chunk has the fields
+        out = sample_chunk(domain.region(0), 0, rng)
+    return out
 
 
 def draw_chunks(domain, count, seed):
