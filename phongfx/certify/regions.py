@@ -24,7 +24,7 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None):
         return how.bound(shader, spec, domain, max_boxes=max_boxes, enough=enough)
     count = len(domain.regions)
     # each region has its own budget; the whole never spends much more than one domain's
-    budget = max(max_boxes // count, min(max_boxes, 20_000))
+    budget = max(max_boxes // count, 1000)
     found = []
     for index, region in enumerate(domain.regions):
         bound, parts = how.bound(shader, spec, domain.region(index), max_boxes=budget, enough=enough)

@@ -71,6 +71,7 @@ import numpy as np
 from .geometry import scene_mesh
 from .lyon import Scene, pixels
 from .mesh import unit
+from .patches import mesh_regions
 from .regions import lyon_regions, summary
 from .sampling import Surface, draw, draw_chunks, face_table
 
@@ -360,12 +361,16 @@ def domain(spec, geometries=None):
     derived = None
     if options.max_span_angle_deg is not None:
         derived, span_angle = span_angle, options.max_span_angle_deg
-    pose = options.pose or ("motion" if spec.frames.count > 1 else "still")
-    count, degrees = spec.frames.count, spec.frames.degrees
     coefficients = tuple((m.kd, m.ks, m.ka, tuple(m.colour)) for m in spec.materials.values())
     materials = _admissible(spec, names)
-    regions = (lyon_regions(spec.objects[0].params, materials, spec.camera.vector, options.max_span_angle_deg)
-               if lyon else ())
+    pose = options.pose or ("motion" if spec.frames.count > 1 else "still")
+    count, degrees = spec.frames.count, spec.frames.degrees
+    still = tuple(f * degrees / count for f in range(count))
+    if lyon:
+        regions = lyon_regions(spec.objects[0].params, materials, spec.camera.vector, options.max_span_angle_deg)
+    else:
+        regions = mesh_regions(spec, materials, pose, (min(0.0, degrees), max(0.0, degrees)),
+                               float(options.wobble_degrees), still, tilt, ball, options.max_span_angle_deg)
     return Domain(pose=pose, axis=tuple(float(x) for x in spec.frames.axis),
                   degrees=(min(0.0, degrees), max(0.0, degrees)),
                   wobble_degrees=float(options.wobble_degrees), view_cos_min=view_cos_min,
@@ -376,7 +381,7 @@ def domain(spec, geometries=None):
                   camera=(spec.camera.kind, tuple(spec.camera.vector)),
                   materials=materials, samples=options.samples,
                   final_samples=options.final_samples, seed=options.seed,
-                  still_degrees=tuple(f * degrees / count for f in range(count)),
+                  still_degrees=still,
                   camera_path=tuple(tuple(p) for p in spec.frames.camera_path), face_cap_deg=cap,
                   view_tilt_deg=tilt, derived_span_angle_deg=derived, coefficients=coefficients,
                   bits=spec.output.bits, surface=surface, regions=regions)

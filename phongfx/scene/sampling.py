@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .geometry import FrameGeometry
-from .zones import band_points, cap
+from .zones import band_points, cap, directions, facing_draw, in_ball, span_end
 
 __all__ = ["CHUNK", "ENDS", "GROUP", "draw", "draw_chunks", "sample_chunk", "Surface", "FaceTable", "face_table",
            "random_poses", "random_rotations", "cap", "span_end"]
@@ -77,17 +77,7 @@ def random_poses(domain, count, rng):
     grid = np.linspace(0.0, top, 1025)
     cdf = grid - np.sin(grid)
     angle = np.interp(rng.random(count) * cdf[-1], cdf, grid) if top > 0 else np.zeros(count)
-    return _product(_axis_angle(_directions(rng, count), angle), base)
-
-
-def _directions(rng, count):
-    """(count, 3) uniform unit vectors (z uniform in [-1, 1]: Archimedes' hat-box theorem)."""
-    z = rng.uniform(-1.0, 1.0, count)
-    phi = rng.uniform(0.0, 2 * np.pi, count)
-    rho = np.sqrt(1 - z * z)
-    out = np.empty((count, 3))
-    out[:, 0], out[:, 1], out[:, 2] = rho * np.cos(phi), rho * np.sin(phi), z
-    return out
+    return _product(_axis_angle(directions(rng, count), angle), base)
 
 
 def random_rotations(domain, count, rng):
@@ -150,8 +140,9 @@ def face_table(vertices, normals, faces, face_normals, areas):
 def _mesh_points(domain, material, rng):
     """(n0, surface point) of each point: a pose of the pose set shared by :data:`GROUP`
     points, a face of the point's material drawn by area and redrawn until it faces the
-    viewer under that pose (a pose under which a point's draws keep failing, one with almost
-    no face toward the viewer, is redrawn for its group), a uniform point of the face."""
+    viewer under that pose (where a point's draws keep failing, one of the few faces toward the
+    viewer, uniformly, or for a pose with none a new pose for its group), a uniform point of
+    the face.  A region's patch of faces (:mod:`phongfx.scene.patches`) meets such poses often."""
     n0, point = np.empty((len(material), 3)), np.empty((len(material), 3))
     for m in np.unique(material):
         table = domain.surface.tables[m]
@@ -169,7 +160,8 @@ def _mesh_points(domain, material, rng):
             ok = _dot(toward[pending // GROUP], table.face_normals[pick]) > 0
             local[pending[ok]] = pick[ok]
             pending = pending[~ok]
-            if round % 32 == 0 and len(pending):
+            if round % 32 == 0 and len(pending):  # few faces face this pose: any of them, else a new pose
+                pending = facing_draw(table.face_normals, toward, local, pending, GROUP, rng)
                 stuck = np.unique(pending // GROUP)
                 turned[stuck] = _matrices(random_poses(domain, len(stuck), rng))
                 toward[stuck] = turned[stuck, 2, :]
@@ -195,29 +187,6 @@ def _lyon_points(domain, rng, count):
     rho = np.sqrt(1 - z * z)
     n0 = np.stack([rho * np.cos(phi), rho * np.sin(phi), z], -1)
     return sphere, n0, n0 + np.stack([sphere + domain.surface.first, np.zeros(count), np.zeros(count)], -1)
-
-
-def _in_ball(domain, rng, count):
-    centre, radius = np.asarray(domain.ball[0]), domain.ball[1]
-    return centre + _directions(rng, count) * (radius * np.cbrt(rng.random(count)))[:, None]
-
-
-def span_end(domain, x0, rng):
-    """``x0 + d·u``: ``u`` uniform in the eye-space xz plane (spans are horizontal),
-    ``d`` uniform in [-max_span_length, max_span_length] cut to stay in the ball."""
-    count = len(x0)
-    psi = rng.uniform(0, 2 * np.pi, count)
-    cos, sin = np.cos(psi), np.sin(psi)
-    rel = x0 - np.asarray(domain.ball[0])
-    b = rel[:, 0] * cos + rel[:, 2] * sin
-    root = np.sqrt(np.maximum(b * b - (_dot(rel, rel) - domain.ball[1] ** 2), 0.0))
-    lo = np.maximum(-domain.max_span_length, np.minimum(-b - root, 0.0))
-    hi = np.minimum(domain.max_span_length, np.maximum(-b + root, 0.0))
-    d = lo + (hi - lo) * rng.random(count)
-    x1 = x0.copy()
-    x1[:, 0] += d * cos
-    x1[:, 2] += d * sin
-    return x1
 
 
 def _toward(kind, vector, points):
@@ -287,7 +256,7 @@ def sample_chunk(domain, count, rng):
     if domain.camera[0] == "point" or any(kind == "point" for kind, _, _ in domain.lights):
         x0 = surface
         inside = np.flatnonzero(rng.random(count) < 0.5)
-        x0[inside] = _in_ball(domain, rng, len(inside))
+        x0[inside] = in_ball(domain, rng, len(inside))
         x1 = span_end(domain, x0, rng)
         points = (x0, x1, (1 - a)[:, None] * x0 + a[:, None] * x1)
     else:  # no vector depends on where the surface is: the pixel is the surface point
@@ -318,18 +287,25 @@ def sample_chunk(domain, count, rng):
 
 def _by_region(domain, count, rng):
     """:func:`sample_chunk` of a domain with regions: a uniform region per point (each region,
-    narrow or wide, gets its share of the hard points at its own limits), then a point of it."""
+    narrow or wide, gets its share of the hard points at its own limits), then a point of it;
+    a region whose pose draws keep showing none of its faces hands its points to the others."""
     region = rng.integers(len(domain.regions), size=count)
-    out = None
-    for r in np.unique(region):
-        mine = np.flatnonzero(region == r)
-        part = sample_chunk(domain.region(int(r)), len(mine), rng)
-        if out is None:
-            out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
-        for key, value in part.items():
-            axis = 1 if key in _PER_LIGHT else 0
-            if out[key].strides[axis] != 0:
-                np.moveaxis(out[key], axis, 0)[mine] = np.moveaxis(value, axis, 0)
+    out, failed, done, todo = None, set(), np.zeros(count, dtype=bool), list(np.unique(region))
+    while todo:
+        r = int(todo.pop(0))
+        mine = np.flatnonzero((region == r) & ~done)
+        try:
+            part = sample_chunk(domain.region(r), len(mine), rng)
+        except ValueError:
+            failed.add(r)
+            others = np.setdiff1d(np.arange(len(domain.regions)), sorted(failed))
+            if not len(others):
+                raise
+            region[mine] = others[rng.integers(len(others), size=len(mine))]
+            todo = sorted(set(todo) | set(region[mine].tolist()))
+            continue
+        done[mine] = True
+        out = _put(out, part, mine, count)
     if out is None:  # no point: any region's empty chunk has the fields
         out = sample_chunk(domain.region(0), 0, rng)
     return out
@@ -350,13 +326,19 @@ def draw(domain, count, seed):
     count = _count(count)
     out = None
     for start, part in _parts(domain, count, seed, at_least_one=True):
-        if out is None:
-            out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
-        for key, value in part.items():
-            axis = 1 if key in _PER_LIGHT else 0
-            if out[key].strides[axis] != 0:
-                np.moveaxis(out[key], axis, 0)[start:start + CHUNK] = np.moveaxis(value, axis, 0)
+        out = _put(out, part, slice(start, start + CHUNK), count)
     return _geometry(domain, out)
+
+
+def _put(out, part, where, count):
+    """``out`` (None: made, ``count`` long) with the arrays ``part`` written at ``where``."""
+    if out is None:
+        out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
+    for key, value in part.items():
+        axis = 1 if key in _PER_LIGHT else 0
+        if out[key].strides[axis] != 0:
+            np.moveaxis(out[key], axis, 0)[where] = np.moveaxis(value, axis, 0)
+    return out
 
 
 _PER_LIGHT = ("l0", "l1", "light")

@@ -1,11 +1,12 @@
-"""Unit vectors drawn in caps and zones of the sphere, and the span ends of a region of Lyon's
-spheres drawn about the pixel's normal (:mod:`phongfx.scene.regions`)."""
+"""Unit vectors drawn on the sphere, in its caps and zones, points in a ball and span ends
+(:mod:`phongfx.scene.sampling` draws a domain's points from them), and the span ends of a
+region of Lyon's spheres drawn about the pixel's normal (:mod:`phongfx.scene.regions`)."""
 
 import numpy as np
 
 from .mesh import unit
 
-__all__ = ["cap", "band_points"]
+__all__ = ["cap", "directions", "in_ball", "span_end", "band_points", "facing_draw"]
 
 _ROUNDS = 200  # redraws before the few points left take a one-normal span
 
@@ -29,6 +30,40 @@ def cap(centre, degrees, rng, cos_max=1.0):
     out[:, 1] = cos * y + u * (sign * b) + v * (sign + y * y * a)
     out[:, 2] = cos * z - u * (sign * x) - v * y
     return out
+
+
+def directions(rng, count):
+    """(count, 3) uniform unit vectors (z uniform in [-1, 1]: Archimedes' hat-box theorem)."""
+    z = rng.uniform(-1.0, 1.0, count)
+    phi = rng.uniform(0.0, 2 * np.pi, count)
+    rho = np.sqrt(1 - z * z)
+    out = np.empty((count, 3))
+    out[:, 0], out[:, 1], out[:, 2] = rho * np.cos(phi), rho * np.sin(phi), z
+    return out
+
+
+def in_ball(domain, rng, count):
+    """(count, 3) points uniform in the domain's ball."""
+    centre, radius = np.asarray(domain.ball[0]), domain.ball[1]
+    return centre + directions(rng, count) * (radius * np.cbrt(rng.random(count)))[:, None]
+
+
+def span_end(domain, x0, rng):
+    """``x0 + d·u``: ``u`` uniform in the eye-space xz plane (spans are horizontal),
+    ``d`` uniform in [-max_span_length, max_span_length] cut to stay in the ball."""
+    count = len(x0)
+    psi = rng.uniform(0, 2 * np.pi, count)
+    cos, sin = np.cos(psi), np.sin(psi)
+    rel = x0 - np.asarray(domain.ball[0])
+    b = rel[:, 0] * cos + rel[:, 2] * sin
+    root = np.sqrt(np.maximum(b * b - (np.einsum("ij,ij->i", rel, rel) - domain.ball[1] ** 2), 0.0))
+    lo = np.maximum(-domain.max_span_length, np.minimum(-b - root, 0.0))
+    hi = np.minimum(domain.max_span_length, np.maximum(-b + root, 0.0))
+    d = lo + (hi - lo) * rng.random(count)
+    x1 = x0.copy()
+    x1[:, 0] += d * cos
+    x1[:, 2] += d * sin
+    return x1
 
 
 def band_points(domain, a, rng):
@@ -60,3 +95,18 @@ def band_points(domain, a, rng):
         n0[pending[ok]], n1[pending[ok]] = got0[ok], got1[ok]
         pending = pending[~ok]
     return n0, n1, normal
+
+
+def facing_draw(face_normals, toward, local, pending, group, rng):
+    """For the ``pending`` points (indices; point ``p`` has the pose ``toward[p // group]``, the
+    eye-space z of its rotation, under which its face draws kept facing away), a face uniformly
+    among the ``face_normals`` (F, 3) that face the viewer under that pose, written into
+    ``local``; returns the points whose pose has no such face."""
+    groups = pending // group
+    unique, column = np.unique(groups, return_inverse=True)
+    facing = face_normals @ toward[unique].T > 0  # (F, U)
+    total = facing.sum(axis=0)[column]
+    ok = total > 0
+    k = (rng.random(len(pending)) * np.maximum(total, 1)).astype(np.int64)
+    local[pending[ok]] = np.argmax(np.cumsum(facing, axis=0)[:, column[ok]] > k[ok][None, :], axis=0)
+    return pending[~ok]
