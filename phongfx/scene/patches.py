@@ -15,17 +15,19 @@ faces that point alike are the ones that share limits).  Per patch, every bound 
   is ``θ`` from ``z`` with ``arccos(hi) - ρ <= θ <= min(arccos(lo) + ρ, 90° + β)``, and a
   viewer within ``γ`` of ``z`` widens both ends by ``γ``.  ``n0`` and ``n1`` are such
   combinations too: the same limits hold for them.
-* **Ball**: ``"motion"`` turns about the axis ``u``: the ball about the point of the axis at
-  the middle of the patch's heights ``v·u`` that holds every vertex's circle; ``"still"`` the
-  ball about the frames' mean patch centre holding every frame's vertices, widened by the
-  wobble's ``2 sin(w/2)·|v|``; ``"any"`` the ball about the origin; the domain's own ball
-  where the patch's does not lie inside it.
+* **Ball**: a ball holding the patch's vertices holds its faces.  ``"motion"``: the ball about
+  the middle of the box of the vertices turned to :data:`GRID` + 1 angles of the range that
+  holds them, widened by the chord ``2 sin(step/4)·|v⊥|`` by which an arc strays from its
+  nearest grid angle (``v⊥`` the vertex off the axis); ``"still"``: the same over the frames'
+  poses, widened by the wobble's ``2 sin(w/2)·|v|``; ``"any"``, and where the patch's ball
+  does not lie inside the domain's, the domain's ball.
 * **n**: its material's.
 
 A patch whose faces face the viewer under no pose of the pose set presents nothing and is left
 out.  For the sampler, a patch narrows ``"motion"``'s degrees to the hull of the angles (on a
 grid of :data:`GRID` steps, widened by one) and ``"still"``'s frames to those under which one of
-its faces faces the viewer.
+its faces faces the viewer (unwobbled, when some frame has one: a wobble that turns a face
+toward the viewer is too rare a draw).
 """
 
 import math
@@ -81,7 +83,8 @@ def z_range(vectors, pose, axis, degrees, wobble, still):
 
 def _ball(vertices, pose, axis, still, wobble, whole):
     """The patch's ball under the pose set (module docstring), or the domain's ball ``whole``
-    when the patch's does not lie inside it (a region is part of the domain)."""
+    when the patch's does not lie inside it (a region is part of the domain); ``still`` the
+    frames' angles, or for ``"motion"`` its range."""
     own = _own_ball(vertices, pose, axis, still, wobble, whole)
     inside = np.linalg.norm(np.subtract(own[0], whole[0])) + own[1] <= whole[1]
     return own if inside else whole
@@ -90,17 +93,18 @@ def _ball(vertices, pose, axis, still, wobble, whole):
 def _own_ball(vertices, pose, axis, still, wobble, whole):
     if pose == "any":
         return whole
-    if pose == "motion":
-        u = np.asarray(axis, dtype=np.float64)
-        heights = vertices @ u
-        h = 0.5 * (heights.min() + heights.max())
-        radius = float(np.sqrt(np.max((heights - h) ** 2 + np.sum((vertices - np.outer(heights, u)) ** 2, -1))))
-        return tuple(float(x) for x in h * u), radius
-    placed = [vertices @ rotation(axis, t).T for t in still]
-    centre = np.mean([p.mean(axis=0) for p in placed], axis=0)
-    reach = max(float(np.max(np.linalg.norm(p - centre, axis=-1))) for p in placed)
-    spread = 2 * math.sin(math.radians(wobble) / 2) * float(np.max(np.linalg.norm(vertices, axis=-1)))
-    return tuple(float(x) for x in centre), reach + spread
+    if pose == "motion":  # the vertices at GRID angles; an arc strays from its nearest by a chord
+        lo, hi = still
+        step = math.radians(hi - lo) / GRID
+        placed = [vertices @ rotation(axis, t).T for t in np.linspace(lo, hi, GRID + 1)]
+        off = np.linalg.norm(vertices - np.outer(vertices @ np.asarray(axis), axis), axis=-1)
+        slack = 2 * math.sin(step / 4) * float(np.max(off))
+    else:
+        placed = [vertices @ rotation(axis, t).T for t in still]
+        slack = 2 * math.sin(math.radians(wobble) / 2) * float(np.max(np.linalg.norm(vertices, axis=-1)))
+    every = np.concatenate(placed)
+    centre = 0.5 * (every.min(axis=0) + every.max(axis=0))
+    return tuple(float(x) for x in centre), float(np.max(np.linalg.norm(every - centre, axis=-1))) + slack
 
 
 def _narrowed(face_normals, pose, axis, degrees, still, wobble):
@@ -111,8 +115,9 @@ def _narrowed(face_normals, pose, axis, degrees, still, wobble):
     if pose == "any":
         return ()
     if pose == "still":
-        keep = [t for t in still if np.max(z_range(face_normals, pose, axis, degrees, wobble, (t,))[1]) > 0]
-        return (("still_degrees", tuple(keep)),)
+        keep = [t for t in still if np.max(z_range(face_normals, pose, axis, degrees, 0.0, (t,))[1]) > 0]
+        return (("still_degrees", tuple(keep or [t for t in still if np.max(
+            z_range(face_normals, pose, axis, degrees, wobble, (t,))[1]) > 0])),)
     t = np.linspace(np.radians(degrees[0]), np.radians(degrees[1]), GRID + 1)
     a, b, c = _coefficients(axis, face_normals)
     seen = np.any(a[:, None] + b[:, None] * np.cos(t) + c[:, None] * np.sin(t) > 0, axis=0)
@@ -166,7 +171,7 @@ def mesh_regions(spec, materials, pose, degrees, wobble, still, tilt, whole_ball
         out.append(Region(
             f"{spec.objects[o].kind} {o} ({names[m]}), faces toward ({', '.join(f'{x:.2f}' for x in DIRECTIONS[d])})",
             own, cos_min, cos_max, (cos_min, cos_max), span,
-            _ball(vertices, pose, axis, still, wobble, whole_ball),
+            _ball(vertices, pose, axis, degrees if pose == "motion" else still, wobble, whole_ball),
             {"object": o, "faces": int(len(mine)), "axis": [round(float(x), 4) for x in centre],
              "cone_deg": round(rho, 4)},
             Surface(False, tables=tuple(table if i == m else None for i in range(len(materials)))), narrowed))
