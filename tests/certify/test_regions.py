@@ -1,0 +1,58 @@
+"""The certificate split by region: the largest of the regions' bounds, each sound on what its
+region presents, the worst region named; tighter than the whole domain's where a region's limits
+are what decide it."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from phongfx.certify import certify
+from phongfx.certify.bound import shader_config
+from phongfx.scene.domain import domain
+from phongfx.scene.file import load_scene
+from tests.certify.test_bound import LYON, _measured
+
+SPEC = load_scene("scenes/lyon-balls.toml")
+
+
+def test_the_bound_by_region_holds_on_frames_and_region_samples_smoke():
+    d = domain(SPEC)
+    shader = shader_config("fig7", LYON, SPEC)
+    got = certify("fig7", LYON, SPEC, d, shader=shader, max_boxes=20_000)
+    bounds = [r["bound_levels"] for r in got.parts["regions"]]
+    assert len(bounds) == 20 and got.bound_levels == max(bounds)
+    worst = got.parts["regions"][int(np.argmax(bounds))]
+    assert got.parts["region"] == worst["name"] and f"at its largest in region {worst['name']}" in got.why
+    assert worst["where"]["n"] == int(worst["name"].split("n = ")[1].split(")")[0])  # its sphere's own n
+    measured = max(_measured(SPEC, shader, LYON), _measured(SPEC, shader, LYON, [d.sample(20_000, 3)]))
+    assert 1.0 < measured <= got.bound_levels
+    # each region's bound holds on that region's own samples (two: the worst, and a narrow one)
+    for index in (int(np.argmax(bounds)), int(np.argmin(bounds))):
+        sub = d.region(index)
+        assert _measured(SPEC, shader, LYON, [sub.sample(5_000, index)]) <= bounds[index]
+    # the whole-domain path is unchanged: one bound, no regions
+    whole = certify("fig7", LYON, SPEC, dataclasses.replace(d, regions=()), shader=shader, max_boxes=20_000)
+    assert "regions" not in whole.parts and "region" not in whole.parts and whole.bound_levels > 0
+
+
+def test_early_stops_at_the_first_region_that_fails():
+    d = domain(SPEC)
+    got = certify("fig7", LYON, SPEC, d, max_boxes=20_000, early=True)
+    assert not got.certified and got.parts["region"] == d.regions[0].name  # the first region fails
+    assert got.parts["unbounded_regions"] == [r.name for r in d.regions[1:]]
+    assert "19 regions not bounded once one failed" in got.why
+
+
+@pytest.mark.slow
+def test_regions_tighten_the_bound_where_the_span_angle_decides_it():
+    """Figure 7 with a first-order normalizer: its error grows with the span angle, 39° at the
+    limb but 16° near the centre, so the centre bands' bounds fall and the largest with them."""
+    d = domain(SPEC)
+    params = {**LYON, "vec_frac": 12, "order": 1}
+    shader = shader_config("fig7", params, SPEC)
+    whole = certify("fig7", params, SPEC, dataclasses.replace(d, regions=()), shader=shader)
+    split = certify("fig7", params, SPEC, d, shader=shader)
+    assert split.bound_levels < 0.8 * whole.bound_levels
+    measured = max(_measured(SPEC, shader, params), _measured(SPEC, shader, params, [d.sample(100_000, 5)]))
+    assert measured <= split.bound_levels
