@@ -9,11 +9,19 @@ import pytest
 
 from phongfx.certify import certify
 from phongfx.certify.bound import shader_config
+from phongfx.explore.compile.compiler import SceneEval
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene
-from tests.certify.test_bound import LYON, _measured
+from tests.certify.test_bound import LYON
 
 SPEC = load_scene("scenes/lyon-balls.toml")
+
+
+def _measured(spec, shader, params, geometries=None):
+    """Figure 7's largest ``|out - 255·I_ref|`` over the frames (None) or ``geometries``."""
+    scene = SceneEval(spec, geometries)
+    renders = (scene.render("fig7", shader, params, i)[:2] for i in range(len(scene.renders)))
+    return max(float(np.max(np.abs(codes - 255 * ref), initial=0.0)) for codes, ref in renders)
 
 
 def test_the_bound_by_region_holds_on_frames_and_region_samples_smoke():
