@@ -9,6 +9,7 @@ import os
 import numpy as np
 import pytest
 
+from phongfx.explore.compile.climb import inside, points, state_of
 from phongfx.scene.domain import Options, domain
 from phongfx.scene.file import load_scene
 from phongfx.scene.geometry import frames
@@ -120,3 +121,18 @@ def test_as_dict_shows_the_regions():
     assert first["theta_deg"][1] == pytest.approx(30.0, abs=0.05)
     assert "20 regions, span angles 15.69°..38.97°" in d.describe()
     assert domain(_scene("torus")).as_dict()["regions"]["count"] == 11
+
+
+def test_the_local_search_keeps_to_the_regions():
+    """A span as wide as the image's widest, at a sphere's centre, lies in the whole domain but
+    in no region: the worst-input search rejects it (its witness would exceed a sound bound)."""
+    d = domain(_scene("lyon-balls"))
+    g = d.sample(256, 2)
+    s = state_of(g, d)
+    assert inside(s, points(s, d, g.rgb, g.bits), d).all()
+    tilt = math.radians(d.max_span_angle_deg - 0.5)
+    s.n0[:] = (-math.sin(tilt / 2), 0.0, math.cos(tilt / 2))
+    s.n1[:] = (math.sin(tilt / 2), 0.0, math.cos(tilt / 2))
+    moved = points(s, d, g.rgb, g.bits)
+    whole = dataclasses.replace(d, regions=())
+    assert inside(s, moved, whole).all() and not inside(s, moved, d).any()
