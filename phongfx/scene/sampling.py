@@ -287,25 +287,26 @@ def sample_chunk(domain, count, rng):
 
 def _by_region(domain, count, rng):
     """:func:`sample_chunk` of a domain with regions: a uniform region per point (each region,
-    narrow or wide, gets its share of the hard points at its own limits), then a point of it;
-    a region whose pose draws keep showing none of its faces hands its points to the others."""
-    region = rng.integers(len(domain.regions), size=count)
-    out, failed, done, todo = None, set(), np.zeros(count, dtype=bool), list(np.unique(region))
+    narrow or wide, gets its share of the hard points at its own limits), then a point of it,
+    the points of one region side by side; a region whose pose draws keep showing none of its
+    faces hands its points to the others."""
+    todo = list(zip(range(len(domain.regions)), np.bincount(rng.integers(len(domain.regions), size=count),
+                                                           minlength=len(domain.regions)).tolist()))
+    out, failed, start = None, set(), 0
     while todo:
-        r = int(todo.pop(0))
-        mine = np.flatnonzero((region == r) & ~done)
+        r, size = todo.pop(0)
         try:
-            part = sample_chunk(domain.region(r), len(mine), rng)
+            part = sample_chunk(domain.region(r), size, rng)
         except ValueError:
             failed.add(r)
             others = np.setdiff1d(np.arange(len(domain.regions)), sorted(failed))
             if not len(others):
                 raise
-            region[mine] = others[rng.integers(len(others), size=len(mine))]
-            todo = sorted(set(todo) | set(region[mine].tolist()))
+            more = np.bincount(rng.integers(len(others), size=size), minlength=len(others))
+            todo += [(int(o), int(m)) for o, m in zip(others, more) if m]
             continue
-        done[mine] = True
-        out = _put(out, part, mine, count)
+        out = _put(out, part, slice(start, start + size), count)
+        start += size
     if out is None:  # no point: any region's empty chunk has the fields
         out = sample_chunk(domain.region(0), 0, rng)
     return out

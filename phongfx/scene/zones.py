@@ -6,9 +6,12 @@ import numpy as np
 
 from .mesh import unit
 
-__all__ = ["cap", "directions", "in_ball", "span_end", "band_points", "facing_draw"]
+__all__ = ["BAND_ROUNDS", "cap", "directions", "in_ball", "span_end", "band_points", "facing_draw"]
 
-_ROUNDS = 200  # redraws before the few points left take a one-normal span
+#: redraws of a band's span ends before the few points left take a one-normal span (a normal
+#: at the limb keeps few wide spans with both ends on the front hemisphere: more rounds cost
+#: more than the points they place)
+BAND_ROUNDS = 12
 
 
 def cap(centre, degrees, rng, cos_max=1.0):
@@ -79,7 +82,7 @@ def band_points(domain, a, rng):
     n0, n1 = normal.copy(), normal.copy()
     pending = np.arange(count)
     lo, hi = domain.ends_cos
-    for _ in range(_ROUNDS):
+    for _ in range(BAND_ROUNDS):
         if not len(pending):
             break
         t = np.arccos(rng.uniform(np.cos(np.radians(domain.max_span_angle_deg)), 1.0, len(pending)))
