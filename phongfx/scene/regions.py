@@ -49,7 +49,7 @@ class Region:
     ends_cos: tuple             # (lo, hi): n0·V and n1·V within it
     max_span_angle_deg: float
     ball: tuple                 # ((cx, cy, cz), radius)
-    where: dict = field(default_factory=dict)
+    where: dict = field(default_factory=dict, compare=False, hash=False)  # the domain stays hashable
     surface: Surface = field(default=None, compare=False, hash=False, repr=False)
     poses: tuple = ()           # ((Domain field, value), ...) for the sampler
 

@@ -136,3 +136,9 @@ def test_the_local_search_keeps_to_the_regions():
     moved = points(s, d, g.rgb, g.bits)
     whole = dataclasses.replace(d, regions=())
     assert inside(s, moved, whole).all() and not inside(s, moved, d).any()
+
+
+def test_a_domain_with_regions_stays_hashable_and_comparable():
+    d, again = domain(_scene("lyon-balls")), domain(_scene("lyon-balls"))
+    assert d == again and hash(d) == hash(again) and hash(d.region(3)) == hash(again.region(3))
+    assert d.region(3) != d.region(4)
