@@ -14,9 +14,11 @@ compiler chooses there: 1.440 against 1.452), at two to six times the time; on t
 patches, whose span angles are all within 5 % of the whole's, they are looser at the same budget.
 
 The regions share the box budget: every region is first bounded on an eighth of an even share,
-then the worst region, while it is not settled, again on four times its last budget (a bound
-over more boxes is as sound, and the smaller of a region's bounds is kept), up to :data:`SPEND`
-times the budget in all (each refinement starts its branch and bound over).
+again on four times its last budget while it is above the requirement and not settled (a bound
+over more boxes is as sound, and the smaller of a region's bounds is kept), as a width search's
+early stop does, so that the final certificate of a design the search passed passes too; then
+the worst region while the budget lasts, up to :data:`SPEND` times the budget in all (each
+refinement starts its branch and bound over).
 """
 
 from dataclasses import replace
@@ -45,7 +47,7 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
                              max_boxes=max_boxes, enough=enough)
     if not regions or target is None or bound < target or not np.isfinite(bound):
         return bound, parts
-    found, complete, spent = _regions(how, shader, spec, domain, max_boxes, enough)
+    found, complete, spent = _regions(how, shader, spec, domain, max_boxes, enough, target)
     names = [r.name for r in domain.regions]
     worst = int(np.argmax([b for b, *_ in found]))
     listed = [{"name": name, "bound_levels": float(b), "where": p.get("where")} for name, (b, p, *_) in
@@ -59,18 +61,23 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
     return bound, dict(parts, **extra)
 
 
-def _regions(how, shader, spec, domain, max_boxes, enough):
+def _regions(how, shader, spec, domain, max_boxes, enough, target):
     """``(found, complete, boxes)``: per region bounded ``(bound, parts, budget, final)``
-    (module docstring), whether every region was bounded, and the boxes spent."""
+    (module docstring), whether every region was bounded, and the boxes spent.  Each region is
+    refined until it is below ``enough`` (a width search) or ``target``, as a width search
+    would, so that the final certificate of a design the search passed passes too; then, without
+    ``enough``, the worst region again while the budget lasts."""
     count = len(domain.regions)
     found, spent = [], [0]
+    below = enough if enough is not None else target
 
-    def run(index, budget):
-        bound, parts = how.bound(shader, spec, domain.region(index), max_boxes=budget, enough=enough)
+    def run(index, budget, stop):
+        bound, parts = how.bound(shader, spec, domain.region(index), max_boxes=budget, enough=stop)
         bound = bound if np.isfinite(bound) else np.inf
         boxes = parts.get("boxes", budget)
         spent[0] += boxes
-        final = boxes < budget or budget >= max_boxes  # settled or below enough first, or all of it
+        # settled before the budget (not merely below ``stop``), or given all of it
+        final = budget >= max_boxes or (boxes < budget and not (stop is not None and bound < stop))
         if index < len(found):
             if not bound < found[index][0]:
                 bound, parts = found[index][:2]
@@ -78,20 +85,18 @@ def _regions(how, shader, spec, domain, max_boxes, enough):
         else:
             found.append((bound, parts, budget, final))
 
-    def refine(index):
-        run(index, min(4 * found[index][2], max_boxes))
+    def refine(index, stop):
+        run(index, min(4 * found[index][2], max_boxes), stop)
 
     for index in range(count):
-        run(index, max(max_boxes // (8 * count), FIRST_BOXES))
-        if enough is None:
-            continue
-        while not found[index][0] < enough and not found[index][3] and spent[0] < SPEND * max_boxes:
-            refine(index)
-        if not found[index][0] < enough:
+        run(index, max(max_boxes // (8 * count), FIRST_BOXES), below)
+        while not found[index][0] < below and not found[index][3] and spent[0] < SPEND * max_boxes:
+            refine(index, below)
+        if enough is not None and not found[index][0] < enough:
             return found, False, spent[0]
-    while spent[0] < SPEND * max_boxes:
+    while enough is None and spent[0] < SPEND * max_boxes:
         worst = int(np.argmax([b for b, *_ in found]))
         if found[worst][3]:
             break
-        refine(worst)
+        refine(worst, None)
     return found, True, spent[0]
