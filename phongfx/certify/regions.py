@@ -19,7 +19,9 @@ again on four times its last budget while it is above the requirement and not se
 over more boxes is as sound, and the smaller of a region's bounds is kept), as a width search's
 early stop does, so that the final certificate of a design the search passed passes too; then
 the worst region while the budget lasts, up to :data:`SPEND` times the budget in all (each
-refinement starts its branch and bound over).
+refinement starts its branch and bound over); once a region stays above the requirement the
+design fails whatever the others give, and the worst region gets one more budget, for the
+bound reported.
 """
 
 from dataclasses import replace
@@ -67,7 +69,8 @@ def _regions(how, shader, spec, domain, max_boxes, enough, target):
     (module docstring), whether every region was bounded, and the boxes spent.  Each region is
     refined until it is below ``enough`` (a width search) or ``target``, as a width search
     would, so that the final certificate of a design the search passed passes too; then, without
-    ``enough``, the worst region again while the budget lasts."""
+    ``enough``, the worst region again while the budget lasts (once a region stays above
+    ``target``, the others on their first share and one more budget for the worst)."""
     count = len(domain.regions)
     found, spent = [], [0]
     below = enough if enough is not None else target
@@ -89,13 +92,22 @@ def _regions(how, shader, spec, domain, max_boxes, enough, target):
     def refine(index, stop):
         run(index, min(4 * found[index][2], max_boxes), stop)
 
+    first = max(max_boxes // (8 * count), FIRST_BOXES)
+    limit = SPEND * max_boxes
     for index in range(count):
-        run(index, max(max_boxes // (8 * count), FIRST_BOXES), below)
-        while not found[index][0] < below and not found[index][3] and spent[0] < SPEND * max_boxes:
+        run(index, first, below)
+        while not found[index][0] < below and not found[index][3] and spent[0] < limit:
             refine(index, below)
-        if enough is not None and not found[index][0] < enough:
-            return found, False, spent[0]
-    while enough is None and spent[0] < SPEND * max_boxes:
+        if not found[index][0] < below:
+            if enough is not None:
+                return found, False, spent[0]
+            # the design fails whatever the others give: the rest on their first share, and one
+            # more budget to tighten the worst, for the bound the certificate reports
+            for rest in range(index + 1, count):
+                run(rest, first, None)
+            limit = spent[0] + max_boxes
+            break
+    while enough is None and spent[0] < limit:
         worst = int(np.argmax([b for b, *_ in found]))
         if found[worst][3]:
             break
