@@ -17,6 +17,7 @@ from phongfx.scene.geometry import frames
 
 from .certificate import Certificate, meets
 from .methods import bounding
+from .regions import by_region
 
 __all__ = ["certify", "shader_config"]
 
@@ -51,14 +52,19 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
         return done(False, None, why=why)
     need = spec.requirement.max_error_levels
     # floor(B + 1/2) <= need exactly when B < floor(need) + 1/2
-    bound, parts = how.bound(shader, spec, domain, max_boxes=max_boxes,
-                             enough=np.floor(need) + 0.5 if early else None)
+    target = np.floor(need) + 0.5
+    bound, parts = by_region(how, shader, spec, domain, max_boxes=max_boxes, enough=target if early else None,
+                             target=target)
     if not np.isfinite(bound):
         faults = ", ".join(parts.get("faults", [])) or "a quantize"
         return done(False, None, parts, f"{faults} may overflow or wrap somewhere in the domain")
     ok = meets(bound, need)
     why = "" if ok else (f"the bound {bound:.3f} levels rounds to {int(np.floor(bound + 0.5))}, over the "
                          f"required {need:g}")
+    if not ok and "region" in parts:
+        why += f"; by region, largest in {parts['region']}"
+        if parts.get("unbounded_regions"):
+            why += f" (which stays over it: {len(parts['unbounded_regions'])} regions not bounded)"
     if not ok and "backside" in parts:
         why += (f"; at its largest the hardware's backside test may differ from the reference's: its "
                 f"N·L error bound {parts['backside']:.4f} is wider than the terminator band "

@@ -46,7 +46,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
         return boxes, np.nan_to_num(total, nan=np.inf), rounding, approximation, gate
 
     if boxes is None:
-        boxes = cover(domain.view_cos_min, domain.min_normal_length, cases(domain))
+        boxes = cover(domain.view_cos_min, domain.min_normal_length, cases(domain),
+                      view_cos_max=getattr(domain, "view_cos_max", 1.0))
     pool = evaluate(boxes)
     evaluated = len(pool[0])
     while True:

@@ -73,11 +73,12 @@ def frame(view):
     return v, e1, np.cross(v, e1)
 
 
-def cover(view_cos_min, min_normal_length, cases, theta_cuts=12, phi_cuts=24, z_cuts=1):
-    """The boxes of the module docstring for every ``(n, material)`` of ``cases``."""
+def cover(view_cos_min, min_normal_length, cases, theta_cuts=12, phi_cuts=24, z_cuts=1, view_cos_max=1.0):
+    """The boxes of the module docstring for every ``(n, material)`` of ``cases``; a region's
+    normals with ``N̂·V <= view_cos_max`` start at ``θ = arccos(view_cos_max)``."""
     top = float(np.arccos(np.clip(view_cos_min, -1.0, 1.0)))
     z_lo = min(1.0, float(min_normal_length)) ** 2
-    t = np.linspace(0.0, top, theta_cuts + 1)
+    t = np.linspace(min(top, float(np.arccos(np.clip(view_cos_max, -1.0, 1.0)))), top, theta_cuts + 1)
     p = np.linspace(0.0, 2 * np.pi, phi_cuts + 1)
     zz = np.linspace(z_lo, 1.0, z_cuts + 1)
     grid = np.stack(np.meshgrid(np.arange(theta_cuts), np.arange(phi_cuts), np.arange(z_cuts), indexing="ij"),

@@ -64,13 +64,15 @@ surface point, as no vector depends on it); light and viewer vectors from these 
 """
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from .geometry import scene_mesh
 from .lyon import Scene, pixels
 from .mesh import unit
+from .patches import mesh_regions
+from .regions import lyon_regions, summary
 from .sampling import Surface, draw, draw_chunks, face_table
 
 __all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "Options",
@@ -143,6 +145,19 @@ class Domain:
     coefficients: tuple = ()  # per material index (kd, ks, ka, (r, g, b))
     bits: int = 8
     surface: Surface = field(default=None, compare=False, hash=False, repr=False)
+    view_cos_max: float = 1.0  # every presented N has N·V <= this (below 1 in a region)
+    ends_cos: tuple = (-1.0, 1.0)  # a region's limits on n0·V and n1·V (a Lyon band's ends leave it)
+    regions: tuple = ()       # :class:`~phongfx.scene.regions.Region`: together every input
+    region_name: str = ""     # a region's sub-domain (:meth:`region`): its name
+
+    def region(self, index):
+        """The domain of region ``index`` alone (:mod:`phongfx.scene.regions`): this domain with
+        the region's limits, which every bounding method and the sampler read."""
+        r = self.regions[index]
+        return replace(self, view_cos_min=r.view_cos_min, view_cos_max=r.view_cos_max, ends_cos=r.ends_cos,
+                       max_span_angle_deg=r.max_span_angle_deg, min_normal_length=r.min_normal_length,
+                       materials=r.materials, ball=r.ball, surface=r.surface, regions=(), region_name=r.name,
+                       **dict(r.poses))
 
     @property
     def user_span_angle(self):
@@ -201,6 +216,8 @@ class Domain:
                           "cones": [_cone(cone) for cone in self.viewer_cones]},
                "materials": [{"name": name, "n": _n_summary(values)} for name, values in self.materials],
                "samples": self.samples, "final_samples": self.final_samples, "seed": self.seed,
+               "regions": {"count": len(self.regions), "summary": summary(self.regions),
+                           "each": [r.as_dict() for r in self.regions]},
                "description": self.describe()}
         return out
 
@@ -229,7 +246,7 @@ class Domain:
                 f"{self.max_span_angle_deg:.2f}° apart{claim}, so |(1-a)n0 + a·n1| >= "
                 f"{self.min_normal_length:.4f}, any a in [0, 1]; surface points within {self.ball[1]:.4g} "
                 f"of ({_vec(self.ball[0])}), span ends at most {self.max_span_length:.4g} apart; "
-                f"{ns}. Searched on {self.samples:,} points per measured design and "
+                f"{ns}; {summary(self.regions)}. Searched on {self.samples:,} points per measured design and "
                 f"{self.final_samples:,} for the chosen one (seed {self.seed}).")
 
 
@@ -344,9 +361,16 @@ def domain(spec, geometries=None):
     derived = None
     if options.max_span_angle_deg is not None:
         derived, span_angle = span_angle, options.max_span_angle_deg
+    coefficients = tuple((m.kd, m.ks, m.ka, tuple(m.colour)) for m in spec.materials.values())
+    materials = _admissible(spec, names)
     pose = options.pose or ("motion" if spec.frames.count > 1 else "still")
     count, degrees = spec.frames.count, spec.frames.degrees
-    coefficients = tuple((m.kd, m.ks, m.ka, tuple(m.colour)) for m in spec.materials.values())
+    still = tuple(f * degrees / count for f in range(count))
+    if lyon:
+        regions = lyon_regions(spec.objects[0].params, materials, spec.camera.vector, options.max_span_angle_deg)
+    else:
+        regions = mesh_regions(spec, materials, pose, (min(0.0, degrees), max(0.0, degrees)),
+                               float(options.wobble_degrees), still, tilt, ball, options.max_span_angle_deg)
     return Domain(pose=pose, axis=tuple(float(x) for x in spec.frames.axis),
                   degrees=(min(0.0, degrees), max(0.0, degrees)),
                   wobble_degrees=float(options.wobble_degrees), view_cos_min=view_cos_min,
@@ -355,9 +379,9 @@ def domain(spec, geometries=None):
                   max_span_length=span_length,
                   lights=tuple((light.kind, tuple(light.vector), tuple(light.rgb)) for light in spec.lights),
                   camera=(spec.camera.kind, tuple(spec.camera.vector)),
-                  materials=_admissible(spec, names), samples=options.samples,
+                  materials=materials, samples=options.samples,
                   final_samples=options.final_samples, seed=options.seed,
-                  still_degrees=tuple(f * degrees / count for f in range(count)),
+                  still_degrees=still,
                   camera_path=tuple(tuple(p) for p in spec.frames.camera_path), face_cap_deg=cap,
                   view_tilt_deg=tilt, derived_span_angle_deg=derived, coefficients=coefficients,
-                  bits=spec.output.bits, surface=surface)
+                  bits=spec.output.bits, surface=surface, regions=regions)

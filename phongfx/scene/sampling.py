@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .geometry import FrameGeometry
+from .zones import band_points, cap, directions, facing_draw, in_ball, span_end
 
 __all__ = ["CHUNK", "ENDS", "GROUP", "draw", "draw_chunks", "sample_chunk", "Surface", "FaceTable", "face_table",
            "random_poses", "random_rotations", "cap", "span_end"]
@@ -76,37 +77,7 @@ def random_poses(domain, count, rng):
     grid = np.linspace(0.0, top, 1025)
     cdf = grid - np.sin(grid)
     angle = np.interp(rng.random(count) * cdf[-1], cdf, grid) if top > 0 else np.zeros(count)
-    return _product(_axis_angle(_directions(rng, count), angle), base)
-
-
-def _directions(rng, count):
-    """(count, 3) uniform unit vectors (z uniform in [-1, 1]: Archimedes' hat-box theorem)."""
-    z = rng.uniform(-1.0, 1.0, count)
-    phi = rng.uniform(0.0, 2 * np.pi, count)
-    rho = np.sqrt(1 - z * z)
-    out = np.empty((count, 3))
-    out[:, 0], out[:, 1], out[:, 2] = rho * np.cos(phi), rho * np.sin(phi), z
-    return out
-
-
-def cap(centre, degrees, rng):
-    """(P, 3) unit vectors uniform (by area) in the caps of half-angle ``degrees`` about the
-    unit rows of ``centre``."""
-    count = len(centre)
-    cos = rng.uniform(np.cos(np.radians(degrees)), 1.0, count)
-    sin = np.sqrt(np.maximum(1 - cos * cos, 0.0))
-    phi = rng.uniform(0, 2 * np.pi, count)
-    u, v = sin * np.cos(phi), sin * np.sin(phi)
-    # a tangent basis without branches (Duff et al., "Building an Orthonormal Basis, Revisited")
-    x, y, z = centre[:, 0], centre[:, 1], centre[:, 2]
-    sign = np.where(z >= 0, 1.0, -1.0)
-    a = -1.0 / (sign + z)
-    b = x * y * a
-    out = np.empty((count, 3))
-    out[:, 0] = cos * x + u * (1 + sign * x * x * a) + v * b
-    out[:, 1] = cos * y + u * (sign * b) + v * (sign + y * y * a)
-    out[:, 2] = cos * z - u * (sign * x) - v * y
-    return out
+    return _product(_axis_angle(directions(rng, count), angle), base)
 
 
 def random_rotations(domain, count, rng):
@@ -127,10 +98,11 @@ def _matrices(q):
 class Surface:
     """What :func:`sample_chunk` draws surface points from (:mod:`phongfx.scene.domain`):
     meshes, per material index their :class:`FaceTable` (None: no face); Lyon's spheres
-    (``lyon`` True), the ``shininess`` of each sphere."""
+    (``lyon`` True), the ``shininess`` of each sphere from sphere ``first`` on."""
     lyon: bool
     tables: tuple = ()
     shininess: tuple = ()
+    first: int = 0  # Lyon: the index of the sphere ``shininess[0]`` is (a region holds one sphere)
 
 
 @dataclass(frozen=True)
@@ -168,8 +140,9 @@ def face_table(vertices, normals, faces, face_normals, areas):
 def _mesh_points(domain, material, rng):
     """(n0, surface point) of each point: a pose of the pose set shared by :data:`GROUP`
     points, a face of the point's material drawn by area and redrawn until it faces the
-    viewer under that pose (a pose under which a point's draws keep failing, one with almost
-    no face toward the viewer, is redrawn for its group), a uniform point of the face."""
+    viewer under that pose (where a point's draws keep failing, one of the few faces toward the
+    viewer, uniformly, or for a pose with none a new pose for its group), a uniform point of
+    the face.  A region's patch of faces (:mod:`phongfx.scene.patches`) meets such poses often."""
     n0, point = np.empty((len(material), 3)), np.empty((len(material), 3))
     for m in np.unique(material):
         table = domain.surface.tables[m]
@@ -187,7 +160,8 @@ def _mesh_points(domain, material, rng):
             ok = _dot(toward[pending // GROUP], table.face_normals[pick]) > 0
             local[pending[ok]] = pick[ok]
             pending = pending[~ok]
-            if round % 32 == 0 and len(pending):
+            if round % 32 == 0 and len(pending):  # few faces face this pose: any of them, else a new pose
+                pending = facing_draw(table.face_normals, toward, local, pending, GROUP, rng)
                 stuck = np.unique(pending // GROUP)
                 turned[stuck] = _matrices(random_poses(domain, len(stuck), rng))
                 toward[stuck] = turned[stuck, 2, :]
@@ -212,30 +186,7 @@ def _lyon_points(domain, rng, count):
     phi = rng.uniform(0, 2 * np.pi, count)
     rho = np.sqrt(1 - z * z)
     n0 = np.stack([rho * np.cos(phi), rho * np.sin(phi), z], -1)
-    return sphere, n0, n0 + np.stack([sphere, np.zeros(count), np.zeros(count)], -1)
-
-
-def _in_ball(domain, rng, count):
-    centre, radius = np.asarray(domain.ball[0]), domain.ball[1]
-    return centre + _directions(rng, count) * (radius * np.cbrt(rng.random(count)))[:, None]
-
-
-def span_end(domain, x0, rng):
-    """``x0 + d·u``: ``u`` uniform in the eye-space xz plane (spans are horizontal),
-    ``d`` uniform in [-max_span_length, max_span_length] cut to stay in the ball."""
-    count = len(x0)
-    psi = rng.uniform(0, 2 * np.pi, count)
-    cos, sin = np.cos(psi), np.sin(psi)
-    rel = x0 - np.asarray(domain.ball[0])
-    b = rel[:, 0] * cos + rel[:, 2] * sin
-    root = np.sqrt(np.maximum(b * b - (_dot(rel, rel) - domain.ball[1] ** 2), 0.0))
-    lo = np.maximum(-domain.max_span_length, np.minimum(-b - root, 0.0))
-    hi = np.minimum(domain.max_span_length, np.maximum(-b + root, 0.0))
-    d = lo + (hi - lo) * rng.random(count)
-    x1 = x0.copy()
-    x1[:, 0] += d * cos
-    x1[:, 2] += d * sin
-    return x1
+    return sphere, n0, n0 + np.stack([sphere + domain.surface.first, np.zeros(count), np.zeros(count)], -1)
 
 
 def _toward(kind, vector, points):
@@ -265,13 +216,14 @@ def _second_normal(domain, n0, a, views, rng):
 
 
 def _meets(domain, normals, views, index):
-    """(P,) whether every one of ``normals`` has N·V >= view_cos_min for every one of ``views``
-    (a fixed vector, or per point, taken at ``index`` unless None)."""
+    """(P,) whether every one of ``normals`` has N·V in [view_cos_min, view_cos_max] for every
+    one of ``views`` (a fixed vector, or per point, taken at ``index`` unless None)."""
     ok = np.ones(len(normals[0]), dtype=bool)
     for v in views:
         v = v if v.ndim == 1 or index is None else v[index]
         for n in normals:
-            ok &= (n @ v if v.ndim == 1 else _dot(n, v)) >= domain.view_cos_min
+            cos = n @ v if v.ndim == 1 else _dot(n, v)
+            ok &= (cos >= domain.view_cos_min) & (cos <= domain.view_cos_max)
     return ok
 
 
@@ -279,6 +231,8 @@ def sample_chunk(domain, count, rng):
     """``{name: array}`` of ``count`` domain points, the fields of a
     :class:`~phongfx.scene.geometry.FrameGeometry` that vary (``l0``, ``l1``, ``light`` are
     (lights, count, 3); fixed directions are read-only broadcasts)."""
+    if domain.regions:
+        return _by_region(domain, count, rng)
     used = np.array([i for i, (_, values) in enumerate(domain.materials) if values], dtype=np.int64)
     if not len(used):
         raise ValueError("no material admits an n: the domain is empty")
@@ -296,10 +250,13 @@ def sample_chunk(domain, count, rng):
         n0, surface = _mesh_points(domain, material, rng)
     end = rng.random(count)
     a = np.where(end < ENDS, 0.0, np.where(end >= 1 - ENDS, 1.0, rng.random(count)))
+    band = band_points(domain, a, rng) if domain.surface.lyon and domain.region_name else None
+    if band is not None:  # the surface point at the pixel's normal, as Lyon's image has it
+        surface = surface - n0 + band[2]
     if domain.camera[0] == "point" or any(kind == "point" for kind, _, _ in domain.lights):
         x0 = surface
         inside = np.flatnonzero(rng.random(count) < 0.5)
-        x0[inside] = _in_ball(domain, rng, len(inside))
+        x0[inside] = in_ball(domain, rng, len(inside))
         x1 = span_end(domain, x0, rng)
         points = (x0, x1, (1 - a)[:, None] * x0 + a[:, None] * x1)
     else:  # no vector depends on where the surface is: the pixel is the surface point
@@ -310,9 +267,12 @@ def sample_chunk(domain, count, rng):
         views = _toward("point", path[rng.integers(len(path), size=count)], points)
     else:
         views = _toward(domain.camera[0], domain.camera[1], points)
-    checks = [] if domain.view_cos_min <= -1 else (
+    checks = [] if domain.view_cos_min <= -1 and domain.view_cos_max >= 1 else (
         [np.asarray(domain.camera[1], dtype=np.float64)] if views[0].strides[0] == 0 else views)
-    n1, normal = _second_normal(domain, n0, a, checks, rng)
+    if band is not None:
+        n0, n1, normal = band
+    else:
+        n1, normal = _second_normal(domain, n0, a, checks, rng)
     if all(kind == "directional" for kind, _, _ in domain.lights):
         fixed = np.array([vector for _, vector, _ in domain.lights], dtype=np.float64)[:, None, :]
         l0 = l1 = light = np.broadcast_to(fixed, (len(domain.lights), count, 3))
@@ -323,6 +283,33 @@ def sample_chunk(domain, count, rng):
     return {"a": a, "n0": n0, "n1": n1, "normal": normal, "position": position, "l0": l0, "l1": l1,
             "light": light, "v0": views[0], "v1": views[1], "viewer": views[2], "n": n, "kd": kd,
             "ks": ks, "ka": ka, "colour": colour.reshape(-1, 3), "material": material}
+
+
+def _by_region(domain, count, rng):
+    """:func:`sample_chunk` of a domain with regions: a uniform region per point (each region,
+    narrow or wide, gets its share of the hard points at its own limits), then a point of it,
+    the points of one region side by side; a region whose pose draws keep showing none of its
+    faces hands its points to the others."""
+    todo = list(zip(range(len(domain.regions)), np.bincount(rng.integers(len(domain.regions), size=count),
+                                                           minlength=len(domain.regions)).tolist()))
+    out, failed, start = None, set(), 0
+    while todo:
+        r, size = todo.pop(0)
+        try:
+            part = sample_chunk(domain.region(r), size, rng)
+        except ValueError:
+            failed.add(r)
+            others = np.setdiff1d(np.arange(len(domain.regions)), sorted(failed))
+            if not len(others):
+                raise
+            more = np.bincount(rng.integers(len(others), size=size), minlength=len(others))
+            todo += [(int(o), int(m)) for o, m in zip(others, more) if m]
+            continue
+        out = _put(out, part, slice(start, start + size), count)
+        start += size
+    if out is None:  # no point: any region's empty chunk has the fields
+        out = sample_chunk(domain.region(0), 0, rng)
+    return out
 
 
 def draw_chunks(domain, count, seed):
@@ -340,13 +327,19 @@ def draw(domain, count, seed):
     count = _count(count)
     out = None
     for start, part in _parts(domain, count, seed, at_least_one=True):
-        if out is None:
-            out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
-        for key, value in part.items():
-            axis = 1 if key in _PER_LIGHT else 0
-            if out[key].strides[axis] != 0:
-                np.moveaxis(out[key], axis, 0)[start:start + CHUNK] = np.moveaxis(value, axis, 0)
+        out = _put(out, part, slice(start, start + CHUNK), count)
     return _geometry(domain, out)
+
+
+def _put(out, part, where, count):
+    """``out`` (None: made, ``count`` long) with the arrays ``part`` written at ``where``."""
+    if out is None:
+        out = {key: _empty(value, count, 1 if key in _PER_LIGHT else 0) for key, value in part.items()}
+    for key, value in part.items():
+        axis = 1 if key in _PER_LIGHT else 0
+        if out[key].strides[axis] != 0:
+            np.moveaxis(out[key], axis, 0)[where] = np.moveaxis(value, axis, 0)
+    return out
 
 
 _PER_LIGHT = ("l0", "l1", "light")

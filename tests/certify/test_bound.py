@@ -24,8 +24,10 @@ LYON_FIG8 = {"vec_frac": 10, "root_frac": 8, "t_frac": 8, "coef": 2, "order": 1}
 
 
 def _scene(name):
+    """The scene and its whole domain, one region: these tests hold the bounding method to
+    figures at given budgets (test_regions.py bounds region by region)."""
     spec = load_scene(f"scenes/{name}.toml")
-    return spec, domain(spec)
+    return spec, replace(domain(spec), regions=())
 
 
 def _measured(spec, shader, params, geometries=None, method="fig7"):

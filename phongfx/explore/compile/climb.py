@@ -25,6 +25,7 @@ import numpy as np
 
 from phongfx.scene.geometry import FrameGeometry
 from phongfx.scene.mesh import unit
+from phongfx.scene.regions import holds
 
 __all__ = ["State", "state_of", "points", "inside", "perturb", "climb", "neighbourhood"]
 
@@ -127,7 +128,7 @@ def inside(s, g, domain):
     """(K,) bool: the points of state ``s`` (fed as ``g = points(s, ...)``) lie in the domain:
     span-end normals within its span angle, every normal (``n0``, ``n1``, ``N``) facing every
     viewer vector of the span (``>= view_cos_min``), surface point and span ends in its ball,
-    the span no longer than its longest."""
+    the span no longer than its longest, and in one of the domain's regions when it has them."""
     ok = np.sum(s.n0 * s.n1, -1) >= np.cos(np.radians(domain.max_span_angle_deg)) - 1e-12
     if domain.view_cos_min > -1:
         for n in (s.n0, s.n1, g.normal):
@@ -137,6 +138,9 @@ def inside(s, g, domain):
     a = s.a[:, None]
     for x in (s.p, s.p - a * s.d, s.p + (1 - a) * s.d):
         ok &= np.linalg.norm(x - centre, axis=-1) <= radius
+    if domain.regions:  # and in one of the domain's regions, each tighter than the whole
+        ok &= holds(domain.regions, s.n0, s.n1, g.normal, (g.v0, g.v1, g.viewer), s.material, g.n,
+                    (s.p, s.p - a * s.d, s.p + (1 - a) * s.d))
     return ok & (np.linalg.norm(s.d, axis=-1) <= domain.max_span_length)
 
 

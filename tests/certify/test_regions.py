@@ -1,0 +1,90 @@
+"""The certificate split by region: the largest of the regions' bounds, each sound on what its
+region presents, the worst region named; tighter than the whole domain's where a region's limits
+are what decide it."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from phongfx.certify import certify
+from phongfx.certify.bound import shader_config
+from phongfx.explore.compile.compiler import SceneEval
+from phongfx.scene.domain import domain
+from phongfx.scene.file import load_scene
+from tests.certify.test_bound import LYON
+
+SPEC = load_scene("scenes/lyon-balls.toml")
+
+
+def _measured(spec, shader, params, geometries=None, method="fig7"):
+    """``method``'s largest ``|out - 255·I_ref|`` over the frames (None) or ``geometries``."""
+    scene = SceneEval(spec, geometries)
+    renders = (scene.render(method, shader, params, i)[:2] for i in range(len(scene.renders)))
+    return max(float(np.max(np.abs(codes - 255 * ref), initial=0.0)) for codes, ref in renders)
+
+
+def test_the_bound_by_region_holds_on_frames_and_region_samples_smoke():
+    d = domain(SPEC)
+    shader = shader_config("fig7", LYON, SPEC)
+    got = certify("fig7", LYON, SPEC, d, shader=shader, max_boxes=20_000)
+    bounds = [r["bound_levels"] for r in got.parts["regions"]]
+    # the whole domain's bound misses the requirement: the regions are bounded too, the smaller kept
+    assert len(bounds) == 20 and got.parts["whole_bound"] > 1.5
+    assert got.bound_levels == min(got.parts["whole_bound"], max(bounds))
+    worst = got.parts["regions"][int(np.argmax(bounds))]
+    assert got.parts["region"] == worst["name"] and f"by region, largest in {worst['name']}" in got.why
+    assert worst["where"]["n"] == int(worst["name"].split("n = ")[1].split(")")[0])  # its sphere's own n
+    measured = max(_measured(SPEC, shader, LYON), _measured(SPEC, shader, LYON, [d.sample(20_000, 3)]))
+    assert 1.0 < measured <= got.bound_levels
+    # each region's bound holds on that region's own samples (two: the worst, and a narrow one)
+    for index in (int(np.argmax(bounds)), int(np.argmin(bounds))):
+        sub = d.region(index)
+        assert _measured(SPEC, shader, LYON, [sub.sample(5_000, index)]) <= bounds[index]
+    # the whole-domain path is unchanged: one bound, no regions
+    whole = certify("fig7", LYON, SPEC, dataclasses.replace(d, regions=()), shader=shader, max_boxes=20_000)
+    assert "regions" not in whole.parts and whole.bound_levels == got.parts["whole_bound"]
+
+
+def test_early_stops_at_the_first_region_that_fails():
+    d = domain(SPEC)
+    got = certify("fig7", LYON, SPEC, d, max_boxes=20_000, early=True)
+    assert not got.certified and got.parts["region"] == d.regions[0].name  # the first region fails
+    assert got.parts["unbounded_regions"] == [r.name for r in d.regions[1:]]
+    assert got.bound_levels == got.parts["whole_bound"]  # not the first region's: no bound over the rest
+    assert "(which stays over it: 19 regions not bounded)" in got.why
+
+
+def test_a_whole_domain_that_meets_the_requirement_needs_no_regions():
+    spec = load_scene("scenes/torus.toml")
+    wide = {"vec_frac": 14, "x2_frac": 14, "shape_t_frac": 18, "coef": 8, "order": 2, "k": 4}
+    got = certify("fig7", wide, spec, domain(spec), early=True)
+    assert got.certified and "regions" not in got.parts and got.bound_levels < 1.5
+
+
+@pytest.mark.slow
+def test_regions_tighten_the_bound_where_the_span_angle_decides_it():
+    """Figure 7 with a first-order normalizer: its error grows with the span angle, 39° at the
+    limb but 16° near the centre, so the centre bands' bounds fall and the largest with them."""
+    d = domain(SPEC)
+    params = {**LYON, "vec_frac": 12, "order": 1}
+    shader = shader_config("fig7", params, SPEC)
+    split = certify("fig7", params, SPEC, d, shader=shader)
+    assert split.bound_levels < 0.8 * split.parts["whole_bound"]
+    measured = max(_measured(SPEC, shader, params), _measured(SPEC, shader, params, [d.sample(100_000, 5)]))
+    assert measured <= split.bound_levels
+
+
+@pytest.mark.slow
+def test_the_regions_certify_lyons_halfway_unit_where_the_whole_domain_cannot():
+    """The halfway unit the compiler chooses for Lyon's spheres: over the whole domain (39° spans
+    at every sphere's centre) its bound misses 1 level; by region it meets it, early stop or not."""
+    params = {"vec_frac": 15, "x2_frac": 5, "shape_t_frac": 13, "coef": 2, "order": 2}
+    shader = shader_config("halfway", params, SPEC)
+    d = domain(SPEC)
+    final, early = (certify("halfway", params, SPEC, d, shader=shader, early=e) for e in (False, True))
+    assert final.parts["whole_bound"] > 1.5 and final.certified and early.certified
+    assert final.bound_levels == max(r["bound_levels"] for r in final.parts["regions"]) < 1.5
+    measured = max(_measured(SPEC, shader, params, None, "halfway"),
+                   _measured(SPEC, shader, params, [d.sample(100_000, 8)], "halfway"))
+    assert measured <= final.bound_levels
