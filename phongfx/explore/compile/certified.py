@@ -3,7 +3,8 @@ requirement as measured and by a sound bound.
 
 A method is certifiable on a scene when its unit has a bounding method that covers the
 scene's domain: the certifier (:func:`phongfx.certify.certify`, passed in by the command,
-since that wing sits above this one) answers for the method's default widths with a bound, or
+since that wing sits above this one) answers for the method's default widths, asked for no
+refinement (``max_boxes=0``: the coverage, not the bound, is the question), with a bound, or
 without one only because some quantize may overflow at those widths (``parts["faults"]``: other
 widths may not).  Any other certificate without a bound says why no width can help (no bounding
 method for the unit, lights or viewer it does not cover): the method is rejected with that
@@ -58,13 +59,14 @@ def certified_search(scene, method, domain, certifier, progress=None):
     :func:`~phongfx.explore.compile.search.search_widths` result, a feasible one with its
     ``"certificate"``: the early bound at its widths), or ``(None, why)`` when the method is
     not certifiable on the scene (:func:`uncertifiable`)."""
-    test = CertifiedTest(scene, method, domain, certifier)
     default = {k: v for k, (v, _) in width_params(method, scene.spec.requirement.against).items()}
-    why = uncertifiable(test.certificate(default))
+    probe = certifier(method, default, scene.spec, domain, early=True, analysis=scene.analysis, max_boxes=0)
+    why = uncertifiable(probe)
     if why:
         return None, why
     if progress:
         progress(f"{method}: a certified design")
+    test = CertifiedTest(scene, method, domain, certifier)
     result = search_widths(scene, method, progress, passes=test)
     if result["feasible"]:
         early = test.certificate(result["params"])

@@ -141,9 +141,10 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         counterexample is not chosen and the next cheapest is proven instead.
     :param samples: domain points per measured width point, instead of the scene's
         (``[domain] samples``); ``final_samples``: those of the witness search.
-    :param certifier: ``certifier(method, params, spec, domain, early=False, analysis=None)`` gives a
-        :class:`~phongfx.certify.certificate.Certificate` (:func:`phongfx.certify.certify`,
-        which sits above this wing and is passed in); without ``certified`` the chosen
+    :param certifier: ``certifier(method, params, spec, domain, early=False, analysis=None[, max_boxes])``
+        gives a :class:`~phongfx.certify.certificate.Certificate` (:func:`phongfx.certify.certify`,
+        which sits above this wing and is passed in; ``max_boxes=0`` asks whether the method is
+        bounded at all, :func:`~phongfx.explore.compile.certified.certified_search`); without ``certified`` the chosen
         design's is kept in :attr:`Compiled.certificate`, changing nothing.
     :param certified: the certified search (:mod:`~phongfx.explore.compile.certified`; needs
         ``certifier``): each method certifiable on the scene is searched once with its
