@@ -190,7 +190,7 @@ def fit_lines(fit):
 def cmd_compile(args):
     from tqdm import tqdm
 
-    from phongfx.certify import certify
+    from phongfx.certify.remembered import remembering
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.compile.emit import emit
     from phongfx.explore.compile.architecture import Speed
@@ -217,7 +217,8 @@ def cmd_compile(args):
                                  journal=folder("compile"),
                                  prove=args.prove, prove_timeout=args.prove_timeout,
                                  samples=args.samples, final_samples=args.final_samples,
-                                 certifier=None if args.sampled else certify, certified=not args.sampled,
+                                 certifier=None if args.sampled else remembering(folder("compile") / "certificates"),
+                                 certified=not args.sampled,
                                  clock=args.clock,
                                  scheduler=args.scheduler, workers=args.workers)
         if compiled.refused and compiled.refused["why"] in ("fit", "certificate"):

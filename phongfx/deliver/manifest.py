@@ -13,8 +13,8 @@ A manifest carries :data:`MANIFEST_VERSION` in ``"manifest_version"``; one of an
 version (or without it: written before the field existed) is refused rather than guessed
 at.  Version 2: ``"path"`` (the scene file) is relative to the manifest's folder, so the
 folder reads the same from any working directory (:func:`scene_file`), and ``"certified"``
-says whether the design's error is certified (``"certificate"``: its bound).  Every refusal is a :class:`ManifestError` naming the file, the field, the value and
-what was expected.
+says whether the design's error is certified (``"certificate"``: its bound).  Every refusal
+is a :class:`ManifestError` naming the file, the field, the value and what was expected.
 """
 
 import dataclasses
