@@ -6,11 +6,12 @@ points are kept by the compile's journal (:mod:`phongfx.explore.compile.journal`
 :func:`remembering` does the same for the certificates: one JSON file per certificate in
 ``<folder>/<key>.json``, the key covering everything the bound depends on: the package source
 (:func:`~phongfx.explore.compile.journal.source_digest`), the design (its whole shader config),
-the domain, the scene's requirement and output, and how far the bound was refined (``early``,
+the domain (not its sample), the scene's requirement and output, and how far the bound was refined (``early``,
 ``max_boxes``).  A probe that refines nothing (``max_boxes=0``) is not kept: it costs less than
 reading it back.
 """
 
+import dataclasses
 import hashlib
 import json
 import os
@@ -25,7 +26,9 @@ __all__ = ["certificate_key", "remembering"]
 
 
 def certificate_key(method, shader, spec, domain, early, max_boxes):
-    """The cache key of a certificate (module docstring)."""
+    """The cache key of a certificate (module docstring); the domain's sample sizes and seed,
+    which only the measurement reads, are left out."""
+    domain = dataclasses.replace(domain, samples=1, final_samples=1, seed=0)
     text = repr((source_digest(), method, shader, domain, spec.requirement, spec.output, bool(early), max_boxes))
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 

@@ -49,3 +49,15 @@ def test_a_torn_file_is_bounded_again(tmp_path):
     path.write_text('{"certified": tr')
     again = certifier("fig7", {"vec_frac": 9}, spec, domain, analysis=analysis, max_boxes=2000)
     assert again.bound_levels == first.bound_levels and json.loads(path.read_text())["certified"] == first.certified
+
+
+def test_the_domain_sample_is_not_part_of_the_key_but_the_domain_is():
+    import dataclasses
+
+    spec, domain, analysis = _scene()
+    shader = remembered.shader_config("fig7", {}, spec, analysis)
+    key = remembered.certificate_key("fig7", shader, spec, domain, False, 2000)
+    resampled = dataclasses.replace(domain, samples=7, final_samples=9, seed=5)
+    assert remembered.certificate_key("fig7", shader, spec, resampled, False, 2000) == key
+    narrower = dataclasses.replace(domain, view_cos_min=domain.view_cos_min + 0.1)
+    assert remembered.certificate_key("fig7", shader, spec, narrower, False, 2000) != key
