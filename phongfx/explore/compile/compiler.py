@@ -33,6 +33,10 @@ that method's widths are searched again, and the designs re-ranked, for at most
 :attr:`Compiled.rounds`); a design whose witness still misses is not chosen.  A quick local
 search from the width search's own worst points comes before each fresh sample.
 
+With ``certified`` (``phongfx compile``'s default) a width point must also meet the requirement
+by its certificate, methods without a bounding method are rejected unsearched, and the chosen
+design's full certificate is computed once (:mod:`phongfx.explore.compile.certified`).
+
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
 (:func:`phongfx.explore.synth.fpga.synth`, cached) with ``synth=True``, else the tool-free
