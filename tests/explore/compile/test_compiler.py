@@ -435,6 +435,7 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
     assert compiled.best["overflow_proof"]["proven"] == 1
 
 
+@pytest.mark.slow  # a minute and a half of certificates; the tutorial's page test is the default tier's smoke
 @pytest.mark.needs_verilator
 def test_the_default_compile_is_certified_and_every_output_is_of_the_certified_design(tmp_path, capsys):
     path = tmp_path / "tiny.toml"
