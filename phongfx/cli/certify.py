@@ -5,7 +5,9 @@ Two kinds of target: a method of :data:`phongfx.explore.methods.METHODS` at widt
 ``--set`` (``phongfx certify fig7 --set vec_frac=10 --scene scenes/torus.toml``), against the
 domain of ``--scene`` or, without one, of exact per-pixel normals of one ``--n`` under one
 directional light (a unit sphere's front, :data:`PER_PIXEL`); or a compiled output folder,
-whose ``manifest.json`` names the scene file, the chosen method and its widths.
+whose ``manifest.json`` names the scene file (relative to the folder: the command works from
+any directory), the chosen method and its widths (read by
+:func:`phongfx.deliver.manifest.read_manifest`, which checks its version).
 
 Exit codes: 0 the bound meets the requirement; 1 the witness already fails it (or a replayed
 witness does not reproduce); 3 only the bound misses it (or none was obtained); 2 bad input.
@@ -15,7 +17,6 @@ import json
 import math
 import os
 import sys
-from pathlib import Path
 
 from phongfx.core.words import levels
 
@@ -139,18 +140,16 @@ def _check(args):
 
 
 def _manifest(folder):
-    path = Path(folder) / "manifest.json"
-    if not path.is_file():
-        raise ValueError(f"{folder} has no manifest.json: not a compiled output folder (phongfx compile -o DIR)")
-    try:
-        data = json.loads(path.read_text())
-    except json.JSONDecodeError as error:
-        raise ValueError(f"{path}: not JSON ({error})") from None
+    """The manifest of a compiled folder (:func:`phongfx.deliver.manifest.read_manifest`, its
+    version checked) with a design to certify."""
+    from phongfx.deliver.manifest import ManifestError, manifest_path, read_manifest
+
+    data = read_manifest(folder)
     if data.get("chosen") is None:
-        raise ValueError(f"{path}: the compile chose no design (chosen is null); nothing to certify")
-    for key in ("path", "widths"):
-        if not data.get(key):
-            raise ValueError(f"{path}: {key} is missing; compile the scene again with this version")
+        raise ManifestError(f"{manifest_path(folder)}: the compile chose no design (chosen is null); "
+                            f"nothing to certify")
+    if not data.get("widths"):
+        raise ManifestError(f"{manifest_path(folder)}: field 'widths' is missing; compile the scene again")
     return data
 
 
@@ -164,11 +163,10 @@ def _target(args):
             if getattr(args, name) is not None:
                 raise ValueError(f"--{name} applies to a METHOD target; {args.target} is a compiled folder, "
                                  f"whose manifest gives the design and the scene")
+        from phongfx.deliver.manifest import scene_file
+
         data = _manifest(args.target)
-        scene = data["path"]
-        if not os.path.isfile(scene):
-            raise ValueError(f"{args.target}/manifest.json: its scene file {scene!r} is not there any more")
-        return data["chosen"], dict(data["widths"]), load_scene(scene), data
+        return data["chosen"], dict(data["widths"]), load_scene(scene_file(data, args.target)), data
     if args.replay:
         raise ValueError("--replay re-evaluates a compiled folder's witness; give DIR, not a method")
     if args.target not in METHODS:

@@ -60,9 +60,12 @@ def add_arguments(p):
     p.add_argument("--final-samples", type=int, metavar="N",
                    help="fresh domain points the chosen design's witness is searched on, instead of the "
                         "scene's [domain] final_samples (default 10,000,000)")
+    p.add_argument("--sampled", action="store_true",
+                   help="choose by the measured error alone (the frames and a sample of the scene's domain, the "
+                        "witness search): faster, and a choice for methods without a bounding method, but the "
+                        "manifest says certified: false (default: certified, every width point bounded too)")
     p.add_argument("--certified", action="store_true",
-                   help="the chosen design's certificate (a sound bound over the scene's domain, phongfx "
-                        "certify) must meet the requirement too: widen until it does")
+                   help="does nothing: certified is the default (--sampled is the other way); kept for scripts")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -116,7 +119,7 @@ def _where(result):
 def _certified(certificate):
     """``, certified ≤ 1.4 (interval)`` or why the design is not certified."""
     if not certificate:
-        return ""
+        return ", not certified (--sampled)"
     bound, method = certificate["bound_levels"], certificate["method"]
     if certificate["certified"]:
         return f", certified ≤ {bound:.3g} ({method})"
@@ -125,18 +128,20 @@ def _certified(certificate):
     return f", not certified: bound {bound:.3g} ({method})"
 
 
-def _certainty(certainty):
-    """The line that says what ``--certified`` cost against the sampled choice."""
-    sampled = certainty["sampled"]
-    extra = certainty.get("extra_cost")
-    return (f"  certainty: the sampled choice was {sampled['method']} at {sampled['params']}, "
-            f"{_cost(sampled['cost'])}, bound {_bound(sampled['certificate'])}"
-            + (f"; certainty costs {extra:+.1%}" if extra is not None else ""))
-
-
-def _bound(certificate):
-    value = certificate["bound_levels"]
-    return "none" if value is None else f"{value:.3g} levels"
+def certificate_line(data, folder):
+    """The report's line on the shipped design's certificate: its bound and parts, or why it has none."""
+    certificate = data["certificate"]
+    if not certificate:
+        return (f"  not certified: --sampled chose by the measured error alone; "
+                f"phongfx certify {folder} bounds it")
+    if not certificate["certified"]:
+        return f"  not certified: {certificate['why']}"
+    parts = certificate["parts"]
+    named = " + ".join(f"{name} {parts[name]:.3g}" for name in ("rounding", "approximation", "output")
+                       if isinstance(parts.get(name), (int, float)))
+    return (f"  certified: no input of the domain is more than {levels(data['requirement']['max_error_levels'])} "
+            f"off: bound {certificate['bound_levels']:.3f} levels ({certificate['method']}"
+            + (f": {named}" if named else "") + f"; {certificate['seconds']:.1f} s)")
 
 
 def timing_line(timing):
@@ -185,7 +190,7 @@ def fit_lines(fit):
 def cmd_compile(args):
     from tqdm import tqdm
 
-    from phongfx.certify import certify
+    from phongfx.certify.remembered import remembering
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.compile.emit import emit
     from phongfx.explore.compile.architecture import Speed
@@ -193,6 +198,9 @@ def cmd_compile(args):
     methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
     device = target_device(args.target, args.device, args.library, args.liberty)
     spec = load_scene(args.scene)
+    if args.sampled and args.certified:
+        raise ValueError("--sampled and --certified contradict each other: certified is the default, "
+                         "--sampled chooses by the measured error alone")
     if args.max_error is not None:
         spec = with_requirement(spec, args.max_error)
     if args.throughput is not None:
@@ -209,9 +217,11 @@ def cmd_compile(args):
                                  journal=folder("compile"),
                                  prove=args.prove, prove_timeout=args.prove_timeout,
                                  samples=args.samples, final_samples=args.final_samples,
-                                 certifier=certify, certified=args.certified, clock=args.clock,
+                                 certifier=None if args.sampled else remembering(folder("compile") / "certificates"),
+                                 certified=not args.sampled,
+                                 clock=args.clock,
                                  scheduler=args.scheduler, workers=args.workers)
-        if compiled.refused and compiled.refused["why"] == "fit":
+        if compiled.refused and compiled.refused["why"] in ("fit", "certificate"):
             for line in compiled.refused["text"]:
                 print(f"phongfx: refused: {line}", file=sys.stderr)
             print(f"phongfx: nothing written to {args.output}", file=sys.stderr)
@@ -224,8 +234,9 @@ def cmd_compile(args):
     for name, r in data["methods"].items():
         default = f"defaults: max {_levels(r['default']['max'])}, {_cost(r['default']['cost'], args.synth)}"
         if r["feasible"]:
-            print(f"  {name:12s} max {_levels(r['max'])} {_cost(r['cost'])}{_speed(r['cost'], asked)} at {r['params']} "
-                  f"({_where(r)}; {default})")
+            bound = f", bound {r['certificate']['bound_levels']:.3g}" if r.get("certificate") else ""
+            print(f"  {name:12s} max {_levels(r['max'])}{bound} {_cost(r['cost'])}{_speed(r['cost'], asked)} at "
+                  f"{r['params']} ({_where(r)}; {default})")
             if r.get("why_not_chosen"):
                 print(f"  {'':12s}   not chosen: {r['why_not_chosen']}")
         else:
@@ -243,13 +254,6 @@ def cmd_compile(args):
               file=sys.stderr)
         for line in (data["hint"] or {}).get("text", []):
             print(f"phongfx: hint: {line}", file=sys.stderr)
-        certainty = data.get("certainty") or {}
-        if certainty.get("why"):
-            print(f"phongfx: --certified: {certainty['why']}; the sampled choice was "
-                  f"{certainty['sampled']['method']} at {certainty['sampled']['params']}", file=sys.stderr)
-            for name, why in certainty["methods"].items():
-                print(f"phongfx:   {name}: {why.get('why') or 'bound ' + format(why['bound_levels'], '.3f')}",
-                      file=sys.stderr)
         return 1
     error, witness = data["error"], data["witness"]
     print(f"chosen {data['chosen']} ({data['module']}): max {_levels(float(witness['error_levels']))} over the "
@@ -266,10 +270,7 @@ def cmd_compile(args):
               + (f"searched again with {step['hard_points']} hard points" if step["action"] == "searched again"
                  else "not chosen"))
     print(f"  witness: {witness['found_by']}; replay: {witness['replay']}")
-    if data["certificate"] and not data["certificate"]["certified"]:
-        print(f"  not certified: {data['certificate']['why']}")
-    if data.get("certainty"):
-        print(_certainty(data["certainty"]))
+    print(certificate_line(data, args.output))
     tie = data["tie"]
     if tie:
         runner = _cost({"cost": tie["runner_up_cost"], "unit": data["cost"].get("unit")})

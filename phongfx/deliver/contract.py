@@ -31,7 +31,7 @@ the frames of :mod:`phongfx.scene.geometry`:
 
 from phongfx.config import BlinnConfig, ConventionalConfig, DatapathConfig, ShaderConfig, SphericalConfig
 
-__all__ = ["SPACE", "QUANTIZE", "input_contract", "contract_lines"]
+__all__ = ["SPACE", "QUANTIZE", "input_contract", "contract_lines", "error_paragraph"]
 
 #: The space every vector is given in (module docstring).
 SPACE = ("eye space: x to the right, y up, z toward the viewer; the camera looks down -z (orthographic "
@@ -314,3 +314,17 @@ def contract_lines(contract):
     out.append(f"{', '.join(o['port'] for o in outputs)} ({outputs[0]['format']}): "
                f"{outputs[0]['meaning']}; reference: {outputs[0]['reference']}.")
     return out + list(contract["notes"])
+
+
+def error_paragraph(certificate, requirement):
+    """The header's "Error" paragraph: how far ``out_r/g/b`` may be from the reference and how
+    that is known: ``certificate`` (a :meth:`~phongfx.certify.certificate.Certificate.as_dict`,
+    None for a compile by measurement alone, ``--sampled``), ``requirement`` the manifest's."""
+    within = f"{requirement['max_error_levels']:g} level(s) of the reference"
+    if certificate and certificate["certified"]:
+        return (f"Error: certified: for every input of the scene's domain out_r/g/b are within {within}: a "
+                f"sound bound of {certificate['bound_levels']:.3f} levels before the reference's rounding "
+                f"({certificate['method']}; phongfx certify).")
+    why = f" ({certificate['why']})" if certificate and certificate.get("why") else ""
+    return (f"Error: measured, not certified{why}: within {within} on the frames, a sample of the scene's "
+            f"domain and the worst input a search found (phongfx compile --sampled; phongfx certify bounds it).")

@@ -11,8 +11,10 @@ config's own checks validate the result.
 
 A manifest carries :data:`MANIFEST_VERSION` in ``"manifest_version"``; one of another
 version (or without it: written before the field existed) is refused rather than guessed
-at.  Every refusal is a :class:`ManifestError` naming the file, the field, the value and
-what was expected.
+at.  Version 2: ``"path"`` (the scene file) is relative to the manifest's folder, so the
+folder reads the same from any working directory (:func:`scene_file`), and ``"certified"``
+says whether the design's error is certified (``"certificate"``: its bound).  Every refusal
+is a :class:`ManifestError` naming the file, the field, the value and what was expected.
 """
 
 import dataclasses
@@ -23,10 +25,10 @@ from phongfx.config import BlockConfig, ShaderConfig
 from phongfx.core.registry import REGISTRY
 
 __all__ = ["MANIFEST_VERSION", "ManifestError", "manifest_path", "read_manifest", "check_version", "design_of",
-           "config_from_dict"]
+           "scene_file", "config_from_dict"]
 
 #: The version of the manifest's layout that this module reads (the manifest's ``"manifest_version"``).
-MANIFEST_VERSION = 1
+MANIFEST_VERSION = 2
 
 
 class ManifestError(ValueError):
@@ -88,6 +90,21 @@ def design_of(data, where="manifest"):
     except (TypeError, ValueError) as error:
         raise ManifestError(f"{where}: {error}") from None
     return block, module, config
+
+
+def scene_file(data, folder):
+    """The scene file a manifest dict ``data`` of the compiled folder ``folder`` was compiled
+    from (its ``"path"``, relative to the folder), as a path from the working directory;
+    :class:`ManifestError` when the manifest names none or the file is not there any more."""
+    where = manifest_path(folder)
+    path = data.get("path")
+    if not isinstance(path, str) or not path:
+        raise ManifestError(f"{where}: field 'path' must name the scene file, not {path!r}")
+    found = os.path.normpath(os.path.join(os.path.dirname(where), path))
+    if not os.path.isfile(found):
+        raise ManifestError(f"{where}: field 'path' is {path!r} (relative to the manifest's folder): the scene file "
+                            f"{found} is not there any more")
+    return found
 
 
 def config_from_dict(template, data, field="config"):

@@ -7,6 +7,7 @@ import pytest
 
 from phongfx.cli import main
 from phongfx.cli.certify import PER_PIXEL
+from phongfx.deliver.manifest import MANIFEST_VERSION
 from phongfx.explore.compile.witness import search
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene
@@ -84,8 +85,8 @@ def test_bad_input(capsys, argv, message):
 
 @pytest.fixture
 def compiled(tmp_path):
-    """A compiled folder as ``phongfx compile`` leaves it: the scene file, the chosen design,
-    its widths and its witness (from a small search)."""
+    """A compiled folder as ``phongfx compile`` leaves it: the scene file (relative to the
+    folder), the chosen design, its widths and its witness (from a small search)."""
     scene = tmp_path / "ball.toml"
     scene.write_text(PER_PIXEL.format(n=16, light="1.0, 1.0, 1.0").replace("max_error_levels = 1.0",
                                                                             "max_error_levels = 5.0"))
@@ -94,7 +95,8 @@ def compiled(tmp_path):
     witness = search("fig7", widths, spec, domain(spec), samples=2000, seed=3)
     folder = tmp_path / "out"
     folder.mkdir()
-    manifest = {"scene": spec.name, "path": str(scene), "chosen": "fig7", "widths": widths, "witness": witness}
+    manifest = {"manifest_version": MANIFEST_VERSION, "scene": spec.name, "path": "../ball.toml", "chosen": "fig7",
+                "widths": widths, "witness": witness}
     (folder / "manifest.json").write_text(json.dumps(manifest, default=float))
     return folder
 
@@ -106,6 +108,29 @@ def test_compiled_folder(capsys, compiled):
     assert result["certificate"]["certified"] and result["certificate"]["method"] == "exhaustive"
     code, _, err = run(capsys, "certify", str(compiled), "--set", "k=2")
     assert code == 2 and "--set applies to a METHOD target" in err
+
+
+def test_a_compiled_folder_certifies_from_any_working_directory(capsys, compiled, tmp_path, monkeypatch):
+    elsewhere = tmp_path / "elsewhere" / "deeper"
+    elsewhere.mkdir(parents=True)
+    monkeypatch.chdir(elsewhere)
+    code, out, _ = run(capsys, "certify", "../../out", "--quiet", "--json")
+    assert code == 0 and json.loads(out)["scene"] == "../../ball.toml"  # the manifest's path, from here
+    assert run(capsys, "certify", "../../out", "--replay")[0] == 0
+
+
+def test_a_manifest_of_another_version_or_without_its_scene_file_is_refused(capsys, compiled, tmp_path):
+    data = json.loads((compiled / "manifest.json").read_text())
+    (compiled / "manifest.json").write_text(json.dumps({**data, "manifest_version": 1}))
+    code, _, err = run(capsys, "certify", str(compiled))
+    assert code == 2 and err == (f"phongfx: error: {compiled / 'manifest.json'}: field 'manifest_version' is 1; "
+                                 f"this phongfx reads version {MANIFEST_VERSION}: compile the scene again\n")
+    (compiled / "manifest.json").write_text(json.dumps(data))
+    (tmp_path / "ball.toml").rename(tmp_path / "moved.toml")
+    code, _, err = run(capsys, "certify", str(compiled))
+    assert code == 2 and err == (f"phongfx: error: {compiled / 'manifest.json'}: field 'path' is '../ball.toml' "
+                                 f"(relative to the manifest's folder): the scene file {tmp_path / 'ball.toml'} "
+                                 f"is not there any more\n")
 
 
 def test_replay(capsys, compiled):
@@ -120,7 +145,7 @@ def test_replay(capsys, compiled):
 
 def test_not_a_compiled_folder(capsys, tmp_path):
     code, _, err = run(capsys, "certify", str(tmp_path))
-    assert code == 2 and "has no manifest.json: not a compiled output folder" in err
+    assert code == 2 and "manifest.json: no manifest.json: not the output folder of 'phongfx compile -o FOLDER'" in err
 
 
 @pytest.mark.needs_gappa

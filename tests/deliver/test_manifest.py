@@ -67,9 +67,10 @@ BAD = {
     "a list": ("[]", r"out/manifest\.json: a manifest is a JSON object, not list$"),
     "no version": (_changed(manifest_version=KeyError),
                    r"out/manifest\.json: field 'manifest_version' is absent \(written by a phongfx before "
-                   r"manifests had versions\); this phongfx reads version 1: compile the scene again$"),
-    "another version": (_changed(manifest_version=2),
-                        r"out/manifest\.json: field 'manifest_version' is 2; this phongfx reads version 1"),
+                   rf"manifests had versions\); this phongfx reads version {MANIFEST_VERSION}: compile the scene again$"),
+    "another version": (_changed(manifest_version=MANIFEST_VERSION + 1),
+                        rf"out/manifest\.json: field 'manifest_version' is {MANIFEST_VERSION + 1}; this phongfx reads "
+                        rf"version {MANIFEST_VERSION}"),
     "a failed compile": ({"manifest_version": MANIFEST_VERSION, "scene": "tiny", "chosen": None, "refused": None,
                           "methods": {"fig7": {"feasible": False}}},
                          r"out/manifest\.json: field 'config' is absent: the compile of scene 'tiny' found no "

@@ -3,8 +3,8 @@
 :func:`choose` (:mod:`phongfx.explore.compile.compiler`'s docstring): the feasible designs by
 cost; the cheapest is searched for its worst input over the domain (its witness,
 :mod:`phongfx.explore.compile.witness`); one over the requirement sends its method back to the
-width search with hard points.  :func:`certain`: the same with a certificate that must meet
-the requirement too (``phongfx compile --certified``).
+width search with hard points (the same search again: measured, or measured and certified,
+:mod:`phongfx.explore.compile.certified`).
 """
 
 from phongfx.core.registry import get_block
@@ -14,9 +14,9 @@ from . import run as runs
 from . import witness as witnesses
 from .architecture import config_of, eligible, rank_key
 from .costing import TIE_MARGIN, tie
-from .search import measured_passes, search_widths
+from .search import search_widths
 
-__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "choose", "certain"]
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "choose"]
 
 #: At most this many rounds of hard points (a witness over the requirement) per compile,
 #: and per method.
@@ -59,9 +59,14 @@ def _witness(scene, name, params, domain, progress):
     return witnesses.explore(name, params, spec, domain, progress=progress, analysis=analysis, hard=HARD_POINTS)
 
 
-def choose(out, scene, cost, prove, prove_timeout, progress):
+def choose(out, scene, cost, prove, prove_timeout, progress, search=None):
     """The cheapest feasible design whose witness meets the requirement (module docstring)
-    and, with ``prove``, without a counterexample to its overflow claims."""
+    and, with ``prove``, without a counterexample to its overflow claims; ``search(name)``
+    searches a method's widths again once hard points are added (default
+    :func:`~phongfx.explore.compile.search.search_widths`; the certified search's own)."""
+    if search is None:
+        def search(name):
+            return search_widths(scene, name, progress)
     spec, domain = out.spec, out.domain
     required = spec.requirement.max_error_levels
     ranked = _ranked(out.results)
@@ -93,7 +98,7 @@ def choose(out, scene, cost, prove, prove_timeout, progress):
         if progress:
             progress(f"{name}: witness {levels(found['error_levels'])}; searched again with "
                      f"{scene.points.hard_points} hard points")
-        again = search_widths(scene, name, progress)
+        again = search(name)
         again["default"]["cost"] = r["default"]["cost"]  # the same widths: the same cost
         if again["feasible"]:
             again["cost"] = cost(name, again["params"], True)
@@ -103,66 +108,3 @@ def choose(out, scene, cost, prove, prove_timeout, progress):
                            "params_after": again.get("params"), "feasible_after": again["feasible"],
                            "max_after": again["max"]})
         ranked = [x for x in _ranked(out.results) if x is again or any(x is y for y in ranked)]
-
-
-def certain(out, scene, cost, certifier, progress):
-    """``certified``: the cheapest design whose certificate meets the requirement too.
-
-    Each method with a bounding method is searched again (from its defaults, else its widest
-    widths) with both tests (its measured error
-    and its certificate, refined only until it meets: ``early``); its witness is searched as
-    for every choice.  The sampled choice is kept in :attr:`Compiled.certainty`, with what
-    certainty costs against it."""
-    spec, domain = out.spec, out.domain
-    required = spec.requirement.max_error_levels
-    sampled = out.best
-    out.certainty = {"sampled": {"method": out.chosen, "params": sampled["params"], "cost": sampled["cost"],
-                                 "certificate": out.certificate.as_dict()}, "methods": {}}
-    found = {}
-    for name, r in out.results.items():
-        first = certifier(name, r["params"], spec, domain, early=True, analysis=scene.analysis)
-        if first.bound_levels is None:  # no bounding method for this unit or scene: no width helps
-            out.certainty["methods"][name] = {"certified": False, "why": first.why}
-            continue
-        if progress:
-            progress(f"{name}: a certified design")
-        checked = {}
-
-        def passes(params, name=name):
-            key = tuple(sorted(params.items()))
-            if key not in checked:
-                checked[key] = (measured_passes(scene, name, params)
-                                and certifier(name, params, spec, domain, early=True,
-                                              analysis=scene.analysis).certified)
-            return checked[key]
-
-        result = search_widths(scene, name, progress, passes=passes)
-        result["default"]["cost"] = r["default"]["cost"]  # the same widths: the same cost
-        if not result["feasible"]:
-            out.certainty["methods"][name] = {"certified": False, "why": "no width point is both measured and "
-                                              "certified within the requirement"}
-            continue
-        result["cost"] = cost(name, result["params"], True)
-        result["certificate"] = certifier(name, result["params"], spec, domain, analysis=scene.analysis)
-        out.certainty["methods"][name] = {"certified": result["certificate"].certified,
-                                          "params": result["params"], "cost": result["cost"],
-                                          "bound_levels": result["certificate"].bound_levels}
-        if result["certificate"].certified:
-            found[name] = result
-    ranked = sorted((r for r in found.values() if eligible(r["cost"])), key=lambda r: rank_key(r["cost"]))
-    if not ranked:
-        out.certainty["why"] = "no method has a certified design within the requirement"
-        out.chosen = out.witness = None
-        return
-    best = ranked[0]
-    best["superseded"] = {k: out.results[best["method"]].get(k) for k in ("params", "max", "cost", "witness")}
-    best["witness"], _ = _witness(scene, best["method"], best["params"], domain, progress)
-    out.results[best["method"]] = best
-    out.chosen, out.witness, out.certificate = best["method"], best["witness"], best.pop("certificate")
-    out.tie = tie(ranked, TIE_MARGIN)
-    before, after = sampled["cost"]["cost"], best["cost"]["cost"]
-    out.certainty["extra_cost"] = after / before - 1 if before and after else None
-    if best["witness"]["error_levels"] > required:  # a sound bound is never under a witness
-        raise AssertionError(f"internal error: {best['method']} at {best['params']} has a witness of "
-                             f"{levels(best['witness']['error_levels'])} over its certificate's bound "
-                             f"{out.certificate.bound_levels:.3f}: the bound is not sound")

@@ -33,6 +33,10 @@ that method's widths are searched again, and the designs re-ranked, for at most
 :attr:`Compiled.rounds`); a design whose witness still misses is not chosen.  A quick local
 search from the width search's own worst points comes before each fresh sample.
 
+With ``certified`` (``phongfx compile``'s default) a width point must also meet the requirement
+by its certificate, methods without a bounding method are rejected unsearched, and the chosen
+design's full certificate is computed once (:mod:`phongfx.explore.compile.certified`).
+
 Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
 (:func:`phongfx.explore.synth.fpga.synth`, cached) with ``synth=True``, else the tool-free
@@ -54,7 +58,8 @@ from phongfx.explore.methods import METHODS
 
 from . import run as runs
 from .architecture import Speed, refusal
-from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, certain, choose
+from .certified import certified_search, full_certificate, refusal_lines
+from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, choose
 from .costing import COST_UNITS, price_designs
 from .infeasible import hint
 from .measure import SceneEval, meets
@@ -79,8 +84,8 @@ class Compiled:
     tie: dict = None                    # the runner-up within TIE_MARGIN of the chosen cost
     domain: object = None               # phongfx.scene.domain.Domain the search measured on
     witness: dict = None                # the chosen design's worst input found (witness.search)
-    certificate: object = None          # phongfx.certify's bound of the chosen design, when computed
-    certainty: dict = None              # certified=True: the sampled choice and what certainty costs
+    certificate: object = None          # phongfx.certify's bound of the chosen design (certified search)
+    certified: bool = False             # the search was certified (every width point bounded too)
     rounds: list = field(default_factory=list)  # each witness over the requirement and what it did
     speed: Speed = Speed()              # the pixel rate and clock asked
     refused: dict = None                # nothing chosen for speed or fit: refusal(...)
@@ -140,18 +145,24 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         counterexample is not chosen and the next cheapest is proven instead.
     :param samples: domain points per measured width point, instead of the scene's
         (``[domain] samples``); ``final_samples``: those of the witness search.
-    :param certifier: ``certifier(method, params, spec, domain, early=False, analysis=None)`` gives a
-        :class:`~phongfx.certify.certificate.Certificate` (:func:`phongfx.certify.certify`,
-        which sits above this wing and is passed in): the chosen design's is kept in
-        :attr:`Compiled.certificate`.
-    :param certified: the chosen design's certificate must meet the requirement too: when the
-        sampled choice's does not, every method is searched again for a certified design
-        (:func:`~phongfx.explore.compile.choice.certain`) and the cheapest is chosen (None when none is).
+    :param certifier: ``certifier(method, params, spec, domain, early=False, analysis=None[, max_boxes])``
+        gives a :class:`~phongfx.certify.certificate.Certificate` (:func:`phongfx.certify.certify`,
+        which sits above this wing and is passed in; ``max_boxes=0`` asks whether the method is
+        bounded at all, :func:`~phongfx.explore.compile.certified.certified_search`); without ``certified`` the chosen
+        design's is kept in :attr:`Compiled.certificate`, changing nothing.
+    :param certified: the certified search (:mod:`~phongfx.explore.compile.certified`; needs
+        ``certifier``): each method certifiable on the scene is searched once with its
+        certificate as a second test, the others are rejected with the certificate's why; the
+        chosen design's full certificate is :attr:`Compiled.certificate`.  When no method has
+        a certified design, nothing is chosen and :attr:`Compiled.refused` says why per method
+        (``"why": "certificate"``).
     :returns: a :class:`Compiled`.
     """
     names = check_methods(methods)
     if target not in COST_UNITS:
         raise ValueError(f"target must be one of {', '.join(COST_UNITS)}, not {target!r}")
+    if certified and certifier is None:
+        raise ValueError("certified=True needs a certifier (phongfx.certify.certify)")
     speed = Speed(spec.requirement.mpixels_per_second, clock)  # checked before the minutes of search
     scene = SceneEval(spec, geometries, journal=journal)
     domain = scene_domain(spec, scene.geometries, samples, final_samples)
@@ -160,13 +171,24 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     scene.measure_domain(DomainPoints(spec, domain))
     freq = clock or freq
     out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy", domain=domain,
-                   speed=speed)
+                   speed=speed, certified=certified)
+
+    def search(name):
+        if not certified:
+            return search_widths(scene, name, progress)
+        result, why = certified_search(scene, name, domain, certifier, progress)
+        if why:
+            out.rejected[name] = f"not certifiable: {why}"
+        return result
+
     for name in names:
         reason = runs.rejection(name, spec, scene.analysis, scene.geometries)
         if reason:
             out.rejected[name] = reason
             continue
-        out.results[name] = search_widths(scene, name, progress)
+        result = search(name)
+        if result is not None:
+            out.results[name] = result
         if progress:
             progress(f"{name} searched")
     # the default widths are costed always (the manifest's "saved against the defaults"),
@@ -187,13 +209,19 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     def cost(name, params, by_synth):
         return price_designs([(name, params, by_synth and synth)], scene.analysis, speed, **options)[0]
 
-    choose(out, scene, cost, prove, prove_timeout, progress)
+    choose(out, scene, cost, prove, prove_timeout, progress, search)
+    if certified and out.rounds:  # a witness over the requirement on a design its certificate bounds
+        step = out.rounds[0]
+        raise AssertionError(f"internal error: {step['method']} at {step['params']} has a witness of "
+                             f"{step['witness_levels']} levels over the requirement its certificate meets: "
+                             f"the bound is not sound")
     if certifier is not None and out.chosen is not None:
         if progress:
             progress(f"certifying {out.chosen}")
-        out.certificate = certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis)
-        if certified and not out.certificate.certified:
-            certain(out, scene, cost, certifier, progress)
+        out.certificate = (full_certificate(out, certifier) if certified else
+                           certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis))
     out.refused = refusal(out)
+    if certified and out.chosen is None and out.refused is None:
+        out.refused = {"why": "certificate", "text": refusal_lines(out)}
     out.hint = None if out.refused else hint(out)
     return out

@@ -1,9 +1,12 @@
 """Write what :func:`phongfx.explore.compile.compiler.compile_scene` found, and verify it.
 
 ``DIR/manifest.json`` (:func:`manifest`, with the top's input contract as ``"contract"``:
-:mod:`phongfx.deliver.contract`), ``DIR/verilog/<module>_top.v`` (the shipped
+:mod:`phongfx.deliver.contract`; ``"certified"`` and ``"certificate"``, the design's sound
+bound, or false and null for a compile by measurement alone; ``"path"``, the scene file
+relative to ``DIR``), ``DIR/verilog/<module>_top.v`` (the shipped
 design: the named-port top of :mod:`phongfx.hdl.top` around exactly the chosen shader's
-blocks, without the simulation-only overflow checks, what the cost is of),
+blocks, without the simulation-only overflow checks, what the cost is of; its header says
+whether the error is certified and the bound: :func:`~phongfx.deliver.contract.error_paragraph`),
 ``DIR/frames/frame_NNN.png`` (the shader's r, g, b codes of each frame at its first
 shininess variant, titled and enlarged) and ``DIR/error/frame_NNN.png`` (its error in
 display levels against the reference, the worst channel, with a colour bar; white = twice
@@ -35,7 +38,7 @@ from phongfx.core.format import Format
 from phongfx.core.registry import get_block
 from phongfx.core.words import levels, plural
 from phongfx.deliver.constraints import clock_of
-from phongfx.deliver.contract import contract_lines, input_contract
+from phongfx.deliver.contract import contract_lines, error_paragraph, input_contract
 from phongfx.deliver.fusesoc import write_flow
 from phongfx.deliver.manifest import MANIFEST_VERSION
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
@@ -43,7 +46,7 @@ from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 from . import run as runs
 from .architecture import config_of, timing_of
 
-__all__ = ["formats", "submodules", "manifest", "emit"]
+__all__ = ["formats", "submodules", "scene_path", "manifest", "emit"]
 
 #: The sub-configs of each Lyon datapath that its hardware uses (the others are idle defaults).
 def formats(config, prefix=""):
@@ -109,7 +112,7 @@ def _baseline(compiled, method):
 #: What the manifest keeps of each method's search result (an infeasible one adds its
 #: best point's reasons: :func:`phongfx.explore.compile.infeasible.summary`).
 _METHOD_KEYS = ("feasible", "params", "max", "mean", "frames_max", "domain_max", "domain_points", "cost", "default",
-                "widest", "why", "k_scan", "overflow_proof", "witness", "why_not_chosen", "superseded")
+                "widest", "why", "k_scan", "overflow_proof", "witness", "why_not_chosen", "superseded", "certificate")
 
 
 def _domain_evaluation(compiled):
@@ -126,10 +129,20 @@ def _domain_evaluation(compiled):
                              for name in per_span}}
 
 
-def manifest(compiled, module=None, instances=None, check=None):
-    """The manifest dict (module docstring of :mod:`phongfx.explore.compile.emit`)."""
+def scene_path(spec, out_dir):
+    """The scene file of ``spec`` relative to the output folder ``out_dir`` (what the manifest's
+    ``"path"`` holds, so that the folder can be read from anywhere), None for a scene without a file."""
+    if not spec.path:
+        return None
+    return os.path.relpath(os.path.abspath(spec.path), os.path.abspath(out_dir))
+
+
+def manifest(compiled, module=None, instances=None, check=None, out_dir="."):
+    """The manifest dict (module docstring of :mod:`phongfx.explore.compile.emit`) of the
+    output folder ``out_dir``."""
     spec, best = compiled.spec, compiled.best
-    out = {"manifest_version": MANIFEST_VERSION, "scene": spec.name, "path": spec.path,
+    certificate = compiled.certificate and compiled.certificate.as_dict()
+    out = {"manifest_version": MANIFEST_VERSION, "scene": spec.name, "path": scene_path(spec, out_dir),
            "requirement": {**spec.requirement.as_dict(), "clock_mhz": compiled.speed.clock_mhz},
            "analysis": compiled.analysis.as_dict(), "cost_model": compiled.cost_model,
            "evaluation": {"frames": len(compiled.scene.geometries), "renders": len(compiled.scene.renders),
@@ -139,8 +152,9 @@ def manifest(compiled, module=None, instances=None, check=None):
                           "journal": compiled.scene.journal and compiled.scene.journal.path,
                           **_domain_evaluation(compiled)},
            "domain": compiled.domain and compiled.domain.as_dict(), "witness": compiled.witness,
-           "certificate": compiled.certificate and compiled.certificate.as_dict(),
-           "certainty": compiled.certainty,
+           "certified": bool(certificate and certificate["certified"]),
+           "search": "certified" if compiled.certified else "sampled",
+           "certificate": certificate,
            "witness_rounds": compiled.rounds,
            "chosen": compiled.chosen, "tie": compiled.tie, "hint": compiled.hint, "refused": compiled.refused,
            "rejected": dict(compiled.rejected),
@@ -198,7 +212,7 @@ def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=N
     ``testbench`` is kept for callers that still pass it and changes nothing; ``vcd``: a
     waveform file of the RTL check."""
     with staged_folder(out_dir) as work:
-        return _write(compiled, work, check, progress, vcd)
+        return _write(compiled, work, check, progress, vcd, out_dir)
 
 
 def _flow(out_dir, module, data):
@@ -209,14 +223,14 @@ def _flow(out_dir, module, data):
     return write_flow(out_dir, module, clock, data["top"]["ports"], description)
 
 
-def _write(compiled, out_dir, check, progress, vcd):
+def _write(compiled, out_dir, check, progress, vcd, final):
     from phongfx.hdl.emit import verilog
     from phongfx.hdl.top import port_map, top_verilog
     from phongfx.scene.geometry import pixel_error
 
     best = compiled.best
     if best is None:
-        data = manifest(compiled)
+        data = manifest(compiled, out_dir=final)
         atomic_write(os.path.join(out_dir, "manifest.json"),
                      lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
         return data
@@ -229,7 +243,9 @@ def _write(compiled, out_dir, check, progress, vcd):
     header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
     contract = input_contract(config, compiled.spec, method, n_scale=runs.hooks(method).n_scale)
     shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx},
-                          contract=contract_lines(contract))
+                          contract=contract_lines(contract)
+                          + [error_paragraph(compiled.certificate and compiled.certificate.as_dict(),
+                                             compiled.spec.requirement.as_dict())])
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
     done, result, written, sheets = set(), None, None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
@@ -273,7 +289,7 @@ def _write(compiled, out_dir, check, progress, vcd):
     contact_sheet(os.path.join(out_dir, "frames", "sheet.png"), sheets[0], sheets[2], title=title)
     contact_sheet(os.path.join(out_dir, "error", "sheet.png"), sheets[1], sheets[2], white_levels=scale,
                   title=f"{title}: error against {against} (display levels)")
-    data = manifest(compiled, module, submodules(text, module), result)
+    data = manifest(compiled, module, submodules(text, module), result, final)
     data["error_png_white_levels"] = scale
     data["pictures"] = {"frames": "frames/frame_NNN.png, frames/sheet.png (all frames)",
                         "error": "error/frame_NNN.png, error/sheet.png: worst channel's error in display "

@@ -5,6 +5,7 @@ any bounding method; :mod:`tests.certify` tests the real ones)."""
 import pytest
 
 from phongfx.certify.certificate import Certificate
+from phongfx.explore.compile.certified import uncertifiable
 from phongfx.explore.compile.compiler import compile_scene
 from phongfx.scene.file import parse_scene
 
@@ -22,8 +23,9 @@ class Fake:
     def __init__(self, floor):
         self.floor, self.calls = floor, []
 
-    def __call__(self, method, params, spec, domain, early=False, analysis=None):
-        self.calls.append((method, dict(params), early))
+    def __call__(self, method, params, spec, domain, early=False, analysis=None, max_boxes=300_000):
+        if max_boxes:  # not the probe of whether the method is bounded at all
+            self.calls.append((method, dict(params), early))
         if method != "fig7":
             return Certificate(False, None, "fake", why=f"no bounding method for the {method} unit yet")
         bound = 1.2 if all(params[k] >= v for k, v in self.floor.items()) else 3.0
@@ -33,26 +35,51 @@ class Fake:
 def test_the_chosen_designs_certificate_is_kept_without_changing_the_choice():
     fake = Fake(floor={"vec_frac": 99})
     out = compile_scene(_tiny(), methods=["fig7", "conventional"], certifier=fake)
-    assert out.certificate is not None and out.certainty is None
+    assert out.certificate is not None and not out.certified and "conventional" in out.results
     assert fake.calls == [(out.chosen, out.best["params"], False)]
 
 
-def test_certified_widens_until_the_certificate_meets_and_says_what_it_cost():
+def test_certified_searches_each_method_once_with_both_tests_and_certifies_the_choice_once():
     sampled = compile_scene(_tiny(), methods=["fig7"])
     floor = {**sampled.best["params"], "vec_frac": sampled.best["params"]["vec_frac"] + 1}
-    out = compile_scene(_tiny(), methods=["fig7"], certifier=Fake(floor), certified=True)
-    assert out.chosen == "fig7" and out.certificate.certified and out.certificate.bound_levels == 1.2
+    fake = Fake(floor)
+    out = compile_scene(_tiny(), methods=["fig7"], certifier=fake, certified=True)
+    assert out.chosen == "fig7" and out.certified and out.certificate.certified
+    assert out.certificate.bound_levels == 1.2
     assert out.best["params"] == floor  # the cheapest certified widths
-    assert out.certainty["sampled"]["params"] == sampled.best["params"]
-    assert out.certainty["sampled"]["certificate"]["bound_levels"] == 3.0
-    extra = out.best["cost"]["cost"] / sampled.best["cost"]["cost"] - 1
-    assert out.certainty["extra_cost"] == pytest.approx(extra) and extra > 0
-    assert out.witness["error_levels"] <= 1.0
+    assert out.best["certificate"]["bound_levels"] == 1.2 and out.best["certificate"]["certified"]
+    assert [call for call in fake.calls if not call[2]] == [("fig7", floor, False)]  # the full one, once
+    early = [tuple(sorted(p.items())) for m, p, e in fake.calls if e]
+    assert len(early) == len(set(early))  # each width point's certificate asked once
+    assert out.witness["error_levels"] <= 1.0 and not out.rounds and out.refused is None
 
 
-def test_certified_without_any_certifiable_method_chooses_nothing_and_says_why():
-    out = compile_scene(_tiny(), methods=["conventional"], certifier=Fake({}), certified=True)
-    assert out.chosen is None
-    assert out.certainty["why"] == "no method has a certified design within the requirement"
-    assert out.certainty["methods"]["conventional"] == {
-        "certified": False, "why": "no bounding method for the conventional unit yet"}
+def test_certified_rejects_an_uncertifiable_method_unsearched_and_refuses_with_each_reason():
+    fake = Fake({"vec_frac": 99})
+    out = compile_scene(_tiny(), methods=["conventional", "fig7"], certifier=fake, certified=True)
+    assert out.chosen is None and out.results["fig7"]["feasible"] is False
+    assert "conventional" not in out.results  # not searched at all
+    assert out.rejected["conventional"] == "not certifiable: no bounding method for the conventional unit yet"
+    why = out.results["fig7"]["why"][-1]
+    lead = ("no width point is both measured and certified within the requirement; the lowest bound found is "
+            "3.000 levels at ")
+    assert why.startswith(lead) and why[len(lead):] == str(fake.calls[0][1])  # all 3.0: the first asked
+    refused = out.refused
+    assert refused["why"] == "certificate" and out.hint is None
+    assert refused["text"][0] == "no design of tiny is certified within 1 level against phong:"
+    assert refused["text"][1] == "  conventional: not certifiable: no bounding method for the conventional unit yet"
+    assert refused["text"][2].startswith("  fig7: no width point is both measured and certified")
+    assert refused["text"][-1] == ("--sampled chooses by the measured error alone (certified: false): "
+                                   "phongfx compile tiny.toml -o DIR --sampled")
+
+
+def test_a_certificate_without_a_bound_only_for_an_overflow_does_not_make_a_method_uncertifiable():
+    assert uncertifiable(Certificate(False, None, "interval", why="no bounding method for the x unit yet")) == (
+        "no bounding method for the x unit yet")
+    assert uncertifiable(Certificate(False, None, "interval", {"faults": ["x2"]}, "x2 may overflow")) is None
+    assert uncertifiable(Certificate(False, 3.0, "interval", why="the bound 3.000 levels rounds to 3")) is None
+
+
+def test_certified_needs_a_certifier():
+    with pytest.raises(ValueError, match=r"^certified=True needs a certifier \(phongfx\.certify\.certify\)$"):
+        compile_scene(_tiny(), methods=["fig7"], certified=True)

@@ -10,6 +10,7 @@ import pytest
 
 from phongfx.cli import main
 from phongfx.core.registry import get_block
+from phongfx.deliver.manifest import design_of
 from phongfx.explore.compile.compiler import compile_scene, meets, width_params
 from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.emit import submodules
@@ -173,7 +174,7 @@ def test_a_range_of_n_is_rendered_at_its_ends_and_geometric_mean():
 def test_an_unreachable_requirement_chooses_nothing(tmp_path, capsys):
     path = tmp_path / "hard.toml"
     path.write_text(TORUS.format(error=0.001, against="phong"))
-    assert main(["compile", str(path), "-o", str(tmp_path / "out"), "--methods", "fig7", "--quiet"]) == 1
+    assert main(["compile", str(path), "-o", str(tmp_path / "out"), "--methods", "fig7", "--sampled", "--quiet"]) == 1
     assert re.search(r"^phongfx: no method meets max_error_levels = 0\.001 against phong on tiny; ",
                      capsys.readouterr().err, re.M)
     data = json.loads((tmp_path / "out" / "manifest.json").read_text())
@@ -185,7 +186,7 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     path = tmp_path / "tiny.toml"
     path.write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,blinn", "--quiet"]) == 0
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,blinn", "--sampled", "--quiet"]) == 0
     data = json.loads((out / "manifest.json").read_text())
     for key in ("scene", "analysis", "chosen", "block", "formats", "latency", "ports", "error", "cost",
                 "cost_model", "rejected", "minimality_proof", "default_widths", "blinn_baseline", "conventional_baseline",
@@ -217,7 +218,7 @@ def test_the_shipped_top_has_named_ports_and_its_testbench_passes_under_icarus(t
     path = tmp_path / "tiny.toml"
     path.write_text(TORUS.format(error=1.0, against="phong"))
     out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--quiet", "--testbench"]) == 0
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7", "--sampled", "--quiet", "--testbench"]) == 0
     data = json.loads((out / "manifest.json").read_text())
     top = data["top"]
     names = [port["name"] for port in top["ports"]]
@@ -364,7 +365,8 @@ def _compile_tiny(tmp_path, *args):
 
 
 def test_asic_target_prices_in_square_microns_beside_the_phong_baseline(tmp_path, capsys):
-    _, data = _compile_tiny(tmp_path, "--methods", "fig7,conventional", "--target", "asic", "--library", "osu035")
+    _, data = _compile_tiny(tmp_path, "--methods", "fig7,conventional", "--sampled", "--target", "asic",
+                            "--library", "osu035")
     assert data["cost_model"] == "asic-proxy"
     cost = data["cost"]
     assert (cost["unit"], cost["target"], cost["device"], cost["model"]) == ("µm²", "asic", "osu035", "asic-proxy")
@@ -433,26 +435,83 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
     assert compiled.best["overflow_proof"]["proven"] == 1
 
 
-def test_the_report_and_manifest_say_what_held_over_the_domain(tmp_path, capsys):
-    path, data = _compile_tiny(tmp_path, "--methods", "fig7", "--samples", "1500", "--final-samples", "4000")
+@pytest.mark.slow  # a minute and a half of certificates; the tutorial's page test is the default tier's smoke
+@pytest.mark.needs_verilator
+def test_the_default_compile_is_certified_and_every_output_is_of_the_certified_design(tmp_path, capsys):
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    assert main(["compile", str(path), "-o", str(tmp_path / "out"), "--quiet", "--methods", "fig7", "--samples", "1500",
+                 "--final-samples", "4000"]) == 0
+    data = json.loads((tmp_path / "out" / "manifest.json").read_text())
     text = capsys.readouterr().out
     found = re.search(r"^chosen fig7 \(tiny_fig7\): max 1 level over the domain \(witness; frames 1\), "
-                      r"(certified ≤ ([\d.]+)|not certified: bound ([\d.]+)) \(interval\) at out_r/g/b", text, re.M)
+                      r"certified ≤ ([\d.]+) \(interval\) at out_r/g/b", text, re.M)
     assert found
-    assert re.search(r"fig7 .* \(frames 1, domain 1 on [\d,]+ points; defaults: ", text)
+    assert re.search(r"fig7 +max 1 level, bound [\d.]+ .* \(frames 1, domain 1 on [\d,]+ points; defaults: ", text)
     assert data["domain"]["samples"] == 1500 and data["domain"]["final_samples"] == 4000
     assert data["domain"]["description"].startswith("Poses: ")
     certificate = data["certificate"]  # the interval method's, sound: never under the witness
-    assert certificate["method"] == "interval" and float(found.group(2) or found.group(3)) == pytest.approx(
+    assert data["certified"] is True and data["search"] == "certified" and certificate["certified"]
+    assert certificate["method"] == "interval" and float(found.group(1)) == pytest.approx(
         certificate["bound_levels"], rel=1e-2)
-    assert certificate["bound_levels"] >= data["witness"]["unrounded"]
-    assert certificate["certified"] == (found.group(2) is not None)
+    assert data["witness"]["unrounded"] <= certificate["bound_levels"] < data["requirement"]["max_error_levels"] + 0.5
+    assert certificate["parts"]["rounding"] > 0 and certificate["parts"]["output"] == 0.5
+    assert re.search(rf"^  certified: no input of the domain is more than 1 level off: bound "
+                     rf"{certificate['bound_levels']:.3f} levels \(interval: rounding ", text, re.M)
     witness = data["witness"]
     assert witness["error_levels"] <= 1 and witness["samples"] == 4000 and set(witness["outputs"]) == set("rgb")
     assert data["error"]["witness"] == witness["error_levels"] and data["error"]["domain_points"] >= 1500
     method = data["methods"]["fig7"]
     assert method["frames_max"] <= method["max"] and method["domain_max"] <= method["max"]
-    assert data["evaluation"]["domain_samples"] == 1500 and data["path"] == str(path)
+    assert method["certificate"]["certified"] and method["params"] == data["widths"]
+    assert data["evaluation"]["domain_samples"] == 1500
+    assert data["path"] == "../tiny.toml"  # relative to the output folder
+    # the RTL check, the testbench and the shipped top are of the certified design: its widths, its config
+    config = build("fig7", data["widths"], SceneEval(load_scene(str(path))).analysis, data["architecture"])
+    assert design_of(data)[2] == config and data["rtl_check"]["mismatches"] == 0
+    assert data["testbench"]["vectors"] == data["rtl_check"]["vectors"] > 0
+    assert (f"Error: certified: for every input of the scene's domain out_r/g/b are within 1 level(s) of the "
+            f"reference: a sound bound of {certificate['bound_levels']:.3f} levels") in _header(tmp_path / "out", data)
+
+
+def _header(out, data):
+    """The shipped top's header comment as one line of text (its paragraphs are wrapped)."""
+    text = (out / data["top"]["file"]).read_text()
+    return " ".join(line[2:].strip() for line in text.splitlines() if line.startswith("//"))
+
+
+def test_sampled_chooses_by_measurement_alone_and_says_not_certified(tmp_path, capsys):
+    _, data = _compile_tiny(tmp_path, "--methods", "fig7,blinn", "--sampled")
+    text = capsys.readouterr().out
+    assert data["certified"] is False and data["search"] == "sampled" and data["certificate"] is None
+    assert "blinn" in data["methods"] and "blinn" not in data["rejected"]  # measured, not rejected
+    assert re.search(r"^chosen fig7 \(tiny_fig7\): .*, not certified \(--sampled\) at out_r/g/b", text, re.M)
+    assert f"  not certified: --sampled chose by the measured error alone; phongfx certify {tmp_path / 'out'} " \
+           f"bounds it" in text
+    assert "Error: measured, not certified: within 1 level(s) of the reference on the frames" in _header(
+        tmp_path / "out", data)
+
+
+def test_a_certified_compile_with_no_certifiable_method_refuses_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    import phongfx.certify.remembered as remembered
+    from phongfx.certify.certificate import Certificate
+
+    def unbounded(method, params, spec, domain, **options):  # whatever the registry holds today
+        return Certificate(False, None, "interval", why=f"no bounding method for the {method} unit yet")
+    monkeypatch.setattr(remembered, "certify", unbounded)
+    path = tmp_path / "tiny.toml"
+    path.write_text(TORUS.format(error=1.0, against="phong"))
+    out = tmp_path / "out"
+    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,euler", "--quiet"]) == 1
+    err = capsys.readouterr().err.splitlines()
+    assert err[0] == "phongfx: refused: no design of tiny is certified within 1 level against phong:"
+    assert err[1] == "phongfx: refused:   fig7: not certifiable: no bounding method for the fig7 unit yet"
+    assert err[2].startswith("phongfx: refused:   euler: the euler unit interpolates the diffuse N·L only")
+    assert err[3:] == [f"phongfx: refused: --sampled chooses by the measured error alone (certified: false): "
+                       f"phongfx compile {path} -o DIR --sampled", f"phongfx: nothing written to {out}"]
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["tiny.toml"]
+    assert main(["compile", str(path), "-o", str(out), "--sampled", "--certified"]) == 2
+    assert "--sampled and --certified contradict each other" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("option, value", [("--samples", "0"), ("--final-samples", "-3")])

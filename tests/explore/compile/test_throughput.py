@@ -112,7 +112,8 @@ def test_the_synthesized_choice_and_a_missed_clock_flagged(fake, tmp_path, capsy
     scene.write_text(TWO_LIGHTS.format(speed=""))
     out = tmp_path / "out"
     # 150 Mpixel/s: the proxy's 160 MHz at depth 4 synthesizes at 144 MHz, short of 150
-    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--synth", "--throughput", "150",
+    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--sampled", "--synth",
+                 "--throughput", "150",
                  "--no-check", "--quiet"]) == 1
     console = capsys.readouterr()
     assert ("phongfx: TIMING NOT MET: fig7 reaches 144 MHz (synthesized), 144 Mpixel/s; it needs 150 MHz: "
@@ -129,7 +130,8 @@ def test_the_synthesized_choice_and_a_missed_clock_flagged(fake, tmp_path, capsy
     top = (out / manifest["top"]["file"]).read_text()
     assert "144" in top and "150" in top  # the header's clock and requirement
     # 40 Mpixel/s: met by synthesis at depth 2, one unit for both lights
-    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--synth", "--throughput", "40",
+    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--sampled", "--synth",
+                 "--throughput", "40",
                  "--no-check", "--quiet"]) == 0
     timing = json.loads((out / "manifest.json").read_text())["timing"]
     assert (timing["met"], timing["interval"], timing["pixel_rate_mpx"]) == (True, 2, 45.0)
@@ -140,14 +142,14 @@ def test_a_design_over_its_part_is_refused_and_nothing_is_written(fake, tmp_path
     scene.write_text(TWO_LIGHTS.format(speed="mpixels_per_second = 150"))
     out = tmp_path / "out"
     # two units at depth 4 need 78 DSPs: certainly over the 25k's 28, within the margin of the 45k's 72
-    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--device", "25k",
+    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--sampled", "--device", "25k",
                  "--no-check", "--quiet"]) == 1
     err = capsys.readouterr().err
     assert ("phongfx: refused: fig7 at {" in err and "} (depth 4, interval 1, shared inputs) does not fit the "
             "LFE5U-25F: DSP 78 (±10% by the proxy: at least 70) of 28; the smallest part that holds it: "
             "--device 85k" in err)
     assert not out.exists()
-    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--no-check", "--quiet"]) == 0
+    assert main(["compile", str(scene), "-o", str(out), "--methods", "fig7", "--sampled", "--no-check", "--quiet"]) == 0
     console = capsys.readouterr().out
     assert "within the proxy's margin of the LFE5U-45F: DSP 78 ±10% of 72; synthesize to be sure (--synth), " \
            "or --device 85k" in console

@@ -1,0 +1,113 @@
+"""The certified search, ``phongfx compile``'s default: every width point must meet the
+requirement as measured and by a sound bound.
+
+A method is certifiable on a scene when its unit has a bounding method that covers the
+scene's domain: the certifier (:func:`phongfx.certify.certify`, passed in by the command,
+since that wing sits above this one) answers for the method's default widths, asked for no
+refinement (``max_boxes=0``: the coverage, not the bound, is the question), with a bound, or
+without one only because some quantize may overflow at those widths (``parts["faults"]``: other
+widths may not).  Any other certificate without a bound says why no width can help (no bounding
+method for the unit, lights or viewer it does not cover): the method is rejected with that
+sentence and not searched at all, so a new bounding method needs no change here.
+
+A certifiable method is searched once (:func:`~phongfx.explore.compile.search.search_widths`)
+with two tests per width point: its measured error (frames and domain sample,
+:func:`~phongfx.explore.compile.search.measured_passes`) first, and only where that meets the
+requirement its certificate, refined only until it meets (``early``).  The chosen design's
+full certificate is computed once, after the choice (:func:`full_certificate`).
+"""
+
+__all__ = ["CertifiedTest", "uncertifiable", "certified_search", "full_certificate", "refusal_lines"]
+
+from phongfx.core.words import levels
+
+from .search import measured_passes, search_widths, width_params
+
+
+def uncertifiable(certificate):
+    """Why no width of a method can be certified, from its certificate at some widths; None
+    when it has a bound there, or lacks one only for an overflow that other widths may avoid."""
+    if certificate.bound_levels is None and not certificate.parts.get("faults"):
+        return certificate.why or "no bound"
+    return None
+
+
+class CertifiedTest:
+    """``test(params)``: whether ``method`` at ``params`` meets the requirement as measured and
+    by its certificate (module docstring); each width point's certificate is asked once
+    (:attr:`certificates`: key -> ``(params, certificate)``)."""
+
+    def __init__(self, scene, method, domain, certifier):
+        self.scene, self.method, self.domain, self.certifier = scene, method, domain, certifier
+        self.certificates = {}
+
+    def certificate(self, params):
+        """The early certificate of ``params`` (cached)."""
+        key = tuple(sorted(params.items()))
+        if key not in self.certificates:
+            self.certificates[key] = (dict(params), self.certifier(self.method, dict(params), self.scene.spec,
+                                                                   self.domain, early=True,
+                                                                   analysis=self.scene.analysis))
+        return self.certificates[key][1]
+
+    def __call__(self, params):
+        return measured_passes(self.scene, self.method, params) and self.certificate(params).certified
+
+
+def certified_search(scene, method, domain, certifier, progress=None):
+    """``(result, None)``: ``method``'s certified width search (a
+    :func:`~phongfx.explore.compile.search.search_widths` result, a feasible one with its
+    ``"certificate"``: the early bound at its widths), or ``(None, why)`` when the method is
+    not certifiable on the scene (:func:`uncertifiable`)."""
+    default = {k: v for k, (v, _) in width_params(method, scene.spec.requirement.against).items()}
+    probe = certifier(method, default, scene.spec, domain, early=True, analysis=scene.analysis, max_boxes=0)
+    why = uncertifiable(probe)
+    if why:
+        return None, why
+    if progress:
+        progress(f"{method}: a certified design")
+    test = CertifiedTest(scene, method, domain, certifier)
+    result = search_widths(scene, method, progress, passes=test)
+    if result["feasible"]:
+        early = test.certificate(result["params"])
+        result["certificate"] = {"certified": early.certified, "bound_levels": early.bound_levels,
+                                 "method": early.method, "refined": "until it met the requirement (early)"}
+    else:
+        tried = [(p, c) for p, c in test.certificates.values() if c.bound_levels is not None]
+        best = min(tried, key=lambda pc: pc[1].bound_levels, default=None)
+        result.setdefault("why", []).append(
+            "no width point is both measured and certified within the requirement"
+            + (f"; the lowest bound found is {best[1].bound_levels:.3f} levels at {best[0]}" if best else ""))
+    return result, None
+
+
+def full_certificate(out, certifier):
+    """The chosen design's full certificate (refined to the end); an internal error when it is
+    not certified, since its early one was."""
+    best = out.best
+    certificate = certifier(out.chosen, best["params"], out.spec, out.domain, analysis=out.analysis)
+    if not certificate.certified:
+        raise AssertionError(f"internal error: {out.chosen} at {best['params']} was certified early "
+                             f"({best['certificate']['bound_levels']}) but its full certificate is not: "
+                             f"{certificate.why}")
+    return certificate
+
+
+def refusal_lines(out):
+    """Why a certified compile chose nothing for its error: one line per method, and the way
+    to a measured choice (``--sampled``)."""
+    spec = out.spec
+    required = spec.requirement.max_error_levels
+    text = [f"no design of {spec.name} is certified within {levels(required)} against "
+            f"{spec.requirement.against}:"]
+    for name, reason in out.rejected.items():
+        text.append(f"  {name}: {reason}")
+    for name, r in out.results.items():
+        if r["feasible"]:
+            text.append(f"  {name}: certified at {r['params']}, but " + (r.get("why_not_chosen") or "not chosen"))
+        else:
+            text.append(f"  {name}: {(r.get('why') or ['infeasible'])[-1]}")
+    path = spec.path or f"{spec.name}.toml"
+    text.append(f"--sampled chooses by the measured error alone (certified: false): "
+                f"phongfx compile {path} -o DIR --sampled")
+    return text
