@@ -32,7 +32,7 @@ from . import run as runs
 from .analysis import analyse
 from .climb import climb, neighbourhood, points, state_of
 from .measure import point_errors, shade_points, worst_per_point
-from .points import concat, pose_frames, posed_frame, take
+from .points import concat, pose_frames, posed_frame, take, worst_index
 
 __all__ = ["STARTS", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore", "climb_rounds", "replay",
            "geometry"]
@@ -105,7 +105,7 @@ def explore(method, params, spec, domain, *, samples=None, seed=None, progress=N
         kept, done = [], 0
         for g in domain.chunks(samples, seed):
             e, u = evaluate(g)
-            kept.append(take(g, np.lexsort((u, e))[-STARTS:]))
+            kept.append(take(g, worst_index(e, u, STARTS)))
             done += len(g)
             if progress:
                 rate = done / max(time.perf_counter() - start, 1e-9)
