@@ -84,12 +84,13 @@ def phong_terms(g, n):
     return np.stack([specular("phong", g.normal, light, g.viewer, n) for light in g.light])
 
 
-def shade_points(method, config, params, against, g, n, phong=None):
+def shade_points(method, config, params, against, g, n, phong=None, own=None):
     """``(codes, I_ref, raw inputs, raw outputs)`` of the points ``g`` (a frame, or domain
     points) with per-point shininess ``n``: the shader's ``r``, ``g``, ``b`` codes (P, 3)
     and the float reference intensities (P, 3), whose backside test follows the shader's
     within the terminator band (:func:`~phongfx.scene.geometry.terminator_lit`).
-    ``phong``: :func:`phong_terms` of ``g`` when already computed."""
+    ``phong``: :func:`phong_terms` of ``g`` when already computed; ``own``: the method's own
+    terms (:func:`~phongfx.explore.compile.run.own_specular`, against ``"self"``) when already computed."""
     raw = runs.frame_inputs(method, config, g, n)
     shaded = shader_raw(config, raw)  # chunk by chunk for a unit without state: faster, same codes
     out = {name: shaded[name] for name in "rgb"}
@@ -98,7 +99,7 @@ def shade_points(method, config, params, against, g, n, phong=None):
     if config.blend.diff:  # the shader's own backside test, per light, at the visible pixels
         lit = np.stack([runs.visible(method, shaded[f"diff{i}"] > 0, g) for i in range(config.blend.lights)])
     if against == "self":
-        spec = runs.own_specular(method, config, params, g, n)
+        spec = runs.own_specular(method, config, params, g, n) if own is None else own
     else:
         spec = phong_terms(g, n) if phong is None else phong
     cosine = cosines(g)
@@ -113,10 +114,10 @@ def point_errors(codes, reference, bits):
     return pixel_error(codes, reference, bits), np.abs(codes - reference * scale)
 
 
-def worst_per_point(method, config, params, against, g, n, phong=None):
+def worst_per_point(method, config, params, against, g, n, phong=None, own=None):
     """``(levels, unrounded)``, each (P,): :func:`point_errors` of :func:`shade_points`, the
     worst channel of each point (a unit fed per pixel: a frame's or domain points)."""
-    codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong)
+    codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong, own)
     levels, raw = point_errors(codes, reference, g.bits)
     return levels.max(axis=-1), raw.max(axis=-1)
 

@@ -36,7 +36,7 @@ from . import run as runs
 from .climb import climb, state_of
 from .measure import phong_terms, point_errors, shade_points, worst_per_point
 
-__all__ = ["STARTS", "CLIMB_ROUNDS", "BATCH", "SCREENS", "DomainPoints", "worst_index", "take", "concat", "posed_frame",
+__all__ = ["STARTS", "CLIMB_ROUNDS", "BATCH", "SCREENS", "OWN_FORMS", "DomainPoints", "worst_index", "take", "concat", "posed_frame",
            "pose_frames"]
 
 #: How many of the sample's worst points the local search of each measurement starts from.
@@ -47,6 +47,8 @@ CLIMB_ROUNDS = 20
 BATCH = 32
 #: How many sets of worst points of earlier measurements a method's screen keeps.
 SCREENS = 8
+#: Against ``"self"``: how many float forms' terms are kept per chunk of the sample.
+OWN_FORMS = 6
 
 #: Fields of a :class:`~phongfx.scene.geometry.FrameGeometry` indexed per light (lights, P, ...).
 _PER_LIGHT = ("l0", "l1", "light")
@@ -153,6 +155,7 @@ class DomainPoints:
         self.hard = []        # FrameGeometry of hard points, as added
         self._poses = None    # frames of random poses, drawn when first needed
         self._screens = {}    # per method, the worst points of its latest measurements (module docstring)
+        self._own = {}        # (chunk index, run.own_key) -> the method's own terms of the chunk ("self")
 
     def key(self):
         """What the measured errors depend on beyond the frames: the domain, the count, the
@@ -197,8 +200,9 @@ class DomainPoints:
             return None
         worst = worst_raw = total = 0.0
         points, kept = 0, []
-        for g, n, phong in parts:
-            codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong)
+        for index, (g, n, phong) in enumerate(parts):
+            own = self._own_terms(index, method, config, params) if per_pixel else None
+            codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong, own)
             levels, raw = point_errors(codes, reference, g.bits)
             worst = max(worst, float(levels.max(initial=0)))
             worst_raw = max(worst_raw, float(raw.max(initial=0.0)))
@@ -230,6 +234,23 @@ class DomainPoints:
             out.update(max=max(worst, float(best[0])), max_unrounded=max(worst_raw, best[1]))
         return out
 
+    def _own_terms(self, index, method, config, params):
+        """Against ``"self"``, the method's own terms of chunk ``index``, computed once per
+        :func:`~phongfx.explore.compile.run.own_key` (at most :data:`OWN_FORMS` kept per
+        chunk); None otherwise (:func:`shade_points` computes what it needs)."""
+        if self.spec.requirement.against != "self":
+            return None
+        g, n, _ = self.chunks[index]
+        key = runs.own_key(method, config, params, n)
+        if key is None:
+            return None
+        memo = self._own.setdefault(index, {})
+        if key not in memo:
+            if len(memo) >= OWN_FORMS:
+                memo.pop(next(iter(memo)))
+            memo[key] = runs.own_specular(method, config, params, g, n)
+        return memo[key]
+
     def _screen(self, method, g):
         """Keep the domain points ``g`` (worst of a measurement) in ``method``'s screen."""
         self._screens[method] = [*self._screens.get(method, ())[1 - SCREENS:], g]
@@ -255,7 +276,8 @@ class DomainPoints:
         """The ``count`` worst points of the sample (hard points included) of ``method`` at
         ``config`` (a unit fed per pixel), by integer error, ties by the continuous one."""
         kept = []
-        for g, n, phong in self.chunks:
-            e, u = worst_per_point(method, config, params, self.spec.requirement.against, g, n, phong)
+        for index, (g, n, phong) in enumerate(self.chunks):
+            own = self._own_terms(index, method, config, params)
+            e, u = worst_per_point(method, config, params, self.spec.requirement.against, g, n, phong, own)
             kept.append(take(g, worst_index(e, u, count)))
         return concat(kept)

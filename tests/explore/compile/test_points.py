@@ -71,3 +71,32 @@ def test_the_answer_is_that_of_the_whole_measurement(tiny):
     answers = [scene.passes("fig7", params) for params in tried]
     assert answers == [meets(fresh.error("fig7", params), 1.0) for params in tried]
     assert True in answers and False in answers and scene.failed  # some failed on part of the domain only
+
+
+@pytest.mark.parametrize("method, params", [
+    ("fig7", {"vec_frac": 12, "x2_frac": 8, "shape_t_frac": 12, "coef": 4, "order": 2}),
+    ("fig8", {"vec_frac": 12, "root_frac": 12, "t_frac": 14, "coef": 4, "order": 2}),
+    ("conventional", {"vec_frac": 12, "rsqrt_addr": 8, "table_addr": 6, "coef": 4}),
+])
+def test_against_itself_the_float_form_is_computed_once_per_chunk_and_the_same(method, params, monkeypatch):
+    from phongfx.explore.compile import run as runs
+
+    spec = parse_scene(TORUS.format(error=1.0, against="self"), name="tiny")
+    scene = SceneEval(spec)
+    domain = scene_domain(spec, scene.geometries, samples=3000)
+    narrower = {**params, "vec_frac": 11}  # another width, the same float form
+    configs = [(runs.build(method, p, scene.analysis), p) for p in (params, narrower)]
+    sizes = []
+    original = runs.own_specular
+
+    def counted(method, config, params, g, n):
+        sizes.append(len(g))
+        return original(method, config, params, g, n)
+    monkeypatch.setattr(runs, "own_specular", counted)
+    points = DomainPoints(spec, domain)
+    kept = [points.error(method, config, p) for config, p in configs]
+    assert sizes.count(3000) == 1  # the chunk's terms once; the local search's points are its own
+    monkeypatch.setattr(runs, "own_key", lambda *args: None)  # computed afresh every time
+    fresh = DomainPoints(spec, domain)
+    assert [fresh.error(method, config, p) for config, p in configs] == kept
+    assert sizes.count(3000) == 3 and kept[0]["points"] == 3000
