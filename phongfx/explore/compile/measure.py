@@ -215,6 +215,7 @@ class SceneEval:
         if cached is None or (complete and self.points is not None and cached.get("domain_max") is None
                               and math.isfinite(cached["max"])):
             self.cache[key] = self._error(method, params, complete)
+            self.failed.discard(key)  # measured whole now
             if self.journal is not None:
                 self.journal.add(key, self.cache[key])
         return self.cache[key]
@@ -239,6 +240,18 @@ class SceneEval:
         if self.journal is not None:
             self.journal.add(key, found)
         return meets(found, required)
+
+    def merge(self, measured, failed):
+        """Take width points measured elsewhere (another process's :attr:`cache` entries
+        ``measured`` and :attr:`failed` keys ``failed``) as if measured here, journalled."""
+        for key, error in measured.items():
+            self.cache[key] = error
+            if self.journal is not None:
+                self.journal.add(key, error)
+        for key in sorted(set(failed) - set(self.cache) - self.failed):
+            self.failed.add(key)
+            if self.journal is not None:
+                self.journal.add(key, {"partial": True})
 
     def _error(self, method, params, complete=False, limit=None):
         """:meth:`error` measured; with ``limit``, None as soon as part of the domain sample
