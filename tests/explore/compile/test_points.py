@@ -100,3 +100,20 @@ def test_against_itself_the_float_form_is_computed_once_per_chunk_and_the_same(m
     fresh = DomainPoints(spec, domain)
     assert [fresh.error(method, config, p) for config, p in configs] == kept
     assert sizes.count(3000) == 3 and kept[0]["points"] == 3000
+
+
+def test_an_infeasible_method_reports_the_best_point_it_tried(monkeypatch):
+    from phongfx.explore.compile.search import search_widths
+
+    spec = parse_scene(TORUS.format(error=0.5, against="phong"), name="tiny")
+
+    def searched():
+        scene = SceneEval(spec)
+        scene.measure_domain(DomainPoints(spec, scene_domain(spec, scene.geometries, samples=3000)))
+        return search_widths(scene, "conventional")
+    fast = searched()
+    monkeypatch.setattr(SceneEval, "passes", lambda self, method, params: meets(self.error(method, params), 0.5))
+    whole = searched()  # every point measured whole, as before the measurements stopped early
+    # its widest widths, measured only until they failed, are its best: measured whole to say so
+    assert fast == whole and not fast["feasible"] and fast["params"] == fast["widest"]["params"] != \
+        fast["default"]["params"]
