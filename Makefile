@@ -97,12 +97,14 @@ sweep-asic: $(STAMP) $(DEBIAN_STAMP)
 report: $(STAMP)
 	$(VENV)/bin/phongfx report --out build/report --sweep build/sweep
 
-# benchmarks (not part of make test): RTL verification throughput, golden model throughput
+# benchmarks (not part of make test): RTL verification throughput, golden model throughput,
+# and the example scenes' compile time from an empty cache (and make sim's) against its targets
 bench: $(STAMP)
 	$(VENV)/bin/python -m bench.rtl
 	$(VENV)/bin/python -m bench.golden
 	$(VENV)/bin/python -m bench.scaling
 	$(VENV)/bin/python -m bench.domain
+	$(VENV)/bin/python -m bench.compile
 
 # the behaviour identity check: this checkout's outputs against revision REF's (bench/identity.py)
 REF ?= 58cdcc7

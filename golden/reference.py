@@ -23,6 +23,7 @@ sees ``D = -N``, row 11 ``alpha = pi/2`` and row 12 its floor ``(1/(1+n))**2``.
 No floating-point warning is raised.
 """
 
+import functools
 import re
 
 import numpy as np
@@ -72,38 +73,91 @@ def _shape(xs, k):
     return amount
 
 
-def _intermediates(N, L, V, n):
-    """The listing's shared vectors: ``rv``, ``hv``, ``hv1`` (``g2``-normalized), ``hv2``
-    (unit) and ``n4``, with the inputs as float arrays."""
-    N, L, V = (np.asarray(a, dtype=np.float64) for a in (N, L, V))
-    for name, a in (("N", N), ("L", L), ("V", V)):
-        if a.ndim == 0 or a.shape[-1] != 3:
-            raise ValueError(f"{name} must have shape (..., 3), got {a.shape}")
-    n = np.asarray(n, dtype=np.float64)
+class _Listing:
+    """The listing's inputs as float arrays and its shared intermediates, each computed when a
+    row first asks for it (one row alone, as the compiler asks, skips the others' work):
+    ``rv``, ``hv``, ``hv1`` (``g2``-normalized), ``hv2`` (unit), ``n4`` and row 5's ``dot``."""
 
-    rv = 2 * N * _dot(V, N)[..., None] - V
-    hv = (L + V) / 2
-    hl = _dot(hv, hv)
-    dl = 1 - hl
-    hv1 = (1 + 0.5 * (dl + dl * dl))[..., None] * hv
-    # hl == 0: a zero reciprocal length (not NaN) gives hv2 = 0 and dot = 0;
-    # ``where`` skips the division there, so no divide-by-zero warning.
-    rlen = np.divide(1.0, np.sqrt(hl), out=np.zeros_like(hl), where=hl > 0)
-    hv2 = rlen[..., None] * hv
-    n4 = 4 * n
-    return N, L, V, n, rv, hv, hv1, hv2, n4
+    def __init__(self, N, L, V, n):
+        N, L, V = (np.asarray(a, dtype=np.float64) for a in (N, L, V))
+        for name, a in (("N", N), ("L", L), ("V", V)):
+            if a.ndim == 0 or a.shape[-1] != 3:
+                raise ValueError(f"{name} must have shape (..., 3), got {a.shape}")
+        self.N, self.L, self.V, self.n = N, L, V, np.asarray(n, dtype=np.float64)
+
+    @functools.cached_property
+    def rv(self):
+        return 2 * self.N * _dot(self.V, self.N)[..., None] - self.V
+
+    @functools.cached_property
+    def hv(self):
+        return (self.L + self.V) / 2
+
+    @functools.cached_property
+    def hl(self):
+        return _dot(self.hv, self.hv)
+
+    @functools.cached_property
+    def hv1(self):
+        dl = 1 - self.hl
+        return (1 + 0.5 * (dl + dl * dl))[..., None] * self.hv
+
+    @functools.cached_property
+    def hv2(self):
+        # hl == 0: a zero reciprocal length (not NaN) gives hv2 = 0 and dot = 0;
+        # ``where`` skips the division there, so no divide-by-zero warning.
+        hl = self.hl
+        rlen = np.divide(1.0, np.sqrt(hl), out=np.zeros_like(hl), where=hl > 0)
+        return rlen[..., None] * self.hv
+
+    @functools.cached_property
+    def n4(self):
+        return 4 * self.n
+
+    @functools.cached_property
+    def dot(self):
+        return _dot(self.hv2, self.N)
+
+    @functools.cached_property
+    def alpha(self):
+        # Rows 11-12 keep row 5's dot.  The clip is not in the listing: it only stops
+        # rounding (or a non-unit N) from pushing acos outside its domain into NaN.
+        return np.arccos(np.clip(self.dot, -1.0, 1.0))
+
+    @functools.cached_property
+    def lyon_xs(self):
+        """Row 2's ``x = n/2·|L - R|²``, what ``f_k`` is applied to."""
+        dv = self.L - self.rv
+        return _dot(dv, dv) * self.n / 2
+
+    @functools.cached_property
+    def g2proj_xs(self):
+        """Row 8's ``x = 4n/2·|H g2(z) - projection|²``."""
+        dv = self.hv1 - self.N * _dot(self.hv1, self.N)[..., None]
+        return _dot(dv, dv) * self.n4 / 2
 
 
-def _lyon_xs(L, rv, n):
-    """Row 2's ``x = n/2·|L - R|²``, what ``f_k`` is applied to."""
-    dv = L - rv
-    return _dot(dv, dv) * n / 2
+def _squared_shape(d, n4, k):
+    """``f_k`` of ``|d|²·4n/2`` (rows 6, 7 and 10)."""
+    return _shape(_dot(d, d) * n4 / 2, k)
 
 
-def _g2proj_xs(N, hv1, n4):
-    """Row 8's ``x = 4n/2·|H g2(z) - projection|²``."""
-    dv = hv1 - N * _dot(hv1, N)[..., None]
-    return _dot(dv, dv) * n4 / 2
+#: Each row of Figure 9 from the shared :class:`_Listing`, statement by statement as printed.
+_ROWS = {
+    "phong": lambda s: _power_if_positive(_dot(s.rv, s.L), s.n),
+    "lyon-k0": lambda s: _shape(s.lyon_xs, 0),
+    "lyon-k1": lambda s: _shape(s.lyon_xs, 1),
+    "lyon-k2": lambda s: _shape(s.lyon_xs, 2),
+    "blinn": lambda s: _power_if_positive(s.dot, s.n4),
+    "halfway-hnorm-k2": lambda s: _squared_shape(s.hv2 - s.N, s.n4, 2),
+    "halfway-proj-k2": lambda s: _squared_shape(s.hv - s.N * _dot(s.hv, s.N)[..., None], s.n4, 2),
+    "halfway-g2proj-k2": lambda s: _shape(s.g2proj_xs, 2),
+    "halfway-g2proj-k1": lambda s: _shape(s.g2proj_xs, 1),  # row 9 reuses row 8's xs, as printed
+    "halfway-g2-k2": lambda s: _squared_shape(s.hv1 - s.N, s.n4, 2),
+    "torrance-sparrow": lambda s: np.exp(-(s.n4 / 2) * s.alpha * s.alpha),
+    "trowbridge-reitz": lambda s: np.where(s.dot > 0, (1 / (1 + (1 - s.dot * s.dot) * s.n)) ** 2,
+                                           (1 / (1 + s.n)) ** 2),
+}
 
 
 def specular_all(N, L, V, n):
@@ -123,32 +177,8 @@ def specular_all(N, L, V, n):
         Specular amount of each method, keyed and ordered as :data:`METHODS`,
         each of the broadcast leading shape, float64.
     """
-    N, L, V, n, rv, hv, hv1, hv2, n4 = _intermediates(N, L, V, n)
-
-    out = {}
-    out["phong"] = _power_if_positive(_dot(rv, L), n)
-    xs = _lyon_xs(L, rv, n)
-    out["lyon-k0"], out["lyon-k1"], out["lyon-k2"] = (_shape(xs, k) for k in (0, 1, 2))
-
-    dot = _dot(hv2, N)
-    out["blinn"] = _power_if_positive(dot, n4)
-    dv = hv2 - N
-    out["halfway-hnorm-k2"] = _shape(_dot(dv, dv) * n4 / 2, 2)
-    dv = hv - N * _dot(hv, N)[..., None]
-    out["halfway-proj-k2"] = _shape(_dot(dv, dv) * n4 / 2, 2)
-    xs = _g2proj_xs(N, hv1, n4)
-    out["halfway-g2proj-k2"] = _shape(xs, 2)
-    out["halfway-g2proj-k1"] = _shape(xs, 1)  # row 9 reuses row 8's xs, as printed
-    dv = hv1 - N
-    out["halfway-g2-k2"] = _shape(_dot(dv, dv) * n4 / 2, 2)
-
-    # Rows 11-12 keep row 5's dot.  The clip is not in the listing: it only stops
-    # rounding (or a non-unit N) from pushing acos outside its domain into NaN.
-    alpha = np.arccos(np.clip(dot, -1.0, 1.0))
-    out["torrance-sparrow"] = np.exp(-(n4 / 2) * alpha * alpha)
-    out["trowbridge-reitz"] = np.where(
-        dot > 0, (1 / (1 + (1 - dot * dot) * n)) ** 2, (1 / (1 + n)) ** 2)
-    return {m: np.asarray(out[m]) for m in METHODS}
+    shared = _Listing(N, L, V, n)
+    return {m: np.asarray(_ROWS[m](shared)) for m in METHODS}
 
 
 def specular(method, N, L, V, n):
@@ -173,11 +203,10 @@ def specular(method, N, L, V, n):
     """
     form = SHAPE_FORMS.match(method)
     if form and method not in METHODS:
-        N, L, V, n, rv, _hv, hv1, _hv2, n4 = _intermediates(N, L, V, n)
-        xs = _lyon_xs(L, rv, n) if form[1] == "lyon" else _g2proj_xs(N, hv1, n4)
-        return np.asarray(_shape(xs, int(form[2])))
+        shared = _Listing(N, L, V, n)
+        return np.asarray(_shape(shared.lyon_xs if form[1] == "lyon" else shared.g2proj_xs, int(form[2])))
     if method not in METHODS:
         raise ValueError(
             f"unknown specular method {method!r}; valid methods: {', '.join(METHODS)}")
-    # One implementation: the single method is read out of the shared evaluation.
-    return specular_all(N, L, V, n)[method]
+    # One implementation: the row alone, from the same shared intermediates as specular_all.
+    return np.asarray(_ROWS[method](_Listing(N, L, V, n)))

@@ -73,7 +73,7 @@ from .lyon import Scene, pixels
 from .mesh import unit
 from .patches import mesh_regions
 from .regions import lyon_regions, summary
-from .sampling import Surface, draw, draw_chunks, face_table
+from .sampling import Surface, draw, draw_chunk, draw_chunks, face_table
 
 __all__ = ["POSES", "WOBBLE_DEFAULT", "SAMPLES_DEFAULT", "FINAL_SAMPLES_DEFAULT", "SEED_DEFAULT", "Options",
            "Domain", "domain", "parse_options"]
@@ -187,6 +187,10 @@ class Domain:
         :data:`~phongfx.scene.sampling.CHUNK` points (the last shorter) whose concatenation is
         ``sample(count, seed)``: the same points in bounded memory."""
         return draw_chunks(self, count, seed)
+
+    def chunk(self, count, seed, index):
+        """Piece ``index`` of :meth:`chunks` alone (:func:`~phongfx.scene.sampling.draw_chunk`)."""
+        return draw_chunk(self, count, seed, index)
 
     def sample(self, count, seed):
         """A :class:`~phongfx.scene.geometry.FrameGeometry` of ``count`` domain points (one

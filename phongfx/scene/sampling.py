@@ -15,7 +15,7 @@ import numpy as np
 from .geometry import FrameGeometry
 from .zones import band_points, cap, directions, facing_draw, in_ball, span_end
 
-__all__ = ["CHUNK", "ENDS", "GROUP", "draw", "draw_chunks", "sample_chunk", "Surface", "FaceTable", "face_table",
+__all__ = ["CHUNK", "ENDS", "GROUP", "draw", "draw_chunks", "draw_chunk", "sample_chunk", "Surface", "FaceTable", "face_table",
            "random_poses", "random_rotations", "cap", "span_end"]
 
 #: points drawn per generator: ``draw(domain, count, seed)`` is its chunks of this size, concatenated
@@ -349,7 +349,18 @@ def _parts(domain, count, seed, at_least_one=False):
     """``(start, arrays)`` of each chunk: chunk ``index`` drawn from its own generator,
     seeded by ``(seed, index)``."""
     for index, start in enumerate(range(0, max(count, 1) if at_least_one else count, CHUNK)):
-        yield start, sample_chunk(domain, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
+        yield start, _part(domain, count, seed, index)
+
+
+def _part(domain, count, seed, index):
+    start = index * CHUNK
+    return sample_chunk(domain, min(CHUNK, count - start), np.random.default_rng((int(seed), index)))
+
+
+def draw_chunk(domain, count, seed, index):
+    """Chunk ``index`` of :func:`draw_chunks` alone (each is drawn from its own generator:
+    chunks can be drawn in any order, by any process)."""
+    return _geometry(domain, _part(domain, _count(count), seed, index))
 
 
 def _empty(value, count, axis):

@@ -62,11 +62,12 @@ def _witness(scene, name, params, domain, progress):
 def choose(out, scene, cost, prove, prove_timeout, progress, search=None):
     """The cheapest feasible design whose witness meets the requirement (module docstring)
     and, with ``prove``, without a counterexample to its overflow claims; ``search(name)``
-    searches a method's widths again once hard points are added (default
-    :func:`~phongfx.explore.compile.search.search_widths`; the certified search's own)."""
+    searches a method's widths again once hard points are added, as ``(result, why)`` (default
+    :func:`~phongfx.explore.compile.search.search_widths`'s, with no why; the certified
+    search's own)."""
     if search is None:
         def search(name):
-            return search_widths(scene, name, progress)
+            return search_widths(scene, name, progress), None
     spec, domain = out.spec, out.domain
     required = spec.requirement.max_error_levels
     ranked = _ranked(out.results)
@@ -98,7 +99,7 @@ def choose(out, scene, cost, prove, prove_timeout, progress, search=None):
         if progress:
             progress(f"{name}: witness {levels(found['error_levels'])}; searched again with "
                      f"{scene.points.hard_points} hard points")
-        again = search(name)
+        again, _ = search(name)  # certifiable before: the same method still is
         again["default"]["cost"] = r["default"]["cost"]  # the same widths: the same cost
         if again["feasible"]:
             again["cost"] = cost(name, again["params"], True)

@@ -64,7 +64,7 @@ from .costing import COST_UNITS, price_designs
 from .infeasible import hint
 from .measure import SceneEval, meets
 from .points import DomainPoints
-from .search import search_widths, widest, width_params
+from .search import search_all, search_widths, widest, width_params
 
 __all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params",
            "widest", "search_widths", "scene_domain", "meets"]
@@ -135,7 +135,9 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         None: each design at its own Fmax.  The pixel rate asked is the scene's
         ``requirement.mpixels_per_second`` (:func:`phongfx.scene.file.with_throughput`).
     :param scheduler: where ``synth`` runs its candidates in parallel (a Dask scheduler
-        address; None: a local cluster of ``workers`` processes).
+        address; None: a local cluster of ``workers`` processes).  ``workers`` also bounds
+        the processes that search the methods' widths and the witness side by side
+        (:mod:`~phongfx.explore.compile.workers`; None: every core, 1: this process alone).
     :param progress: called with a short description of each step; each synthesis as
         "candidate i of N (label): stage, T s".
     :param journal: a folder where every measured width point is kept, so that a rerun of
@@ -175,22 +177,22 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
 
     def search(name):
         if not certified:
-            return search_widths(scene, name, progress)
-        result, why = certified_search(scene, name, domain, certifier, progress)
-        if why:
-            out.rejected[name] = f"not certifiable: {why}"
-        return result
+            return search_widths(scene, name, progress), None
+        return certified_search(scene, name, domain, certifier, progress)
 
+    searched = []
     for name in names:
         reason = runs.rejection(name, spec, scene.analysis, scene.geometries)
         if reason:
             out.rejected[name] = reason
-            continue
-        result = search(name)
+        else:
+            searched.append(name)
+    for name, (result, why) in search_all(scene, searched, progress, workers, search).items():
+        if why:
+            out.rejected[name] = f"not certifiable: {why}"
         if result is not None:
             out.results[name] = result
-        if progress:
-            progress(f"{name} searched")
+    out.rejected = {name: out.rejected[name] for name in names if name in out.rejected}  # in the order asked
     # the default widths are costed always (the manifest's "saved against the defaults"),
     # the searched ones only when they meet the requirement; an infeasible method's
     # defaults by the proxy only and at the default architecture, since neither its

@@ -18,6 +18,7 @@ from phongfx.explore.synth.fpga import SynthError
 from . import architecture as architectures
 from . import fit as fits
 from . import run as runs
+from .workers import fork_imap
 
 __all__ = ["COST_UNITS", "TIE_MARGIN", "utilisation", "cost", "costed", "price_designs", "tie"]
 
@@ -137,18 +138,23 @@ def price_designs(designs, analysis, speed, *, target="ecp5", device=None, freq=
     ``fastest``; a tool failure gives :func:`costed`'s failure dict."""
     proxy_where = _where(target, device, freq, seed, False)
     results, jobs = [], []
-    for method, params, by_synth, *only_default in designs:
+
+    def by_proxies(design):  # every architecture of one design, priced and fitted (or the tool's error)
+        method, params, _, *only_default = design
         offered = architectures.candidates(method, analysis, architectures.Speed() if any(only_default) else speed)
         try:
             priced = [architectures.price(method, params, analysis, a, speed, target=target, device=device)
                       for a in offered]
+            return _fitted(priced, method, params, analysis, speed, target, device, not any(only_default))
         except (ValueError, SynthError) as error:
-            results.append(_failure(error))
-            continue
-        try:
-            priced = _fitted(priced, method, params, analysis, speed, target, device, not any(only_default))
-        except (ValueError, SynthError) as error:
-            results.append(_failure(error))
+            return error
+
+    # each design elaborated to RTLIL twice (area, clock) unless cached: the designs side by side
+    many = len(designs) > 1 and not any(by_synth for _, _, by_synth, *_ in designs)
+    for (method, params, by_synth, *only_default), priced in zip(
+            designs, fork_imap(by_proxies, designs, workers) if many else map(by_proxies, designs)):
+        if isinstance(priced, Exception):
+            results.append(_failure(priced))
             continue
         chosen, fastest = architectures.pick(priced)
         out = _proxy_cost(chosen or fastest, proxy_where, len(priced))

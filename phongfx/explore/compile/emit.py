@@ -147,7 +147,7 @@ def manifest(compiled, module=None, instances=None, check=None, out_dir="."):
            "analysis": compiled.analysis.as_dict(), "cost_model": compiled.cost_model,
            "evaluation": {"frames": len(compiled.scene.geometries), "renders": len(compiled.scene.renders),
                           "shininess_variants": compiled.scene.shininess_variants,
-                          "points_measured": len(compiled.scene.cache),
+                          "points_measured": compiled.scene.points_measured,
                           "points_resumed": compiled.scene.resumed,
                           "journal": compiled.scene.journal and compiled.scene.journal.path,
                           **_domain_evaluation(compiled)},

@@ -89,6 +89,8 @@ def summary(scene, method, widest_point, scan):
     error of the best point measured, ``widest`` (the fallback start and its max error),
     ``why`` (sentences) and ``k_scan`` (per ``k``: max error, and per shininess variant)."""
     requirement = scene.spec.requirement.max_error_levels
+    for key in sorted(k for k in scene.failed if k[0] == method):  # measured until they failed: whole now,
+        scene.error(method, dict(key[1]))                           # so that every point tried can be the best
     best = _best(scene, method) or (widest_point, scene.error(method, widest_point))
     # on the domain too (the search skips it where the frames already miss): what a hint quotes
     best = (best[0], scene.error(method, best[0], complete=True))

@@ -22,6 +22,12 @@ receive while the scene plays, and ``max`` (the search's criterion) is the large
 ``frames_max`` and ``domain_max``.  The domain is measured only where the frames meet
 the requirement (elsewhere the point fails whatever the domain holds, and ``domain_max``
 is None), or when asked (``complete``: an infeasible method's best point).
+
+The width search asks only whether a point meets the requirement (:meth:`SceneEval.passes`):
+a point the domain sample fails is measured only until some of its points fail (the worst
+points of earlier measurements first, :meth:`~phongfx.explore.compile.points.DomainPoints.error`'s
+``limit``), which is the same answer at a fraction of the cost; such a partial measurement is
+not kept, so :meth:`SceneEval.error` measures the whole sample when its numbers are asked for.
 """
 
 import math
@@ -78,12 +84,13 @@ def phong_terms(g, n):
     return np.stack([specular("phong", g.normal, light, g.viewer, n) for light in g.light])
 
 
-def shade_points(method, config, params, against, g, n, phong=None):
+def shade_points(method, config, params, against, g, n, phong=None, own=None):
     """``(codes, I_ref, raw inputs, raw outputs)`` of the points ``g`` (a frame, or domain
     points) with per-point shininess ``n``: the shader's ``r``, ``g``, ``b`` codes (P, 3)
     and the float reference intensities (P, 3), whose backside test follows the shader's
     within the terminator band (:func:`~phongfx.scene.geometry.terminator_lit`).
-    ``phong``: :func:`phong_terms` of ``g`` when already computed."""
+    ``phong``: :func:`phong_terms` of ``g`` when already computed; ``own``: the method's own
+    terms (:func:`~phongfx.explore.compile.run.own_specular`, against ``"self"``) when already computed."""
     raw = runs.frame_inputs(method, config, g, n)
     shaded = shader_raw(config, raw)  # chunk by chunk for a unit without state: faster, same codes
     out = {name: shaded[name] for name in "rgb"}
@@ -92,7 +99,7 @@ def shade_points(method, config, params, against, g, n, phong=None):
     if config.blend.diff:  # the shader's own backside test, per light, at the visible pixels
         lit = np.stack([runs.visible(method, shaded[f"diff{i}"] > 0, g) for i in range(config.blend.lights)])
     if against == "self":
-        spec = runs.own_specular(method, config, params, g, n)
+        spec = runs.own_specular(method, config, params, g, n) if own is None else own
     else:
         spec = phong_terms(g, n) if phong is None else phong
     cosine = cosines(g)
@@ -107,10 +114,10 @@ def point_errors(codes, reference, bits):
     return pixel_error(codes, reference, bits), np.abs(codes - reference * scale)
 
 
-def worst_per_point(method, config, params, against, g, n, phong=None):
+def worst_per_point(method, config, params, against, g, n, phong=None, own=None):
     """``(levels, unrounded)``, each (P,): :func:`point_errors` of :func:`shade_points`, the
     worst channel of each point (a unit fed per pixel: a frame's or domain points)."""
-    codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong)
+    codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong, own)
     levels, raw = point_errors(codes, reference, g.bits)
     return levels.max(axis=-1), raw.max(axis=-1)
 
@@ -138,6 +145,8 @@ class SceneEval:
         self.points = None
         #: ``journal``: a folder where measured points are kept for a rerun (:mod:`.journal`)
         self.folder, self.journal, self.cache, self.resumed = journal, None, {}, 0
+        #: keys of the points :meth:`passes` found failing on part of the domain sample (not in the cache)
+        self.failed = set()
         self._open_journal()
 
     def measure_domain(self, points):
@@ -151,10 +160,17 @@ class SceneEval:
         if self.folder is not None:
             extra = None if self.points is None else self.points.key()
             self.journal = Journal(self.folder, scene_key(self.spec, self.geometries, extra))
-            self.cache = self.journal.load()
+            loaded = self.journal.load()
         else:
-            self.cache = {}
-        self.resumed = len(self.cache)
+            loaded = {}
+        self.cache = {key: error for key, error in loaded.items() if not error.get("partial")}
+        self.failed = {key for key, error in loaded.items() if error.get("partial")}
+        self.resumed = len(loaded)
+
+    @property
+    def points_measured(self):
+        """How many width points were measured, whole or (:meth:`passes`) until they failed."""
+        return len(self.failed.union(self.cache))
 
     def add_hard(self, geometry):
         """Add hard points (a :class:`~phongfx.scene.geometry.FrameGeometry` of domain
@@ -199,11 +215,47 @@ class SceneEval:
         if cached is None or (complete and self.points is not None and cached.get("domain_max") is None
                               and math.isfinite(cached["max"])):
             self.cache[key] = self._error(method, params, complete)
+            self.failed.discard(key)  # measured whole now
             if self.journal is not None:
                 self.journal.add(key, self.cache[key])
         return self.cache[key]
 
-    def _error(self, method, params, complete=False):
+    def passes(self, method, params):
+        """Whether ``method`` at ``params`` :func:`meets` the requirement: the answer of
+        ``meets(self.error(method, params), ...)``, with a point that fails on the domain
+        measured only until it does (module docstring)."""
+        required = self.spec.requirement.max_error_levels
+        key = (method, tuple(sorted(params.items())))
+        if key in self.cache:
+            return meets(self.cache[key], required)
+        if key in self.failed:
+            return False
+        found = self._error(method, params, limit=(required, required + 0.5 - GUARD))
+        if found is None:  # journalled as such: a rerun knows it fails without measuring it
+            self.failed.add(key)
+            if self.journal is not None:
+                self.journal.add(key, {"partial": True})
+            return False
+        self.cache[key] = found
+        if self.journal is not None:
+            self.journal.add(key, found)
+        return meets(found, required)
+
+    def merge(self, measured, failed):
+        """Take width points measured elsewhere (another process's :attr:`cache` entries
+        ``measured`` and :attr:`failed` keys ``failed``) as if measured here, journalled."""
+        for key, error in measured.items():
+            self.cache[key] = error
+            if self.journal is not None:
+                self.journal.add(key, error)
+        for key in sorted(set(failed) - set(self.cache) - self.failed):
+            self.failed.add(key)
+            if self.journal is not None:
+                self.journal.add(key, {"partial": True})
+
+    def _error(self, method, params, complete=False, limit=None):
+        """:meth:`error` measured; with ``limit``, None as soon as part of the domain sample
+        is past it (:meth:`~phongfx.explore.compile.points.DomainPoints.error`)."""
         inf = float("inf")
         try:
             config = runs.build(method, params, self.analysis)
@@ -222,9 +274,11 @@ class SceneEval:
         if out["max"] > self.spec.requirement.max_error_levels and not complete:
             return out  # fails on the frames: the domain cannot make it pass
         try:
-            measured = self.points.error(method, config, params)
+            measured = self.points.error(method, config, params, limit)
         except (ValueError, OverflowError) as error:
             return {**out, "max": inf, "domain_max": inf, "why": f"on the domain: {error}"}
+        if measured is None:
+            return None
         out.update(domain_max=measured["max"], domain_mean=measured["mean"], domain_points=measured["points"],
                    domain_climbed=measured["climbed"], domain_unrounded=measured["max_unrounded"],
                    max=max(out["max"], measured["max"]),

@@ -10,7 +10,10 @@ once; :meth:`DomainPoints.error` is the compiler's error
 added with :meth:`~DomainPoints.add_hard` and measured with the rest.  Each measurement
 also hill-climbs from the sample's worst points (:func:`phongfx.explore.compile.climb.climb`):
 the width search is held to the worst the witness search would find, not only to the
-sample's.
+sample's.  Asked only whether a design stays within a ``limit`` (the width search's question),
+a measurement stops at the first chunk past it, after first trying the worst points of the
+method's earlier measurements (its *screen*): a narrower width fails, nearly always, where the
+last one was worst.
 
 A domain point is one pixel of a span of its own, which the units fed per pixel take as
 they take a frame's.  A unit fed per *span* (the spherical unit's setup is per span and
@@ -33,7 +36,8 @@ from . import run as runs
 from .climb import climb, state_of
 from .measure import phong_terms, point_errors, shade_points, worst_per_point
 
-__all__ = ["STARTS", "CLIMB_ROUNDS", "BATCH", "DomainPoints", "take", "concat", "posed_frame", "pose_frames"]
+__all__ = ["STARTS", "CLIMB_ROUNDS", "BATCH", "SCREENS", "OWN_FORMS", "DomainPoints", "worst_index", "take", "concat", "posed_frame",
+           "pose_frames"]
 
 #: How many of the sample's worst points the local search of each measurement starts from.
 STARTS = 32
@@ -41,11 +45,35 @@ STARTS = 32
 #: small sample, so that it costs at most about a twentieth of the sample's evaluation.
 CLIMB_ROUNDS = 20
 BATCH = 32
+#: How many sets of worst points of earlier measurements a method's screen keeps.
+SCREENS = 8
+#: Against ``"self"``: how many float forms' terms are kept per chunk of the sample.
+OWN_FORMS = 6
 
 #: Fields of a :class:`~phongfx.scene.geometry.FrameGeometry` indexed per light (lights, P, ...).
 _PER_LIGHT = ("l0", "l1", "light")
 #: Fields that are not per point.
 _WHOLE = ("width", "height", "rgb", "spans", "frame", "bits")
+
+
+def worst_index(levels, unrounded, count):
+    """``np.lexsort((unrounded, levels))[-count:]`` (the ``count`` worst points by integer
+    error, ties by the continuous one, then by index, in that order) without sorting every
+    point: the points that can be among them are found by two partitions, and only they
+    are sorted (in index order, so that the stable sort breaks ties as on all of them)."""
+    levels, unrounded = np.asarray(levels), np.asarray(unrounded)
+    size = len(levels)
+    if size <= 4 * count or not np.isfinite(unrounded).all():
+        return np.lexsort((unrounded, levels))[-count:]
+    cut = np.partition(levels, size - count)[size - count]  # the count-th largest level
+    above = np.flatnonzero(levels > cut)
+    tied = np.flatnonzero(levels == cut)
+    need = count - len(above)
+    if len(tied) > need:  # of the tied, those at least the need-th largest continuous error
+        values = unrounded[tied]
+        tied = tied[values >= np.partition(values, len(values) - need)[len(values) - need]]
+    chosen = np.union1d(above, tied)
+    return chosen[np.lexsort((unrounded[chosen], levels[chosen]))[-count:]]
 
 
 def take(g, index):
@@ -126,6 +154,8 @@ class DomainPoints:
             self.chunks.append((g, n, phong_terms(g, n)))
         self.hard = []        # FrameGeometry of hard points, as added
         self._poses = None    # frames of random poses, drawn when first needed
+        self._screens = {}    # per method, the worst points of its latest measurements (module docstring)
+        self._own = {}        # (chunk index, run.own_key) -> the method's own terms of the chunk ("self")
 
     def key(self):
         """What the measured errors depend on beyond the frames: the domain, the count, the
@@ -153,32 +183,43 @@ class DomainPoints:
             self._poses = [(g, np.round(g.n).astype(np.int64), phong_terms(g, np.round(g.n))) for _, g in found]
         return self._poses
 
-    def error(self, method, config, params):
+    def error(self, method, config, params, limit=None):
         """``{"max", "mean", "max_unrounded", "points", "climbed", "how"}`` of ``method`` at
         ``config`` over the sample (or, for a unit fed per span, the frames of random poses),
         and for a unit fed per pixel over a local search from the sample's :data:`STARTS`
         worst points (:func:`phongfx.explore.compile.climb.climb`, up to :data:`CLIMB_ROUNDS`
         rounds: a few percent of the sample's cost, and it finds the corners of the bad
-        regions that a sample only brushes)."""
+        regions that a sample only brushes).
+
+        ``limit``: ``(levels, unrounded)``; None as soon as some sample point's error is past
+        either (module docstring), else the same dict as without it."""
         per_pixel = runs.per_pixel(method)
         parts = self.chunks if per_pixel else self.poses()
         against = self.spec.requirement.against
+        if limit is not None and per_pixel and self._screened_out(method, config, params, limit):
+            return None
         worst = worst_raw = total = 0.0
         points, kept = 0, []
-        for g, n, phong in parts:
-            codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong)
+        for index, (g, n, phong) in enumerate(parts):
+            own = self._own_terms(index, method, config, params) if per_pixel else None
+            codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong, own)
             levels, raw = point_errors(codes, reference, g.bits)
             worst = max(worst, float(levels.max(initial=0)))
             worst_raw = max(worst_raw, float(raw.max(initial=0.0)))
             total += float(levels.sum())
             points += len(g)
             if per_pixel:
-                kept.append(take(g, np.lexsort((raw.max(axis=-1), levels.max(axis=-1)))[-STARTS:]))
+                kept.append(take(g, worst_index(levels.max(axis=-1), raw.max(axis=-1), STARTS)))
+            if limit is not None and (worst > limit[0] or worst_raw > limit[1]):
+                if per_pixel:
+                    self._screen(method, kept[-1])
+                return None
         out = {"max": worst, "mean": total / max(3 * points, 1), "max_unrounded": worst_raw, "points": points,
                "climbed": 0, "how": "domain points" if per_pixel else f"visible pixels of {len(parts)} random poses"}
         if not per_pixel:
             return out
         pool = concat(kept)
+        self._screen(method, pool)
 
         def evaluate(g):
             return worst_per_point(method, config, params, against, g, np.round(g.n).astype(np.int64))
@@ -193,11 +234,50 @@ class DomainPoints:
             out.update(max=max(worst, float(best[0])), max_unrounded=max(worst_raw, best[1]))
         return out
 
+    def _own_terms(self, index, method, config, params):
+        """Against ``"self"``, the method's own terms of chunk ``index``, computed once per
+        :func:`~phongfx.explore.compile.run.own_key` (at most :data:`OWN_FORMS` kept per
+        chunk); None otherwise (:func:`shade_points` computes what it needs)."""
+        if self.spec.requirement.against != "self":
+            return None
+        g, n, _ = self.chunks[index]
+        key = runs.own_key(method, config, params, n)
+        if key is None:
+            return None
+        memo = self._own.setdefault(index, {})
+        if key not in memo:
+            if len(memo) >= OWN_FORMS:
+                memo.pop(next(iter(memo)))
+            memo[key] = runs.own_specular(method, config, params, g, n)
+        return memo[key]
+
+    def _screen(self, method, g):
+        """Keep the domain points ``g`` (worst of a measurement) in ``method``'s screen."""
+        self._screens[method] = [*self._screens.get(method, ())[1 - SCREENS:], g]
+
+    def _screened_out(self, method, config, params, limit):
+        """Whether a point of ``method``'s screen or a hard point is past ``limit`` (each a
+        point of the sample: then so is the sample).  A screen that cannot be measured (an
+        overflow) decides nothing: the sample's measurement says what it says."""
+        parts = [(g, np.round(g.n).astype(np.int64), None) for g in self._screens.get(method, ())]
+        parts += self.chunks[len(self.chunks) - len(self.hard):]
+        against = self.spec.requirement.against
+        try:
+            for g, n, phong in parts:
+                codes, reference, _, _ = shade_points(method, config, params, against, g, n, phong)
+                levels, raw = point_errors(codes, reference, g.bits)
+                if levels.max(initial=0) > limit[0] or raw.max(initial=0.0) > limit[1]:
+                    return True
+        except (ValueError, OverflowError):
+            return False
+        return False
+
     def worst(self, method, config, params, count):
         """The ``count`` worst points of the sample (hard points included) of ``method`` at
         ``config`` (a unit fed per pixel), by integer error, ties by the continuous one."""
         kept = []
-        for g, n, phong in self.chunks:
-            e, u = worst_per_point(method, config, params, self.spec.requirement.against, g, n, phong)
-            kept.append(take(g, np.lexsort((u, e))[-count:]))
+        for index, (g, n, phong) in enumerate(self.chunks):
+            own = self._own_terms(index, method, config, params)
+            e, u = worst_per_point(method, config, params, self.spec.requirement.against, g, n, phong, own)
+            kept.append(take(g, worst_index(e, u, count)))
         return concat(kept)

@@ -20,7 +20,7 @@ from phongfx.explore.methods import METHODS
 
 __all__ = ["EXTRA", "COEF_DEFAULT", "ARCHITECTURE", "hooks", "is_datapath", "per_pixel", "rejection", "unit_config",
            "build", "architectures",
-           "frame_inputs", "visible", "frame_codes", "own_specular", "block_name", "copies"]
+           "frame_inputs", "visible", "frame_codes", "own_specular", "own_key", "block_name", "copies"]
 
 #: Fraction bits of the blend's constants (``coef``) at a method's defaults: their rounding
 #: moves a pixel by at most (2·lights + 1)·2^-(coef+1) levels before its own rounding.
@@ -168,6 +168,12 @@ def own_specular(method, config, params, geometry, n):
     """(lights, P) the method's float specular form at the exact vectors (``"self"``);
     ``config`` the shader's."""
     return hooks(method).own_specular(method, config, params, geometry, n)
+
+
+def own_key(method, config, params, n):
+    """What :func:`own_specular` depends on besides the points and ``n`` (equal keys, equal
+    terms on the same points), or None when not known."""
+    return hooks(method).own_key(method, config, params, n)
 
 
 def copies(method, analysis):

@@ -5,7 +5,8 @@ docstring): from the method's default widths, or from the widest (:func:`widest`
 each width by binary search while a width point ``passes`` (its error measured by
 :class:`~phongfx.explore.compile.measure.SceneEval` meets the requirement, or that and a
 certificate for a certified choice), until no single width can drop; then the proof of local
-minimality, one lower for every width.
+minimality, one lower for every width.  :func:`search_all` searches several methods, each
+in a worker process of its own when the domain sample is large (:mod:`.workers`).
 """
 
 from phongfx.explore.methods import METHODS
@@ -13,8 +14,9 @@ from phongfx.explore.methods import METHODS
 from . import run as runs
 from .infeasible import summary
 from .measure import meets
+from .workers import MIN_POINTS, count, fork_map
 
-__all__ = ["width_params", "widest", "search_widths", "measured_passes"]
+__all__ = ["width_params", "widest", "search_widths", "measured_passes", "search_all"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -34,7 +36,7 @@ def width_params(method, against="phong"):
 
 def measured_passes(scene, method, params):
     """Whether ``method`` at ``params`` meets the requirement as measured (frames and domain)."""
-    return meets(scene.error(method, params), scene.spec.requirement.max_error_levels)
+    return scene.passes(method, params)
 
 
 def _lowest(passes, params, name, lo):
@@ -72,8 +74,9 @@ def search_widths(scene, method, progress=None, passes=None):
             return measured_passes(scene, method, params)
     widths = width_params(method, scene.spec.requirement.against)
     default = {k: v for k, (v, _) in widths.items()}
-    start, scan = (default, {}) if passes(default) else widest(scene, method, widths)
+    # measured whole first: the result quotes the defaults' numbers, which passes() alone may not measure
     result = {"method": method, "default": {"params": default, **scene.measured(method, default)}}
+    start, scan = (default, {}) if passes(default) else widest(scene, method, widths)
     if not passes(start):
         return {**result, **summary(scene, method, start, scan)}
     params, changed = dict(start), True
@@ -102,3 +105,38 @@ def search_widths(scene, method, progress=None, passes=None):
                     proof[name]["why"] = "its certificate's bound misses the requirement"
                 proof[name]["max_error"] = proof[name].pop("max")
     return {**result, "feasible": True, "params": params, **scene.measured(method, params), "proof": proof}
+
+
+def search_all(scene, methods, progress=None, workers=None, search=None):
+    """``{method: (result, why)}`` for each of ``methods``, in order, where ``search(method)``
+    gives ``(result, why)`` (default: ``(search_widths(scene, method, progress), None)``; the
+    certified search gives ``(None, why)`` for a method it cannot certify).  On a domain
+    sample of :data:`~.workers.MIN_POINTS` points or more, the methods are searched by forked
+    workers (:func:`~.workers.fork_map`, ``workers``), whose measured points join ``scene``'s
+    cache and journal as if measured here: the same results."""
+    if search is None:
+        def search(method):
+            return search_widths(scene, method, progress), None
+
+    def one(method):
+        before, failed, journal = set(scene.cache), set(scene.failed), scene.journal
+        scene.journal = None  # journalled by the caller of the worker, with what it returns
+        try:
+            result = search(method)
+        finally:
+            scene.journal = journal
+        return result, {k: v for k, v in scene.cache.items() if k not in before}, scene.failed - failed
+
+    out = {}
+    if scene.points is None or scene.points.count < MIN_POINTS or count(workers) == 1:
+        for method in methods:
+            out[method] = search(method)
+            if progress:
+                progress(f"{method} searched")
+        return out
+    for method, (result, measured, failed) in zip(methods, fork_map(one, methods, workers)):
+        scene.merge(measured, failed)
+        out[method] = result
+        if progress:
+            progress(f"{method} searched")
+    return out

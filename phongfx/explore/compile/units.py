@@ -32,6 +32,8 @@ as it is.
   interpolate ``N·L``, Hast et al.): rejected for scenes that need the missing term.
 """
 
+import hashlib
+
 import numpy as np
 
 from phongfx.core.methods import get_method
@@ -84,6 +86,12 @@ class Hooks:
         """(lights, P) the method's float specular form at the exact vectors."""
         raise NotImplementedError
 
+    def own_key(self, method, config, params, n):
+        """What :meth:`own_specular` depends on besides the points and ``n``: two width
+        points of equal keys have the same terms on the same points (computed once for a
+        domain sample); None, not known (computed afresh each time)."""
+        return None
+
 
 class Datapath(Hooks):
     """A specular unit of Lyon's datapath: span ends of N, of L and V when local
@@ -129,6 +137,10 @@ class Datapath(Hooks):
         form = self.float_form(method, params)
         n = config.units[0].unit.applied_n(config.units[0], n)
         return np.stack([specular(form, geometry.normal, light, geometry.viewer, n) for light in geometry.light])
+
+    def own_key(self, method, config, params, n):  # the form, at the shininess the hardware applies
+        applied = np.ascontiguousarray(config.units[0].unit.applied_n(config.units[0], n), dtype=np.float64)
+        return method, self.float_form(method, params), hashlib.sha1(applied.tobytes()).hexdigest()
 
 
 class _Spherical(Hooks):
@@ -202,6 +214,9 @@ class _Blinn(_PerPixel):
     def own_specular(self, method, config, params, geometry, n):
         return np.stack([specular("blinn", geometry.normal, light, geometry.viewer, n) for light in geometry.light])
 
+    def own_key(self, method, config, params, n):  # Blinn's form: no width changes it
+        return (method,)
+
 
 class _Conventional(_PerPixel):
     """Phong's own ``(R·V)^n``; a local L or V fed as interpolated, which the unit normalizes."""
@@ -223,6 +238,9 @@ class _Conventional(_PerPixel):
         # on Lyon's n = 1 ball)
         return np.stack([specular("phong", geometry.normal, light, geometry.viewer, n)
                          for light in np.asarray(geometry.light)])
+
+    def own_key(self, method, config, params, n):  # Phong's form: no width changes it
+        return (method,)
 
 
 def _lirp(geometry, start, end):

@@ -27,12 +27,14 @@ from phongfx.golden.blend import blend
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.shader import shader_terms
 from phongfx.scene.geometry import FrameGeometry, frames, levels
+from phongfx.scene.sampling import CHUNK
 
 from . import run as runs
 from .analysis import analyse
 from .climb import climb, neighbourhood, points, state_of
 from .measure import point_errors, shade_points, worst_per_point
-from .points import concat, pose_frames, posed_frame, take
+from .points import concat, pose_frames, posed_frame, take, worst_index
+from .workers import MIN_POINTS, count, fork_imap
 
 __all__ = ["STARTS", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore", "climb_rounds", "replay",
            "geometry"]
@@ -55,7 +57,7 @@ def _analysis(spec, analysis):
 
 
 def search(method, params, spec, domain, *, samples=None, seed=None, progress=None, analysis=None,
-           rounds=None):
+           rounds=None, workers=None):
     """The witness dict of ``method`` at ``params`` over ``domain`` (module docstring).
 
     :param samples: fresh domain points (default ``domain.final_samples``).
@@ -64,9 +66,11 @@ def search(method, params, spec, domain, *, samples=None, seed=None, progress=No
     :param analysis: the scene's :class:`~phongfx.explore.compile.analysis.Analysis`
         (computed from its frames when None).
     :param rounds: rounds of the local search (default :func:`climb_rounds`).
+    :param workers: processes measuring the fresh points (:mod:`~phongfx.explore.compile.workers`;
+        None: every core).
     """
     return explore(method, params, spec, domain, samples=samples, seed=seed, progress=progress,
-                   analysis=analysis, rounds=rounds)[0]
+                   analysis=analysis, rounds=rounds, workers=workers)[0]
 
 
 def climb_rounds(samples):
@@ -77,11 +81,12 @@ def climb_rounds(samples):
 
 
 def explore(method, params, spec, domain, *, samples=None, seed=None, progress=None, analysis=None,
-            rounds=None, starts=None, hard=0):
+            rounds=None, starts=None, hard=0, workers=None):
     """:func:`search`, and with ``hard`` > 0 the hard points of what it found: ``(witness,
     hard points or None)``.  ``starts``: domain points (a
     :class:`~phongfx.scene.geometry.FrameGeometry`) to climb from instead of a fresh sample's
-    worst (the width search's own worst, a quick check before a fresh sample).
+    worst (the width search's own worst, a quick check before a fresh sample).  ``workers``:
+    processes measuring the fresh sample (:mod:`~phongfx.explore.compile.workers`; None: every core).
 
     The hard points are the worst point found and where the :data:`CLIMBS` worst climbs
     ended, each with its neighbourhood (:func:`phongfx.explore.compile.climb.neighbourhood`),
@@ -103,10 +108,9 @@ def explore(method, params, spec, domain, *, samples=None, seed=None, progress=N
 
     if starts is None:
         kept, done = [], 0
-        for g in domain.chunks(samples, seed):
-            e, u = evaluate(g)
-            kept.append(take(g, np.lexsort((u, e))[-STARTS:]))
-            done += len(g)
+        for worst in _worst_of_chunks(domain, samples, seed, evaluate, workers):
+            kept.append(worst.points)
+            done += worst.count
             if progress:
                 rate = done / max(time.perf_counter() - start, 1e-9)
                 progress(f"witness {method}: {done:,} of {samples:,} domain points, {rate:,.0f} points/s")
@@ -135,6 +139,27 @@ def explore(method, params, spec, domain, *, samples=None, seed=None, progress=N
     rng = np.random.default_rng([seed, 3])
     each = max(hard // len(centres), 1)
     return out, concat([neighbourhood(c, domain, starts.rgb, bits, each, rng) for c in centres])
+
+
+class _Worst:
+    """The :data:`STARTS` worst points of a chunk (``points``) and how many it held (``count``)."""
+
+    def __init__(self, points, count):
+        self.points, self.count = points, count
+
+
+def _worst_of_chunks(domain, samples, seed, evaluate, workers):
+    """Per chunk of ``samples`` fresh points (:meth:`~phongfx.scene.domain.Domain.chunks`),
+    in order, its :data:`STARTS` worst by ``evaluate``: from :data:`~.workers.MIN_POINTS`
+    points on, the chunks drawn and measured by forked workers (each chunk from its own
+    generator, :meth:`~phongfx.scene.domain.Domain.chunk`: the same points)."""
+    def worst(g):
+        e, u = evaluate(g)
+        return _Worst(take(g, worst_index(e, u, STARTS)), len(g))
+
+    if samples < MIN_POINTS or count(workers) == 1:
+        return (worst(g) for g in domain.chunks(samples, seed))
+    return fork_imap(lambda index: worst(domain.chunk(samples, seed, index)), range(-(-samples // CHUNK)), workers)
 
 
 def _witness(method, config, params, against, g, index, point=None):

@@ -244,7 +244,9 @@ def proxy_clock(block, target="ecp5", device=None):
 
     ``device`` is accepted for the FPGA part (the ECP5 speed grade is the same on the
     25k, 45k and 85k: the estimate does not depend on it) or the standard-cell library
-    (a name or Liberty file of a library in :data:`LIBRARY_COEFFICIENTS`)."""
+    (a name or Liberty file of a library in :data:`LIBRARY_COEFFICIENTS`).  Kept per design
+    identity (:func:`~phongfx.explore.synth.estimates.cached_estimate`), so a known design is
+    timed without being elaborated."""
     if target not in COEFFICIENTS:
         raise ValueError(f"target must be one of {', '.join(map(repr, COEFFICIENTS))}, not {target!r}")
     if target == "asic":
@@ -254,7 +256,11 @@ def proxy_clock(block, target="ecp5", device=None):
         if name not in LIBRARY_COEFFICIENTS:
             raise ValueError(f"device must be one of {', '.join(LIBRARY_COEFFICIENTS)} for the asic clock proxy, "
                              f"not {name!r}: fit it with `phongfx tables clock --liberty FILE --refit`")
-        return estimate(clock_netlist(block, target), target, name)
-    if device is not None and device not in ("25k", "45k", "85k"):
+    elif device is not None and device not in ("25k", "45k", "85k"):
         raise ValueError(f"device must be one of 25k, 45k, 85k for the {target} clock proxy, not {device!r}")
-    return estimate(clock_netlist(block, target), target)
+    else:
+        name = None  # one speed grade: the part does not change the estimate
+    from phongfx.explore.synth.estimates import cached_estimate
+
+    # kept like the area proxy's: the clock's elaboration is as long as the area's
+    return cached_estimate("clock", block, target, name, lambda: estimate(clock_netlist(block, target), target, name))

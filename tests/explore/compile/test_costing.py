@@ -60,7 +60,12 @@ def test_synthesis_reports_each_candidate_and_the_manifest_keys(monkeypatch):
     synth_lines = [line for line in lines if line.startswith("candidate")]
     assert synth_lines[0].startswith("candidate 1 of 4 (fig7, depth 0, interval 1, shared inputs, vec_frac=")
     assert any(line.startswith("candidate 1 of 4 (fig7,") and ": yosys" in line for line in synth_lines)
-    assert synth_lines[-1].startswith("candidate 4 of 4 (conventional,") and seen == [3] * 4
+    first = [line for line in synth_lines if " of 4 " in line]
+    assert first[-1].startswith("candidate 4 of 4 (conventional,") and seen[:4] == [3] * 4
+    # a method searched again after its witness (hard points) is priced again (started, yosys,
+    # done), alone, with the same seed
+    again = [s["method"] for s in compiled.rounds if s["action"] == "searched again"]
+    assert len(synth_lines) == 3 * (4 + len(again)) and len(seen) == 4 + len(again) and set(seen) == {3}
     cost = compiled.best["cost"]
     assert cost["part"] == "LFE5U-25F" and cost["seed"] == 3 and cost["freq"] == 150
     assert cost["clock_source"] == "synthesis" and cost["fmax_mhz"] == 80 and cost["pixel_rate_mpx"] == 80

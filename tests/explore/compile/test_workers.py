@@ -1,0 +1,65 @@
+"""The compiler's work on several cores gives what it gives on one: the methods' width searches
+in forked workers (their measured points journalled here), the witness's fresh chunks drawn and
+measured by workers, in order."""
+
+import os
+
+import pytest
+
+from phongfx.explore.compile import search as searches
+from phongfx.explore.compile import witness as witnesses
+from phongfx.explore.compile import workers
+from phongfx.explore.compile.compiler import scene_domain
+from phongfx.explore.compile.measure import SceneEval
+from phongfx.explore.compile.points import DomainPoints
+from phongfx.explore.compile.workers import count, fork_map
+from phongfx.scene.file import parse_scene
+from tests.explore.compile.test_compiler import TORUS
+from tests.explore.compile.test_witness import NARROW
+
+
+def _pid(_):
+    return os.getpid()
+
+
+def test_fork_map_keeps_the_order_and_raises_a_worker_s_error():
+    assert fork_map(lambda x: x * x, range(7), 2) == [x * x for x in range(7)]
+    assert os.getpid() not in fork_map(_pid, range(4), 2)
+    assert fork_map(_pid, range(4), 1) == [os.getpid()] * 4
+    with pytest.raises(ValueError, match="item 3"):
+        fork_map(lambda x: x if x != 3 else int(f"item {x}"), range(5), 2)
+    with pytest.raises(ValueError, match="positive integer"):
+        count(0)
+
+
+def _scene(tmp_path, samples):
+    spec = parse_scene(TORUS.format(error=1.0, against="phong"), name="tiny")
+    scene = SceneEval(spec, journal=tmp_path)
+    domain = scene_domain(spec, scene.geometries, samples=samples)
+    scene.measure_domain(DomainPoints(spec, domain))
+    return scene, domain
+
+
+def test_the_width_searches_in_workers_are_those_in_this_process(tmp_path, monkeypatch):
+    monkeypatch.setattr(searches, "MIN_POINTS", 1000)
+    methods = ["fig7", "conventional"]
+    alone, _ = _scene(tmp_path / "alone", 3000)
+    one = searches.search_all(alone, methods, workers=1)
+    forked, _ = _scene(tmp_path / "forked", 3000)
+    two = searches.search_all(forked, methods, workers=2)
+    assert two == one and one["fig7"][0]["feasible"] and one["conventional"][0]["feasible"]
+    assert forked.cache == alone.cache and forked.failed == alone.failed
+    again, _ = _scene(tmp_path / "forked", 3000)
+    assert again.resumed == forked.points_measured > 5 and again.cache == forked.cache
+
+
+def test_the_witness_of_forked_chunks_is_that_of_one_process(tmp_path, monkeypatch):
+    monkeypatch.setattr(witnesses, "MIN_POINTS", 1000)
+    monkeypatch.setattr(witnesses, "CHUNK", 1 << 16)  # the sampler's, as the chunks are drawn
+    scene, domain = _scene(tmp_path, 2000)
+    spec = scene.spec
+    kwargs = dict(samples=140_000, analysis=scene.analysis, rounds=2)
+    one = witnesses.search("fig7", NARROW, spec, domain, workers=1, **kwargs)
+    two = witnesses.search("fig7", NARROW, spec, domain, workers=2, **kwargs)
+    one.pop("seconds"), two.pop("seconds")
+    assert two == one and one["error_levels"] >= 2 and workers.MIN_POINTS == 1 << 17
