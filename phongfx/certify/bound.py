@@ -63,9 +63,8 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
                          f"required {need:g}")
     if not ok and "region" in parts:
         why += f"; by region, largest in {parts['region']}"
-        if parts.get("unrefined_regions"):
-            why += (f" (which stays over it; {len(parts['unrefined_regions'])} other regions not refined below "
-                    f"it)")
+        if parts.get("unbounded_regions"):
+            why += f" (which stays over it: {len(parts['unbounded_regions'])} regions not bounded)"
     if not ok and "backside" in parts:
         why += (f"; at its largest the hardware's backside test may differ from the reference's: its "
                 f"N·L error bound {parts['backside']:.4f} is wider than the terminator band "

@@ -37,8 +37,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
     ``max_boxes`` boxes have been bounded (the budget that makes the result the same on every
     machine), or at ``seconds``, or as soon as the largest is below ``enough`` (a width search
     needs no tighter bound).  With ``enough``, it also stops once the largest, falling at its
-    pace per box of the last three rounds (once an eighth of the budget is spent), would still
-    not be below ``enough`` when the budget is spent (``parts["abandoned"]``): the bounds of a branch and
+    pace per box of the last three rounds that split every box near it, would still not be
+    below ``enough`` when the budget is spent (``parts["abandoned"]``): the bounds of a branch and
     bound fall ever more slowly, so the pace so far is the most the rest could give, and a width
     search's failing designs, the most of its certificates, cost a fraction of the budget."""
     start, faults, history, spent, abandoned = time.perf_counter(), set(), [], [], False
@@ -64,7 +64,7 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
                    and history[-5][0] - top <= 0.002 * max(top, 1.0))
         met = enough is not None and top < enough
         spent.append(evaluated)
-        if enough is not None and not met and len(history) > 3 and evaluated >= max_boxes // 8:
+        if enough is not None and not met and len(history) > 3 and all(w for _, w in history[-4:]):
             pace = (history[-4][0] - top) / max(evaluated - spent[-4], 1)
             abandoned = top - pace * (max_boxes - evaluated) >= enough
         if met or settled or abandoned or time.perf_counter() - start > seconds or evaluated > max_boxes:

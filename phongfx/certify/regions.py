@@ -14,16 +14,15 @@ the compiler chooses, at 15/5/13 bits, 1.498 against 1.590, under the requiremen
 region), at two to six times the time; on the torus's patches, whose span angles are all within
 5 % of the whole's, the worst patch is as bad as the whole (1.4995 against 1.4934).
 
-The regions share the box budget: every region is first bounded on an eighth of an even share;
-then, worst first, each is bounded again on four times its last budget while it is above the
-requirement and not settled (a bound over more boxes is as sound, and the smaller of a region's
-bounds is kept) nor falling too slowly to reach it within the whole budget at its pace since the
-last budget, as a width search's early stop does, so that the final certificate of a design the
-search passed passes too; then the worst region while the budget lasts, up to :data:`SPEND`
-times the budget in all (each refinement starts its branch and bound over).  Once a region stays
-above the requirement the design fails whatever the others give: a width search stops there (the
-worst first, so that it stops soonest), the final certificate gives the worst region one more
-budget, for the bound reported.
+The regions share the box budget: every region is first bounded on an eighth of an even share,
+again on four times its last budget while it is above the requirement and not settled (a bound
+over more boxes is as sound, and the smaller of a region's bounds is kept) nor falling too slowly
+to reach it within the whole budget at its pace per box since its last run, as a width search's
+early stop does, so that the final certificate of a design the search passed passes too; then
+the worst region while the budget lasts, up to :data:`SPEND` times the budget in all (each
+refinement starts its branch and bound over); once a region stays above the requirement the
+design fails whatever the others give, and the worst region gets one more budget, for the
+bound reported.
 """
 
 from dataclasses import replace
@@ -45,9 +44,8 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
     region its name, bound and where its worst box is, ``parts["region"]`` the worst region's
     name and ``parts["whole_bound"]`` the whole domain's bound.  With ``enough`` (a width search,
     which asks only whether the bound is below it) a region is refined only until it is below,
-    and the first region, worst first, that stays above ends the search
-    (``parts["unrefined_regions"]`` names the others not yet below it; the bound is then the
-    whole domain's)."""
+    and the first region that stays above ends the search (``parts["unbounded_regions"]``
+    names the others; the bound is then the whole domain's)."""
     regions = getattr(domain, "regions", ())
     bound, parts = how.bound(shader, spec, replace(domain, regions=()) if regions else domain,
                              max_boxes=max_boxes, enough=enough)
@@ -61,21 +59,19 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
     extra = {"regions": listed, "region": names[worst], "whole_bound": float(bound),
              "boxes": int(parts.get("boxes", 0) + spent)}
     if failed is not None:
-        below = enough if enough is not None else target
-        extra["unrefined_regions"] = [n for i, (n, (b, *_)) in enumerate(zip(names, found))
-                                      if i != failed and not b < below]
+        extra["unbounded_regions"] = names[len(found):]
     if failed is None and found[worst][0] < bound:
         bound, parts = found[worst][:2]
     return bound, dict(parts, **extra)
 
 
 def _regions(how, shader, spec, domain, max_boxes, enough, target):
-    """``(found, failed, boxes)``: per region ``(bound, parts, budget, final)`` (module
+    """``(found, failed, boxes)``: per region ``(bound, parts, budget, final, boxes)`` (module
     docstring), the region at which a width search (``enough``) stopped, None when it did not,
     and the boxes spent.  Each region is refined until it is below ``enough`` or ``target``,
     as a width search would, so that the final certificate of a design the search passed passes
     too; then, without ``enough``, the worst region again while the budget lasts (once a region
-    stays above ``target``, one more budget for the worst)."""
+    stays above ``target``, the others on their first share and one more budget for the worst)."""
     count = len(domain.regions)
     found, spent = [], [0]
     below = enough if enough is not None else target
@@ -90,17 +86,17 @@ def _regions(how, shader, spec, domain, max_boxes, enough, target):
         final = budget >= max_boxes or (boxes < budget and not (stop is not None and bound < stop)
                                         and not parts.get("abandoned"))
         if index < len(found):
-            before, _, last, _ = found[index]
-            if stop is not None and not bound < stop:
-                # falling at its pace per box since the last budget, it would still not be below
+            before, _, _, _, used = found[index]
+            if stop is not None and not bound < stop and boxes > used:
+                # falling at its pace per box since the last run, it would still not be below
                 # ``stop`` at the whole budget: a larger one is not worth its time either
-                pace = (before - bound) / max(budget - last, 1)
-                final = final or bound - pace * (max_boxes - budget) >= stop
+                pace = (before - bound) / (boxes - used)
+                final = final or bound - pace * (max_boxes - boxes) >= stop
             if not bound < before:
                 bound, parts = found[index][:2]
-            found[index] = (bound, parts, budget, final)
+            found[index] = (bound, parts, budget, final, boxes)
         else:
-            found.append((bound, parts, budget, final))
+            found.append((bound, parts, budget, final, boxes))
 
     def refine(index, stop):
         run(index, min(4 * found[index][2], max_boxes), stop)
@@ -109,13 +105,16 @@ def _regions(how, shader, spec, domain, max_boxes, enough, target):
     limit = SPEND * max_boxes
     for index in range(count):
         run(index, first, below)
-    for index in sorted(range(count), key=lambda i: -found[i][0]):
         while not found[index][0] < below and not found[index][3] and spent[0] < limit:
             refine(index, below)
         if not found[index][0] < below:
             if enough is not None:
                 return found, index, spent[0]
-            limit = spent[0] + max_boxes  # one more budget to tighten the worst
+            # the design fails whatever the others give: the rest on their first share, and one
+            # more budget to tighten the worst, for the bound the certificate reports
+            for rest in range(index + 1, count):
+                run(rest, first, None)
+            limit = spent[0] + max_boxes
             break
     while enough is None and spent[0] < limit:
         worst = int(np.argmax([b for b, *_ in found]))
