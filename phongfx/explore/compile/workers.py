@@ -13,10 +13,11 @@ samples) is not worth a fork: the callers go parallel only from :data:`MIN_POINT
 """
 
 import multiprocessing
+import multiprocessing.connection
 import os
 import signal
 
-__all__ = ["MIN_POINTS", "count", "fork_imap", "fork_map"]
+__all__ = ["GRACE", "MIN_POINTS", "count", "fork_imap", "fork_map"]
 
 #: Domain points from which a measurement or a search is worth worker processes.
 MIN_POINTS = 1 << 17
@@ -39,6 +40,9 @@ def count(workers=None):
 
 _IN_JOB = False  # a worker is running an item (not waiting for one)
 
+#: Seconds a worker is given to end after SIGTERM before it is killed.
+GRACE = 5
+
 
 def _call(item):
     global _IN_JOB
@@ -57,18 +61,56 @@ def _interrupted(signum, frame):
     raise KeyboardInterrupt
 
 
-def _worker_start():
-    # this process, interrupted (Ctrl-C), ends the pool's workers by SIGTERM; a terminal's
-    # Ctrl-C sends them SIGINT too: either, inside an item, is a KeyboardInterrupt there, so
-    # the half-made cache entries of the worker are removed as they would be here
+def _serve(link):
+    # this process, interrupted (Ctrl-C), ends its workers by SIGTERM; a terminal's Ctrl-C
+    # sends them SIGINT too: either, inside an item, is a KeyboardInterrupt there, so the
+    # half-made cache entries of the worker are removed as they would be here
     signal.signal(signal.SIGTERM, _interrupted)
     signal.signal(signal.SIGINT, _interrupted)
+    while True:
+        try:
+            message = link.recv()
+        except EOFError:  # this process is gone
+            return
+        if message is None:
+            return
+        index, item = message
+        try:
+            outcome = (True, _call(item))
+        except Exception as error:
+            outcome = (False, error)
+        try:
+            link.send((index, outcome))
+        except Exception as error:  # a result or an error that does not pickle
+            link.send((index, (False, RuntimeError(f"{type(error).__name__}: {error}"))))
+
+
+def _stop(processes, links, finished):
+    # each worker has its own pipe, so no worker waits on a lock another holds (a shared
+    # queue's read lock and a SIGTERM that lands just before a blocking wait made
+    # multiprocessing.Pool's exit hang one time in a few hundred); finished workers end
+    # on None, others on SIGTERM, and one that outlives it by GRACE seconds is killed
+    for process, link in zip(processes, links):
+        try:
+            if finished:
+                link.send(None)
+            else:
+                process.terminate()
+        except (OSError, ValueError):
+            pass
+    for process in processes:
+        process.join(GRACE)
+        if process.exitcode is None:
+            process.kill()
+            process.join()
+    for link in links:
+        link.close()
 
 
 def fork_imap(function, items, workers=None):
     """``function(item)`` of each of ``items``, in order, as each is ready, computed by up to
     :func:`count` ``(workers)`` forked processes (module docstring); an exception in a
-    worker is raised here."""
+    worker is raised here, and a worker that dies without its result is a RuntimeError."""
     global _JOB
     items = list(items)
     workers = min(count(workers), len(items))
@@ -76,12 +118,57 @@ def fork_imap(function, items, workers=None):
             or multiprocessing.current_process().daemon):  # a worker has no workers of its own
         yield from (function(item) for item in items)
         return
+    context = multiprocessing.get_context("fork")
+    processes, links, finished = [], [], False
     _JOB = function
     try:
-        with multiprocessing.get_context("fork").Pool(workers, initializer=_worker_start) as pool:
-            yield from pool.imap(_call, items)
+        for _ in range(workers):
+            here, there = context.Pipe()
+            process = context.Process(target=_serve, args=(there,), daemon=True)
+            process.start()
+            there.close()
+            processes.append(process)
+            links.append(here)
+        yield from _ordered(items, processes, links)
+        finished = True
     finally:
         _JOB = None
+        _stop(processes, links, finished)
+
+
+def _ordered(items, processes, links):
+    # items handed out one at a time to whichever worker is free; results yielded in order
+    queue = iter(enumerate(items))
+    busy, done, ready = {}, {}, 0
+
+    def hand(link):
+        for index, item in queue:
+            link.send((index, item))
+            busy[link] = index
+            return
+
+    for link in links:
+        hand(link)
+    while ready < len(items):
+        while ready in done:
+            ok, value = done.pop(ready)
+            if not ok:
+                raise value
+            yield value
+            ready += 1
+        if ready == len(items):
+            break
+        for link in multiprocessing.connection.wait(list(busy)):
+            try:
+                index, outcome = link.recv()
+            except EOFError:
+                process = processes[links.index(link)]
+                process.join(GRACE)
+                raise RuntimeError(f"a compile worker (pid {process.pid}) ended without its result, "
+                                   f"exit code {process.exitcode}") from None
+            del busy[link]
+            done[index] = outcome
+            hand(link)
 
 
 def fork_map(function, items, workers=None):
