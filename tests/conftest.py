@@ -54,6 +54,11 @@ def _twin_key(item, parameter, backend):
     return item.path, item.originalname, others, backend
 
 
+#: Seconds a test marked slow may run before it is failed as hung (pyproject's timeout is the
+#: default tier's).
+SLOW_TIMEOUT = 3600
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     fast = {_twin_key(item, *_backend(item)) for item in items if _backend(item)[1] == "verilator-fast"}
@@ -68,6 +73,9 @@ def pytest_collection_modifyitems(config, items):
             if fixture in item.fixturenames:
                 for mark in marks:
                     item.add_marker(getattr(pytest.mark, mark))
+        if item.get_closest_marker("slow") and not item.get_closest_marker("timeout"):
+            # the long sweeps run for up to an hour; the default tier's 15 minutes is for hangs
+            item.add_marker(pytest.mark.timeout(SLOW_TIMEOUT))
 
 
 def pytest_runtest_setup(item):
