@@ -5,7 +5,8 @@ and the witness search's chunks of fresh points are drawn each from its own seed
 generator: each piece gives the same result in any process, so :func:`fork_map` runs them
 in worker processes forked from this one (which inherit the scene, the sample and the
 function without pickling them) and returns the results in the order of the items, the
-same as ``[function(item) for item in items]``.  Only the results travel back (pickled).
+same as ``[function(item) for item in items]``.  Only the items go out and the results come
+back (pickled), each worker on a pipe of its own.
 
 How many workers: ``workers`` as given, else the cores this process may run on
 (:func:`count`); one, or a single item, runs in this process.  Small work (the tests'
@@ -138,18 +139,17 @@ def fork_imap(function, items, workers=None):
 
 def _ordered(items, processes, links):
     # items handed out one at a time to whichever worker is free; results yielded in order
-    queue = iter(enumerate(items))
-    busy, done, ready = {}, {}, 0
+    queue, busy, done, ready = iter(enumerate(items)), set(), {}, 0
 
     def hand(link):
-        for index, item in queue:
-            link.send((index, item))
-            busy[link] = index
-            return
+        job = next(queue, None)
+        if job is not None:
+            link.send(job)
+            busy.add(link)
 
     for link in links:
         hand(link)
-    while ready < len(items):
+    while True:
         while ready in done:
             ok, value = done.pop(ready)
             if not ok:
@@ -157,7 +157,7 @@ def _ordered(items, processes, links):
             yield value
             ready += 1
         if ready == len(items):
-            break
+            return
         for link in multiprocessing.connection.wait(list(busy)):
             try:
                 index, outcome = link.recv()
@@ -166,7 +166,7 @@ def _ordered(items, processes, links):
                 process.join(GRACE)
                 raise RuntimeError(f"a compile worker (pid {process.pid}) ended without its result, "
                                    f"exit code {process.exitcode}") from None
-            del busy[link]
+            busy.discard(link)
             done[index] = outcome
             hand(link)
 
