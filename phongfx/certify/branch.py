@@ -1,14 +1,17 @@
 """Branch and bound over boxes of a domain's normals: the search every box-based bounding
 method shares.
 
-A bounding method gives ``errors(boxes)``: per box and channel the ``rounding`` and
+A bounding method gives ``errors(boxes, floor)``: per box and channel the ``rounding`` and
 ``approximation`` parts of its bound (B, 3) in display levels, the quantizes that may overflow
 (``faults``) and per box the backside ``gate`` (0 where the hardware's and the reference's
 backside tests agree).  Each box's total ``max_c(rounding + approximation) + 1/2`` holds for
 every point in it and the boxes cover the domain, so the largest total over the boxes at any
 round is sound; :func:`bound_boxes` halves the boxes whose total is within ``tolerance`` of the
 largest, round after round, until the largest stops falling (or the time or box budget is spent):
-splitting only makes the bound tighter.
+splitting only makes the bound tighter.  ``floor`` (levels, before the output's half level) is
+where the new boxes' bounds stop mattering this round: a box under it is not split while the
+largest stays above ``floor + tolerance``, so a method may spend its costlier, tighter bound
+only on the boxes above it (:mod:`.table_units` lists codes there) and give any sound bound below.
 """
 
 import time
@@ -43,8 +46,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
     search's failing designs, the most of its certificates, cost a fraction of the budget."""
     start, faults, history, spent, abandoned = time.perf_counter(), set(), [], [], False
 
-    def evaluate(boxes):
-        rounding, approximation, found, gate = errors(boxes)
+    def evaluate(boxes, floor=-np.inf):
+        rounding, approximation, found, gate = errors(boxes, floor)
         faults.update(found)
         total = np.max(rounding + approximation, axis=-1) + 0.5
         return boxes, np.nan_to_num(total, nan=np.inf), rounding, approximation, gate
@@ -72,7 +75,9 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
         count = min(max(np.count_nonzero(near), batch), max_batch, len(total))
         pick = np.zeros(len(total), dtype=bool)
         pick[np.argpartition(-total, count - 1)[:count]] = True
-        children = _inherit(evaluate(boxes.take(pick).split()), [part[pick] for part in pool[1:]])
+        # a child under the top's near band is not split next round, nor is its bound reported
+        children = _inherit(evaluate(boxes.take(pick).split(), top - tolerance - 0.5),
+                            [part[pick] for part in pool[1:]])
         evaluated += len(children[0])
         rest = [boxes.take(~pick)] + [part[~pick] for part in pool[1:]]
         pool = (_concat(rest[0], children[0]),) + tuple(np.concatenate([a, b]) for a, b in zip(rest[1:], children[1:]))

@@ -69,7 +69,7 @@ class LyonDatapaths:
         if cones.view.half:  # the boxes cover the normals about the viewer cone's axis
             boxes = cover(cones.cover_cos_min, domain.min_normal_length, cases(domain))
 
-        def errors(boxes):
+        def errors(boxes, floor):  # one bound for every box: the floor saves nothing
             return box_errors(shader, against, boxes, cones.basis, None, domain.min_normal_length, cones)
 
         return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)

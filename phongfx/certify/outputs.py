@@ -22,6 +22,8 @@ code range moves neither side apart) ``+ rounding + approximation``, with
   (:mod:`.approximation`).
 """
 
+from dataclasses import replace
+
 import numpy as np
 
 from .approximation import (bend_shift, diffuse_shift, form_distance, halfway_distance, halfway_vectors, scale_range,
@@ -30,7 +32,7 @@ from .cones import at_infinity
 from .datapath import unit_terms
 from .sphere import projection
 
-__all__ = ["coefficient_tables", "light_rounding", "box_errors"]
+__all__ = ["coefficient_tables", "fewest_coefficient_bits", "light_rounding", "box_errors"]
 
 
 def coefficient_tables(blend):
@@ -42,6 +44,18 @@ def coefficient_tables(blend):
     exact = tuple(np.array(table, dtype=np.float64) * blend.levels
                   for table in (blend.ambient, blend.diffuse, blend.specular))
     return out_codes, exact
+
+
+def fewest_coefficient_bits(blend):
+    """``blend`` at the fewest ``coef_frac`` bits whose coefficient values are its own: its
+    outputs are the same for every input (the sum is exact and rounded once), so is any bound
+    on them, and a certificate of one holds for the other."""
+    codes = coefficient_tables(blend)[0]
+    for frac in range(blend.coef_frac):
+        fewer = replace(blend, coef_frac=frac)
+        if all(np.array_equal(a, b) for a, b in zip(coefficient_tables(fewer)[0], codes)):
+            return fewer
+    return blend
 
 
 def light_rounding(tables, m, i, levels, d_hi, e_d, t_hi, e_s, q, margin, ideal=None):

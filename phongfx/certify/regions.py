@@ -15,14 +15,16 @@ region), at two to six times the time; on the torus's patches, whose span angles
 5 % of the whole's, the worst patch is as bad as the whole (1.4995 against 1.4934).
 
 The regions share the box budget: every region is first bounded on an eighth of an even share,
-again on four times its last budget while it is above the requirement and not settled (a bound
+then, the highest first, again on four times its last budget while it is above the requirement
+and not settled (a bound
 over more boxes is as sound, and the smaller of a region's bounds is kept) nor falling too slowly
 to reach it within the whole budget at its pace per box since its last run, as a width search's
 early stop does, so that the final certificate of a design the search passed passes too; then
 the worst region while the budget lasts, up to :data:`SPEND` times the budget in all (each
 refinement starts its branch and bound over); once a region stays above the requirement the
 design fails whatever the others give, and the worst region gets one more budget, for the
-bound reported.
+bound reported.  The region that starts highest is most often the one that stays above: taken
+first, it ends a failing width point's certificate before the others are refined.
 """
 
 from dataclasses import replace
@@ -45,7 +47,7 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
     name and ``parts["whole_bound"]`` the whole domain's bound.  With ``enough`` (a width search,
     which asks only whether the bound is below it) a region is refined only until it is below,
     and the first region that stays above ends the search (``parts["unbounded_regions"]``
-    names the others; the bound is then the whole domain's)."""
+    names the others not yet below; the bound is then the whole domain's)."""
     regions = getattr(domain, "regions", ())
     bound, parts = how.bound(shader, spec, replace(domain, regions=()) if regions else domain,
                              max_boxes=max_boxes, enough=enough)
@@ -59,7 +61,8 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
     extra = {"regions": listed, "region": names[worst], "whole_bound": float(bound),
              "boxes": int(parts.get("boxes", 0) + spent)}
     if failed is not None:
-        extra["unbounded_regions"] = names[len(found):]
+        extra["unbounded_regions"] = [name for i, (name, f) in enumerate(zip(names, found))
+                                      if i != failed and not f[0] < enough]
     if failed is None and found[worst][0] < bound:
         bound, parts = found[worst][:2]
     return bound, dict(parts, **extra)
@@ -71,7 +74,7 @@ def _regions(how, shader, spec, domain, max_boxes, enough, target):
     and the boxes spent.  Each region is refined until it is below ``enough`` or ``target``,
     as a width search would, so that the final certificate of a design the search passed passes
     too; then, without ``enough``, the worst region again while the budget lasts (once a region
-    stays above ``target``, the others on their first share and one more budget for the worst)."""
+    stays above ``target``, one more budget for the worst)."""
     count = len(domain.regions)
     found, spent = [], [0]
     below = enough if enough is not None else target
@@ -105,15 +108,16 @@ def _regions(how, shader, spec, domain, max_boxes, enough, target):
     limit = SPEND * max_boxes
     for index in range(count):
         run(index, first, below)
+    # the worst on its first share first: a region that stays above ends a width search's
+    # certificate, and it is most often the one that starts highest
+    for index in sorted(range(count), key=lambda i: -found[i][0]):
         while not found[index][0] < below and not found[index][3] and spent[0] < limit:
             refine(index, below)
         if not found[index][0] < below:
             if enough is not None:
                 return found, index, spent[0]
-            # the design fails whatever the others give: the rest on their first share, and one
-            # more budget to tighten the worst, for the bound the certificate reports
-            for rest in range(index + 1, count):
-                run(rest, first, None)
+            # the design fails whatever the others give: one more budget to tighten the worst,
+            # for the bound the certificate reports
             limit = spent[0] + max_boxes
             break
     while enough is None and spent[0] < limit:

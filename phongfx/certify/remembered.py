@@ -6,9 +6,11 @@ points are kept by the compile's journal (:mod:`phongfx.explore.compile.journal`
 :func:`remembering` does the same for the certificates: one JSON file per certificate in
 ``<folder>/<key>.json``, the key covering everything the bound depends on: the package source
 (:func:`~phongfx.explore.compile.journal.source_digest`), the design (its whole shader config),
-the domain (not its sample), the scene's requirement and output, and how far the bound was refined (``early``,
-``max_boxes``).  A probe that refines nothing (``max_boxes=0``) is not kept: it costs less than
-reading it back.
+the domain (not its sample), the scene's requirement and output, and how far the bound was
+refined (``early``, ``max_boxes``).  The blend's coefficients enter by their values, not their
+width (:func:`~phongfx.certify.outputs.fewest_coefficient_bits`): a width search lowering
+``coef`` where the codes only lose trailing zeros bounds the same outputs once.  A probe that
+refines nothing (``max_boxes=0``) is not kept: it costs less than reading it back.
 """
 
 import dataclasses
@@ -21,6 +23,7 @@ from phongfx.explore.compile.journal import source_digest
 
 from .bound import certify, shader_config
 from .certificate import Certificate
+from .outputs import fewest_coefficient_bits
 
 __all__ = ["certificate_key", "remembering"]
 
@@ -29,6 +32,7 @@ def certificate_key(method, shader, spec, domain, early, max_boxes):
     """The cache key of a certificate (module docstring); the domain's sample sizes and seed,
     which only the measurement reads, are left out."""
     domain = dataclasses.replace(domain, samples=1, final_samples=1, seed=0)
+    shader = dataclasses.replace(shader, blend=fewest_coefficient_bits(shader.blend))
     text = repr((source_digest(), method, shader, domain, spec.requirement, spec.output, bool(early), max_boxes))
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 

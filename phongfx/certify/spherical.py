@@ -137,7 +137,7 @@ class Spherical:
         tables = coefficient_tables(shader.blend)
         levels, against = shader.blend.levels, spec.requirement.against
 
-        def errors(boxes):
+        def errors(boxes, floor):  # one bound for every box: the floor saves nothing
             m = boxes.material
             rounding = np.abs(tables[0][0] - tables[1][0])[m].copy()
             approximation = np.zeros_like(rounding)

@@ -161,8 +161,8 @@ class TableUnit:
             return f"the shader holds {len(shader.units)} copies of the unit for {len(domain.lights)} lights"
         return None
 
-    def errors(self, shader, against, boxes, basis, lights):
-        """``errors(boxes)`` of :func:`~phongfx.certify.branch.bound_boxes`."""
+    def errors(self, shader, against, boxes, basis, lights, floor=-np.inf):
+        """``errors(boxes, floor)`` of :func:`~phongfx.certify.branch.bound_boxes`."""
         n = boxes.n.astype(np.int64)
         n_hw = self.n_scale * n
         view = basis[0]
@@ -176,19 +176,20 @@ class TableUnit:
                       if self.halfway and against == "phong" else np.zeros(len(boxes)))
             terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx, cosine_range(boxes, basis, light)))
         rounding, approximation, gate = blend_errors(shader.blend, boxes.material, terms, shader.blend.levels)
-        self._listed(shader, against, boxes, basis, lights, (rounding, approximation, gate))
+        self._listed(shader, against, boxes, basis, lights, (rounding, approximation, gate), floor)
         return rounding, approximation, faults, gate
 
-    def _listed(self, shader, against, boxes, basis, lights, parts):
-        """Where a box holds at most :data:`CODES_PER_BOX` normal codes, every one of them through
-        the golden model (:func:`~phongfx.certify.codes.code_errors`, up to :data:`CODES_PER_CALL`
-        codes, the boxes of largest bound first); its bound replaces the interval one where lower
-        (both hold), as rounding: it bounds rounding and approximation together."""
+    def _listed(self, shader, against, boxes, basis, lights, parts, floor):
+        """Where a box holds at most :data:`CODES_PER_BOX` normal codes and its interval bound is
+        above ``floor``, every one of them through the golden model
+        (:func:`~phongfx.certify.codes.code_errors`, up to :data:`CODES_PER_CALL` codes, the boxes
+        of largest bound first); its bound replaces the interval one where lower (both hold), as
+        rounding: it bounds rounding and approximation together."""
         rounding, approximation, gate = parts
         total = np.max(rounding + approximation, axis=-1)
         count = code_ranges(shader.units[0].fmt("vec"), boxes, basis)[2]
         order = np.argsort(-total)
-        order = order[count[order] <= CODES_PER_BOX]
+        order = order[(count[order] <= CODES_PER_BOX) & (total[order] > floor)]
         order = order[np.cumsum(count[order]) <= CODES_PER_CALL]
         if not len(order):
             return
@@ -208,8 +209,8 @@ class TableUnit:
         lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
         against = spec.requirement.against
 
-        def errors(boxes):
-            return self.errors(shader, against, boxes, basis, lights)
+        def errors(boxes, floor):
+            return self.errors(shader, against, boxes, basis, lights, floor)
 
         return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough)
 

@@ -47,12 +47,16 @@ def test_the_bound_by_region_holds_on_frames_and_region_samples_smoke():
 
 
 def test_early_stops_at_the_first_region_that_fails():
+    """Every region on its first share, then the highest first: the first that stays over the
+    requirement ends the certificate, the others over it are named unbounded."""
     d = domain(SPEC)
     got = certify("fig7", LYON, SPEC, d, max_boxes=20_000, early=True)
-    assert not got.certified and got.parts["region"] == d.regions[0].name  # the first region fails
-    assert got.parts["unbounded_regions"] == [r.name for r in d.regions[1:]]
-    assert got.bound_levels == got.parts["whole_bound"]  # not the first region's: no bound over the rest
-    assert "(which stays over it: 19 regions not bounded)" in got.why
+    regions = {r["name"]: r["bound_levels"] for r in got.parts["regions"]}
+    assert len(regions) == len(d.regions) and not got.certified and regions[got.parts["region"]] >= 1.5
+    over = [name for name, bound in regions.items() if bound >= 1.5 and name != got.parts["region"]]
+    assert over and got.parts["unbounded_regions"] == over
+    assert got.bound_levels == got.parts["whole_bound"]  # not the failing region's: no bound over the rest
+    assert f"(which stays over it: {len(over)} regions not bounded)" in got.why
 
 
 def test_a_whole_domain_that_meets_the_requirement_needs_no_regions():

@@ -61,3 +61,23 @@ def test_the_domain_sample_is_not_part_of_the_key_but_the_domain_is():
     assert remembered.certificate_key("fig7", shader, spec, resampled, False, 2000) == key
     narrower = dataclasses.replace(domain, view_cos_min=domain.view_cos_min + 0.1)
     assert remembered.certificate_key("fig7", shader, spec, narrower, False, 2000) != key
+
+
+def test_coefficient_widths_of_the_same_values_share_a_certificate():
+    """A wider ``coef_frac`` whose codes only gain trailing zeros gives the same outputs: one key;
+    other coefficient values: another."""
+    import dataclasses
+
+    from phongfx.certify.outputs import fewest_coefficient_bits
+
+    spec, domain, analysis = _scene()
+    shader = remembered.shader_config("fig7", {}, spec, analysis)
+    fewest = fewest_coefficient_bits(shader.blend)
+    assert fewest.coef_frac <= shader.blend.coef_frac
+    assert fewest_coefficient_bits(fewest) == fewest
+    key = remembered.certificate_key("fig7", shader, spec, domain, False, 2000)
+    for frac in (fewest.coef_frac, fewest.coef_frac + 3):
+        same = dataclasses.replace(shader, blend=dataclasses.replace(shader.blend, coef_frac=frac))
+        assert remembered.certificate_key("fig7", same, spec, domain, False, 2000) == key
+    other = dataclasses.replace(shader, blend=dataclasses.replace(shader.blend, ambient=((0.1, 0.1, 0.1),)))
+    assert remembered.certificate_key("fig7", other, spec, domain, False, 2000) != key

@@ -199,3 +199,29 @@ def test_the_bound_holds_and_is_tight(method, name, params, most):
     ratio = certify(method, params, spec, dom, shader=shader).bound_levels / sampled(
         spec, dom, shader, params, 300_000, method=method)
     assert 1.0 <= ratio < most
+
+
+def test_codes_are_listed_only_above_the_floor():
+    """Over the floor a box's bound is the code-by-code one where lower; under it the interval
+    bound stays, at least as large (both hold); a floor of -inf lists every small box."""
+    spec, dom = _scene("torus")
+    shader = shader_config("conventional", TORUS, spec)
+    unit = BOUNDING["conventional"]
+    basis, lights = frame(dom.camera[1]), [np.asarray(dom.lights[0][1])]
+    # small boxes about the torus's largest error (as above), a few codes each
+    theta, phi = np.meshgrid(np.arange(22.0, 27.0, 0.1), np.arange(314.0, 318.0, 0.2))
+    theta, phi = np.radians(theta.ravel()), np.radians(phi.ravel())
+    count = len(theta)
+    boxes = Boxes(np.stack([theta, theta + np.radians(0.1)], -1), np.stack([phi, phi + np.radians(0.2)], -1),
+                  np.tile([0.998, 1.0], (count, 1)), np.full(count, 16), np.zeros(count, dtype=np.int64))
+    assert np.all(code_ranges(shader.units[0].fmt("vec"), boxes, basis)[2] <= CODES_PER_BOX)
+    listed = unit.errors(shader, "phong", boxes, basis, lights)
+    total = np.max(listed[0] + listed[1], axis=-1)
+    interval = unit.errors(shader, "phong", boxes, basis, lights, floor=np.inf)
+    plain = np.max(interval[0] + interval[1], axis=-1)
+    assert np.all(plain >= total - 1e-12) and np.count_nonzero(plain > total + 0.05) > 10
+    floor = float(np.median(total))
+    some = unit.errors(shader, "phong", boxes, basis, lights, floor=floor)
+    mixed = np.max(some[0] + some[1], axis=-1)
+    above = plain > floor
+    assert np.array_equal(mixed[~above], plain[~above]) and np.array_equal(mixed[above], total[above])

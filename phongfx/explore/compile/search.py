@@ -2,7 +2,8 @@
 
 :func:`search_widths` (the steps are those of :mod:`phongfx.explore.compile.compiler`'s
 docstring): from the method's default widths, or from the widest (:func:`widest`), lower
-each width by binary search while a width point ``passes`` (its error measured by
+each width by binary search (after the first pass, only when one lower passes) while a width
+point ``passes`` (its error measured by
 :class:`~phongfx.explore.compile.measure.SceneEval` meets the requirement, or that and a
 certificate for a certified choice), until no single width can drop; then the proof of local
 minimality, one lower for every width.  :func:`search_all` searches several methods, each
@@ -51,6 +52,11 @@ def _lowest(passes, params, name, lo):
     return good
 
 
+def _lower_passes(passes, params, name, lo):
+    """Whether ``name`` one lower (not under ``lo``) passes."""
+    return params[name] > lo and passes({**params, name: params[name] - 1})
+
+
 def widest(scene, method, widths):
     """The fallback start: every width at its range maximum, and the shape function's ``k``
     (when searched) at the value of its range with the lowest error there, since ``f_k`` is
@@ -79,15 +85,19 @@ def search_widths(scene, method, progress=None, passes=None):
     start, scan = (default, {}) if passes(default) else widest(scene, method, widths)
     if not passes(start):
         return {**result, **summary(scene, method, start, scan)}
-    params, changed = dict(start), True
+    params, changed, first = dict(start), True, True
     while changed:
         changed = False
         for name, (_, (lo, _hi)) in widths.items():
-            value = _lowest(passes, params, name, lo)
+            # after the first pass the widths sit near their lowest: one lower first, which
+            # fails where a binary search from ``lo`` would fail twice or more on the way
+            value = _lowest(passes, params, name, lo) if first or _lower_passes(passes, params, name, lo) \
+                else params[name]
             if value < params[name]:
                 params[name], changed = value, True
             if progress:
                 progress(f"{method} {name}={params[name]}")
+        first = False
         if not changed:  # the proof pass: one lower must fail for every width
             proof = {}
             for name, (_, (lo, _hi)) in widths.items():
