@@ -36,7 +36,7 @@ __all__ = ["FIRST_BOXES", "SPEND", "by_region"]
 #: the least first budget of a region, boxes
 FIRST_BOXES = 1000
 #: how many times ``max_boxes`` the regions may spend together
-SPEND = 2
+SPEND = 3
 
 
 def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None):

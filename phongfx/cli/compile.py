@@ -187,6 +187,19 @@ def fit_lines(fit):
     return lines
 
 
+def _warm(_):
+    """Build the RTL check's simulator run-time objects into the cache (4 to 5 s of C++ when
+    not there yet), by a check's build of the smallest block, so that the check of the chosen
+    design compiles only its own; a failure is the check's to report."""
+    from phongfx.core.registry import get_block
+    from phongfx.sim.fast_backend import build
+
+    try:
+        build(get_block("lirp").component(), optimize=False)
+    except Exception:  # no Verilator, or its build fails: the RTL check says so itself
+        pass
+
+
 def cmd_compile(args):
     from tqdm import tqdm
 
@@ -194,6 +207,7 @@ def cmd_compile(args):
     from phongfx.explore.compile.compiler import check_methods, compile_scene
     from phongfx.explore.compile.emit import emit
     from phongfx.explore.compile.architecture import Speed
+    from phongfx.explore.compile.workers import Pending
     from phongfx.scene.file import load_scene, with_requirement, with_throughput
     methods = check_methods([m.strip() for m in args.methods.split(",")]) if args.methods else None
     device = target_device(args.target, args.device, args.library, args.liberty)
@@ -207,20 +221,30 @@ def cmd_compile(args):
         spec = with_throughput(spec, args.throughput)
     Speed(spec.requirement.mpixels_per_second, args.clock)  # a bad --clock fails before the search
     check_folder(args.output)
+    # the RTL check's simulator run time, built while the width search runs
+    warming = None if args.no_check else Pending(_warm, None)
     with tqdm(desc=f"compile {spec.name}", unit="step", disable=args.quiet, file=sys.stderr,
               bar_format="{desc}: {n} steps {elapsed}") as bar:
         def progress(step):
             bar.set_description(f"compile {spec.name}: {step}")
             bar.update(1)
-        compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
-                                 freq=args.freq, seed=args.seed, progress=progress,
-                                 journal=folder("compile"),
-                                 prove=args.prove, prove_timeout=args.prove_timeout,
-                                 samples=args.samples, final_samples=args.final_samples,
-                                 certifier=None if args.sampled else remembering(folder("compile") / "certificates"),
-                                 certified=not args.sampled,
-                                 clock=args.clock,
-                                 scheduler=args.scheduler, workers=args.workers)
+        try:
+            compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
+                                     freq=args.freq, seed=args.seed, progress=progress,
+                                     journal=folder("compile"),
+                                     prove=args.prove, prove_timeout=args.prove_timeout,
+                                     samples=args.samples, final_samples=args.final_samples,
+                                     certifier=None if args.sampled else remembering(
+                                         folder("compile") / "certificates"),
+                                     certified=not args.sampled,
+                                     clock=args.clock,
+                                     scheduler=args.scheduler, workers=args.workers)
+        except BaseException:
+            if warming is not None:
+                warming.cancel()
+            raise
+        if warming is not None:
+            warming.result()
         if compiled.refused and compiled.refused["why"] in ("fit", "certificate"):
             for line in compiled.refused["text"]:
                 print(f"phongfx: refused: {line}", file=sys.stderr)

@@ -89,6 +89,21 @@ def test_mismatch_count_exceeds_the_detailed_report():
     assert [m.cycle for m in result.mismatches] == [3 + latency, 10 + latency]
 
 
+def test_an_unoptimized_build_checks_the_same_and_is_kept_apart(tmp_path):
+    """``optimize=False`` (the compile's one-frame RTL check) builds at -O0 in its own cache
+    entry, sharing the run-time objects, and finds the same mismatches."""
+    block = get_block("shape")
+    inputs, _, expected = _corrupt(block, 100, 1, "spec", [3, 10, 40])
+    found = [check(block, inputs, expected=expected, backend="verilator-fast", bubbles=0.2, seed=2,
+                   build_dir=tmp_path, optimize=optimize) for optimize in (True, False)]
+    assert [r.mismatch_count for r in found] == [3, 3]
+    assert [[m.cycle for m in r.mismatches] for r in found[1:]] == [[m.cycle for m in found[0].mismatches]]
+    flags = sorted(line.split()[1] for path in tmp_path.glob("*/build.log")
+                   for line in path.read_text().splitlines() if "-o Vtop__ALL.o" in line)
+    assert flags == ["-O0", "-O2"]
+    assert len(list(tmp_path.glob("runtime-*"))) == 1
+
+
 def test_fig7_wide_payload_back_to_back():
     block = get_block("fig7")
     result = check(block, backend="verilator-fast", count=500, bubbles=0, seed=11)

@@ -14,14 +14,18 @@ A certifiable method is searched once (:func:`~phongfx.explore.compile.search.se
 with two tests per width point: its measured error (frames and domain sample,
 :func:`~phongfx.explore.compile.search.measured_passes`) first, and only where that meets the
 requirement its certificate, refined only until it meets (``early``).  The chosen design's
-full certificate is computed once, after the choice (:func:`full_certificate`).
+full certificate is computed once (:func:`full_certificate`), begun in a forked process beside
+its witness search (:func:`begin_full_certificate`).
 """
 
-__all__ = ["CertifiedTest", "uncertifiable", "certified_search", "full_certificate", "refusal_lines"]
+__all__ = ["CertifiedTest", "uncertifiable", "certified_search", "begin_full_certificate", "full_certificate",
+           "refusal_lines"]
 
 from phongfx.core.words import levels
 
+from .choice import ranked
 from .search import measured_passes, search_widths, width_params
+from .workers import Pending
 
 
 def uncertifiable(certificate):
@@ -81,16 +85,41 @@ def certified_search(scene, method, domain, certifier, progress=None):
     return result, None
 
 
-def full_certificate(out, certifier):
+def full_certificate(out, certifier, pending=None):
     """The chosen design's full certificate (refined to the end); an internal error when it is
-    not certified, since its early one was."""
+    not certified, since its early one was.  ``pending``: ``(method, params, Pending)``, the
+    full certificate of a design begun before the choice (:func:`begin_full_certificate`),
+    taken when it is the chosen design's and cancelled when not."""
     best = out.best
-    certificate = certifier(out.chosen, best["params"], out.spec, out.domain, analysis=out.analysis)
+    certificate = None
+    if pending is not None:
+        method, params, work = pending
+        if (method, params) == (out.chosen, best["params"]):
+            certificate = work.result()
+        else:
+            work.cancel()
+    if certificate is None:
+        certificate = certifier(out.chosen, best["params"], out.spec, out.domain, analysis=out.analysis)
     if not certificate.certified:
         raise AssertionError(f"internal error: {out.chosen} at {best['params']} was certified early "
                              f"({best['certificate']['bound_levels']}) but its full certificate is not: "
                              f"{certificate.why}")
     return certificate
+
+
+def begin_full_certificate(out, certifier, fork):
+    """``(method, params, Pending)``: the full certificate of the cheapest ranked design
+    (:func:`~phongfx.explore.compile.choice.ranked`), begun in a forked process (``fork``) while
+    its witness is searched: a certified design's witness cannot miss, so it is most often the
+    one chosen; None when nothing is ranked."""
+    first = next(iter(ranked(out.results)), None)
+    if first is None:
+        return None
+    method, params = first["method"], dict(first["params"])
+
+    def bound(_):
+        return certifier(method, params, out.spec, out.domain, analysis=out.analysis)
+    return method, params, Pending(bound, None, fork)
 
 
 def refusal_lines(out):

@@ -16,7 +16,7 @@ from .architecture import config_of, eligible, rank_key
 from .costing import TIE_MARGIN, tie
 from .search import search_widths
 
-__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "choose"]
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "ranked", "choose"]
 
 #: At most this many rounds of hard points (a witness over the requirement) per compile,
 #: and per method.
@@ -37,7 +37,7 @@ def _proven(scene, result, timeout, progress):
     return not proof.counts.get("counterexample")
 
 
-def _ranked(results):
+def ranked(results):
     """The feasible results that meet the speed and fit the part
     (:func:`~phongfx.explore.compile.architecture.eligible`) by cost; a synthesized design
     that misses its clock after those that meet it; an uncosted one (its synthesis failed) last."""
@@ -70,20 +70,20 @@ def choose(out, scene, cost, prove, prove_timeout, progress, search=None):
             return search_widths(scene, name, progress), None
     spec, domain = out.spec, out.domain
     required = spec.requirement.max_error_levels
-    ranked = _ranked(out.results)
-    while ranked:
-        r = ranked[0]
+    queue = ranked(out.results)
+    while queue:
+        r = queue[0]
         name = r["method"]
         found, hard = _witness(scene, name, r["params"], domain, progress)
         r["witness"] = found
         if found["error_levels"] <= required:
             if prove and not _proven(scene, r, prove_timeout, progress):
                 r["why_not_chosen"] = "a counterexample to its overflow claims"
-                ranked.pop(0)
+                queue.pop(0)
                 continue
-            out.chosen, out.witness, out.tie = name, found, tie(ranked, TIE_MARGIN)
+            out.chosen, out.witness, out.tie = name, found, tie(queue, TIE_MARGIN)
             return
-        ranked.pop(0)
+        queue.pop(0)
         step = {"method": name, "params": r["params"], "witness_levels": found["error_levels"],
                 "witness_unrounded": found["unrounded"]}
         searched = [s["method"] for s in out.rounds if s["action"] == "searched again"]
@@ -108,4 +108,4 @@ def choose(out, scene, cost, prove, prove_timeout, progress, search=None):
         out.rounds.append({**step, "action": "searched again", "hard_points": scene.points.hard_points,
                            "params_after": again.get("params"), "feasible_after": again["feasible"],
                            "max_after": again["max"]})
-        ranked = [x for x in _ranked(out.results) if x is again or any(x is y for y in ranked)]
+        queue = [x for x in ranked(out.results) if x is again or any(x is y for y in queue)]

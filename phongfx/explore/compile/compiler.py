@@ -58,13 +58,14 @@ from phongfx.explore.methods import METHODS
 
 from . import run as runs
 from .architecture import Speed, refusal
-from .certified import certified_search, full_certificate, refusal_lines
+from .certified import begin_full_certificate, certified_search, full_certificate, refusal_lines
 from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, choose
 from .costing import COST_UNITS, price_designs
 from .infeasible import hint
 from .measure import SceneEval, meets
 from .points import DomainPoints
 from .search import search_all, search_widths, widest, width_params
+from .workers import MIN_POINTS, count
 
 __all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params",
            "widest", "search_widths", "scene_domain", "meets"]
@@ -211,8 +212,18 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     def cost(name, params, by_synth):
         return price_designs([(name, params, by_synth and synth)], scene.analysis, speed, **options)[0]
 
-    choose(out, scene, cost, prove, prove_timeout, progress, search)
+    # the chosen design's full certificate, begun beside its witness on a sample worth forking for
+    pending = (begin_full_certificate(out, certifier, scene.points.count >= MIN_POINTS and count(workers) > 1)
+               if certified and certifier is not None else None)
+    try:
+        choose(out, scene, cost, prove, prove_timeout, progress, search)
+    except BaseException:
+        if pending is not None:
+            pending[2].cancel()
+        raise
     if certified and out.rounds:  # a witness over the requirement on a design its certificate bounds
+        if pending is not None:
+            pending[2].cancel()
         step = out.rounds[0]
         raise AssertionError(f"internal error: {step['method']} at {step['params']} has a witness of "
                              f"{step['witness_levels']} levels over the requirement its certificate meets: "
@@ -220,8 +231,10 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     if certifier is not None and out.chosen is not None:
         if progress:
             progress(f"certifying {out.chosen}")
-        out.certificate = (full_certificate(out, certifier) if certified else
+        out.certificate = (full_certificate(out, certifier, pending) if certified else
                            certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis))
+    elif pending is not None:
+        pending[2].cancel()
     out.refused = refusal(out)
     if certified and out.chosen is None and out.refused is None:
         out.refused = {"why": "certificate", "text": refusal_lines(out)}

@@ -11,6 +11,9 @@ back (pickled), each worker on a pipe of its own.
 How many workers: ``workers`` as given, else the cores this process may run on
 (:func:`count`); one, or a single item, runs in this process.  Small work (the tests'
 samples) is not worth a fork: the callers go parallel only from :data:`MIN_POINTS` points.
+
+:class:`Pending` is one piece of work begun in a forked process now and waited for later,
+while this process does another (the chosen design's full certificate during its witness).
 """
 
 import multiprocessing
@@ -18,7 +21,7 @@ import multiprocessing.connection
 import os
 import signal
 
-__all__ = ["GRACE", "MIN_POINTS", "count", "fork_imap", "fork_map"]
+__all__ = ["GRACE", "MIN_POINTS", "count", "fork_imap", "fork_map", "Pending"]
 
 #: Domain points from which a measurement or a search is worth worker processes.
 MIN_POINTS = 1 << 17
@@ -84,6 +87,21 @@ def _serve(link):
             link.send((index, outcome))
         except Exception as error:  # a result or an error that does not pickle
             link.send((index, (False, RuntimeError(f"{type(error).__name__}: {error}"))))
+
+
+def _once(link, function, item):
+    global _JOB
+    _JOB = function
+    signal.signal(signal.SIGTERM, _interrupted)
+    signal.signal(signal.SIGINT, _interrupted)
+    try:
+        outcome = (True, _call(item))
+    except Exception as error:
+        outcome = (False, error)
+    try:
+        link.send(outcome)
+    except Exception as error:  # a result or an error that does not pickle
+        link.send((False, RuntimeError(f"{type(error).__name__}: {error}")))
 
 
 def _stop(processes, links, finished):
@@ -169,6 +187,45 @@ def _ordered(items, processes, links):
             busy.discard(link)
             done[index] = outcome
             hand(link)
+
+
+class Pending:
+    """``function(item)``, begun now in a forked process (with ``fork`` True and where
+    forking is possible, else computed here when asked for); :meth:`result` waits for it and
+    gives it (an exception in the worker is raised here, a worker that dies without its result
+    is a RuntimeError), :meth:`cancel` ends it unfinished.  Either must be called once."""
+
+    def __init__(self, function, item, fork=True):
+        self.function, self.item, self.process, self.link = function, item, None, None
+        if not fork or "fork" not in multiprocessing.get_all_start_methods() \
+                or multiprocessing.current_process().daemon:
+            return
+        context = multiprocessing.get_context("fork")
+        self.link, there = context.Pipe()
+        self.process = context.Process(target=_once, args=(there, function, item), daemon=True)
+        self.process.start()
+        there.close()
+
+    def result(self):
+        if self.process is None:
+            return self.function(self.item)
+        try:
+            ok, value = self.link.recv()
+        except EOFError:
+            self.process.join(GRACE)
+            raise RuntimeError(f"a compile worker (pid {self.process.pid}) ended without its result, "
+                               f"exit code {self.process.exitcode}") from None
+        except BaseException:  # interrupted while waiting: the worker too
+            self.cancel()
+            raise
+        _stop([self.process], [self.link], True)
+        if not ok:
+            raise value
+        return value
+
+    def cancel(self):
+        if self.process is not None:
+            _stop([self.process], [self.link], False)
 
 
 def fork_map(function, items, workers=None):

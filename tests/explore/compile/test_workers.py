@@ -58,6 +58,24 @@ def _scene(tmp_path, samples):
     return scene, domain
 
 
+def test_a_pending_piece_of_work_runs_beside_this_process_and_gives_its_result():
+    import time
+
+    here = os.getpid()
+    pending = workers.Pending(_pid, None)
+    assert pending.process is not None and pending.result() not in (None, here)
+    assert workers.Pending(_pid, None, fork=False).result() == here
+    with pytest.raises(ValueError, match="item 4"):
+        workers.Pending(lambda x: int(f"item {x}"), 4).result()
+    with pytest.raises(RuntimeError, match=r"ended without its result, exit code 3"):
+        workers.Pending(_die, 2).result()
+    slow = workers.Pending(time.sleep, 60)
+    start = time.perf_counter()
+    slow.cancel()
+    assert time.perf_counter() - start < workers.GRACE + 1 and slow.process.exitcode is not None
+    assert not multiprocessing.active_children()
+
+
 def test_the_width_searches_in_workers_are_those_in_this_process(tmp_path, monkeypatch):
     monkeypatch.setattr(searches, "MIN_POINTS", 1000)
     methods = ["fig7", "conventional"]
