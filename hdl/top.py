@@ -29,7 +29,7 @@ from .emit import verilog
 from .handshake import Handshake
 from .overflow import Checked
 
-__all__ = ["CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line", "header",
+__all__ = ["BLOCK_PATH", "CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line", "header",
            "top_verilog"]
 
 #: The ports that carry no payload, in header order: ``(name, direction, meaning)``.
@@ -247,6 +247,11 @@ def _wrap(text, width=96):
     """``text`` in lines of at most ``width`` characters, the later ones indented, none of
     which a tool reads as its pragma once behind ``// `` (:func:`~phongfx.hdl.comment.wrap`)."""
     return wrap(text, width)
+
+
+#: Where the block sits in :class:`Top` (its handshake's ``block``): in the emitted Verilog the
+#: block's sub-blocks are the modules ``<name>_top.handshake.block.<instance>``.
+BLOCK_PATH = "handshake.block"
 
 
 def top_verilog(block_component, name, *, overflow=False, timing=None, contract=()):

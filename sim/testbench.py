@@ -201,7 +201,8 @@ def _write_folder(out_dir, files):
         raise
 
 
-def write_testbench(block, raw_inputs, expected, out_dir, name, *, seed=1, stall=0.3, bubbles=0.2, vcd=False):
+def write_testbench(block, raw_inputs, expected, out_dir, name, *, seed=1, stall=0.3, bubbles=0.2, vcd=False,
+                    top=None):
     """Write a self-checking testbench of ``block``'s shipped top into ``out_dir``.
 
     Parameters
@@ -227,6 +228,10 @@ def write_testbench(block, raw_inputs, expected, out_dir, name, *, seed=1, stall
         no vector offered in a cycle where one could be.
     vcd : bool
         Also dump every signal to ``tb_<name>.vcd`` (``$dumpfile`` / ``$dumpvars``).
+    top : str, optional
+        The top's Verilog when the caller has it already (:func:`~phongfx.hdl.top.top_verilog`
+        of ``block`` as ``name``, a header of its own allowed): a shader's conversion takes
+        seconds.
 
     Returns
     -------
@@ -248,7 +253,7 @@ def write_testbench(block, raw_inputs, expected, out_dir, name, *, seed=1, stall
     latency = component.latency
     reset_at = restart_point(block, raw_inputs)
     files = {
-        f"{name}_top.v": top_verilog(component, name),
+        f"{name}_top.v": top if top is not None else top_verilog(component, name),
         f"tb_{name}.v": verilog_testbench(config, name, count, latency, reset_at=reset_at, seed=seed,
                                           stall=stall, bubbles=bubbles, vcd=vcd, interval=component.interval),
         f"{name}_in.memh": _memh(config.inputs, raw_inputs),

@@ -14,7 +14,7 @@ import pytest
 from phongfx.core.registry import get_block
 from phongfx.hdl.block import OVERFLOW
 from phongfx.hdl.emit import verilog
-from phongfx.hdl.top import Top, port_map, top_verilog
+from phongfx.hdl.top import BLOCK_PATH, Top, port_map, top_verilog
 from phongfx.sim.testbench import run_icarus, verilog_testbench, write_testbench
 from phongfx.sim.verilator_backend import tool_environment
 from tests.hdl.test_emit import WAIVED
@@ -246,3 +246,12 @@ def test_header_gives_the_interval_the_clock_and_the_requirement():
     with pytest.raises(ValueError, match="^timing keys must be among clock_mhz, clock_source, pixel_rate_mpx, "
                                          "requirement_mpx, met, not fmax$"):
         timing_line({"fmax": 3})
+
+
+def test_the_block_s_instances_sit_under_block_path():
+    """The compile names a shader's sub-blocks from the shipped top, under ``BLOCK_PATH``."""
+    from phongfx.explore.compile.emit import submodules
+
+    block = get_block("fig7")
+    shipped = submodules(top_verilog(block.component(), "fig7"), f"fig7_top.{BLOCK_PATH}")
+    assert shipped and shipped == submodules(verilog(block.component(), "fig7"), "fig7")

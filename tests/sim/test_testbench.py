@@ -91,6 +91,13 @@ def test_files_and_their_layout(tmp_path):
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary left
 
 
+def test_a_top_given_is_written_as_given(tmp_path):
+    """The compile passes the shipped top (its header too) rather than converting it again."""
+    given = "// shipped header\n" + top_verilog(get_block("lirp").component(), "lirp")
+    bench, _, _ = export(tmp_path, "lirp", top=given)
+    assert (bench.directory / "lirp_top.v").read_text() == given
+
+
 @pytest.mark.needs_iverilog
 def test_vcd_is_written(tmp_path):
     bench, _, _ = export(tmp_path, "diffuse", vcd=True)

@@ -224,8 +224,7 @@ def _flow(out_dir, module, data):
 
 
 def _write(compiled, out_dir, check, progress, vcd, final):
-    from phongfx.hdl.emit import verilog
-    from phongfx.hdl.top import port_map, top_verilog
+    from phongfx.hdl.top import BLOCK_PATH, port_map, top_verilog
     from phongfx.scene.geometry import pixel_error
 
     best = compiled.best
@@ -238,7 +237,6 @@ def _write(compiled, out_dir, check, progress, vcd, final):
     config = config_of(best, compiled.analysis)
     block = get_block(runs.block_name(method), config=config)
     module = _identifier(f"{compiled.spec.name}_{method}")
-    text = verilog(block.component(), module, emit_src=False)  # only to name the instances
     timing = timing_of(best["cost"])
     header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
     contract = input_contract(config, compiled.spec, method, n_scale=runs.hooks(method).n_scale)
@@ -247,6 +245,7 @@ def _write(compiled, out_dir, check, progress, vcd, final):
                           + [error_paragraph(compiled.certificate and compiled.certificate.as_dict(),
                                              compiled.spec.requirement.as_dict())])
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
+    instances = submodules(shipped, f"{module}_top.{BLOCK_PATH}")
     done, result, written, sheets = set(), None, None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
     against = "true Phong" if compiled.spec.requirement.against == "phong" else f"{method}'s float form"
@@ -284,13 +283,13 @@ def _write(compiled, out_dir, check, progress, vcd, final):
             from phongfx.sim.testbench import write_testbench
             if progress:
                 progress(f"testbench of frame {g.frame}")
-            write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module)
+            write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module, top=shipped)
             written = (g.frame, len(next(iter(out.values()))))
     title = f"{compiled.spec.name}: {method}, {plural(len(done), 'frame')}"
     contact_sheet(os.path.join(out_dir, "frames", "sheet.png"), sheets[0], sheets[2], title=title)
     contact_sheet(os.path.join(out_dir, "error", "sheet.png"), sheets[1], sheets[2], white_levels=scale,
                   title=f"{title}: error against {against} (display levels)")
-    data = manifest(compiled, module, submodules(text, module), result, final)
+    data = manifest(compiled, module, instances, result, final)
     data["error_png_white_levels"] = scale
     data["pictures"] = {"frames": "frames/frame_NNN.png, frames/sheet.png (all frames)",
                         "error": "error/frame_NNN.png, error/sheet.png: worst channel's error in display "
