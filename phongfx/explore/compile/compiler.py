@@ -96,6 +96,18 @@ class Compiled:
         return self.results.get(self.chosen)
 
 
+def _designs(name, result, synth):
+    """``(where, design)`` per design of a searched method that is priced: the dict its cost goes
+    in, and the design as :func:`~phongfx.explore.compile.costing.price_designs` takes it; its
+    default widths always
+    (the manifest's "saved against the defaults"), the searched ones when they meet the
+    requirement; an infeasible method's defaults by the proxy only and at the default
+    architecture, since neither its synthesis (minutes) nor its architecture can change the choice."""
+    feasible = result["feasible"]
+    return [(where, (name, where["params"], synth and feasible, not feasible))
+            for where in ((result["default"], result) if feasible else (result["default"],))]
+
+
 def check_methods(methods):
     """``methods`` as a list (all of :data:`~phongfx.explore.methods.METHODS` for None), each checked."""
     names = list(METHODS) if methods is None else list(methods)
@@ -176,10 +188,18 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy", domain=domain,
                    speed=speed, certified=certified)
 
+    options = {"target": target, "device": device, "freq": freq, "seed": seed, "scheduler": scheduler,
+               "workers": workers, "progress": progress}
+
     def search(name):
-        if not certified:
-            return search_widths(scene, name, progress), None
-        return certified_search(scene, name, domain, certifier, progress)
+        found = ((search_widths(scene, name, progress), None) if not certified else
+                 certified_search(scene, name, domain, certifier, progress))
+        if found[0] is not None and not synth:
+            # priced by the proxies where it was searched (their per-user cache keeps them), while
+            # another method's search may still run: the pricing of every design below reads them back
+            price_designs([d for _, d in _designs(name, found[0], False)], scene.analysis, speed,
+                          **{**options, "progress": None, "workers": 1})
+        return found
 
     searched = []
     for name in names:
@@ -194,19 +214,10 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         if result is not None:
             out.results[name] = result
     out.rejected = {name: out.rejected[name] for name in names if name in out.rejected}  # in the order asked
-    # the default widths are costed always (the manifest's "saved against the defaults"),
-    # the searched ones only when they meet the requirement; an infeasible method's
-    # defaults by the proxy only and at the default architecture, since neither its
-    # synthesis (minutes) nor its architecture can change the choice
-    designs = [(name, where, synth and r["feasible"]) for name, r in out.results.items()
-               for where in ((r["default"], r) if r["feasible"] else (r["default"],))]
-    options = {"target": target, "device": device, "freq": freq, "seed": seed, "scheduler": scheduler,
-               "workers": workers, "progress": progress}
+    priced = [pair for name, r in out.results.items() for pair in _designs(name, r, synth)]
     if progress:
-        progress(f"pricing {len(designs)} designs' architectures")
-    costs = price_designs([(name, where["params"], by_synth, not out.results[name]["feasible"])
-                           for name, where, by_synth in designs], scene.analysis, speed, **options)
-    for (_, where, _), found in zip(designs, costs):
+        progress(f"pricing {len(priced)} designs' architectures")
+    for (where, _), found in zip(priced, price_designs([d for _, d in priced], scene.analysis, speed, **options)):
         where["cost"] = found
 
     def cost(name, params, by_synth):
