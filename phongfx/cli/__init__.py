@@ -17,6 +17,7 @@ turns every kind of bad input into one line and an exit code.
 
 import os
 import sys
+import warnings
 
 from phongfx.explore.synth.fpga import SynthError
 
@@ -48,6 +49,9 @@ def main(argv=None):
     try:
         return args.run(args)
     except KeyboardInterrupt:  # Ctrl-C: one line, not a traceback; temporary folders are gone
+        # a design interrupted mid-elaboration leaves Amaranth modules that warn, once collected
+        # with this traceback, that they were never used: not news to whoever pressed Ctrl-C
+        warnings.filterwarnings("ignore", message=".*created but never used")
         print("phongfx: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:  # output piped into `head` and the like: not an error

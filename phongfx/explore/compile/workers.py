@@ -96,6 +96,11 @@ def _once(link, function, item):
     signal.signal(signal.SIGINT, _interrupted)
     try:
         outcome = (True, _call(item))
+    except SystemExit as stop:
+        # interrupted, its half-made cache entries removed on the way here: it ends now, before
+        # the half-built objects its traceback holds are collected (Amaranth warns of each
+        # unelaborated one on stderr, where the parent prints its one line)
+        os._exit(stop.code if isinstance(stop.code, int) else 1)
     except Exception as error:
         outcome = (False, error)
     try:

@@ -76,6 +76,30 @@ def test_a_pending_piece_of_work_runs_beside_this_process_and_gives_its_result()
     assert not multiprocessing.active_children()
 
 
+def _half_built(seconds):
+    import time
+
+    from amaranth.hdl import Module
+
+    module = Module()  # never elaborated: collected at the end, Amaranth warns of it
+    time.sleep(seconds)
+    return module
+
+
+def test_an_interrupted_pending_piece_of_work_ends_without_a_word(capfd):
+    """Ctrl-C reaches the forked worker too: it ends with 130 and writes nothing (the parent
+    prints the one line)."""
+    import signal
+    import time
+
+    pending = workers.Pending(_half_built, 30)
+    time.sleep(0.5)
+    os.kill(pending.process.pid, signal.SIGINT)
+    with pytest.raises(RuntimeError, match="exit code 130"):
+        pending.result()
+    assert capfd.readouterr().err == ""
+
+
 def test_the_width_searches_in_workers_are_those_in_this_process(tmp_path, monkeypatch):
     monkeypatch.setattr(searches, "MIN_POINTS", 1000)
     methods = ["fig7", "conventional"]
