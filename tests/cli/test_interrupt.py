@@ -81,4 +81,3 @@ def test_ctrl_c_during_compile_keeps_the_previous_result_whole(tmp_path):
     assert sorted(p.name for p in out.iterdir()) == ["manifest.json"]
     assert (out / "manifest.json").read_text() == '{"previous": true}\n'
     assert _hidden(tmp_path) == []
-
