@@ -29,8 +29,8 @@ from .emit import verilog
 from .handshake import Handshake
 from .overflow import Checked
 
-__all__ = ["BLOCK_PATH", "CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line", "header",
-           "top_verilog"]
+__all__ = ["BLOCK_PATH", "CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line",
+           "header", "top_verilog"]
 
 #: The ports that carry no payload, in header order: ``(name, direction, meaning)``.
 CONTROL_PORTS = (

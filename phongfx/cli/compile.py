@@ -239,12 +239,11 @@ def cmd_compile(args):
                                      certified=not args.sampled,
                                      clock=args.clock,
                                      scheduler=args.scheduler, workers=args.workers)
-        except BaseException:
+            if warming is not None:
+                warming.result()
+        finally:  # interrupted, or the compile failed: the build need not finish
             if warming is not None:
                 warming.cancel()
-            raise
-        if warming is not None:
-            warming.result()
         if compiled.refused and compiled.refused["why"] in ("fit", "certificate"):
             for line in compiled.refused["text"]:
                 print(f"phongfx: refused: {line}", file=sys.stderr)

@@ -89,16 +89,11 @@ def full_certificate(out, certifier, pending=None):
     """The chosen design's full certificate (refined to the end); an internal error when it is
     not certified, since its early one was.  ``pending``: ``(method, params, Pending)``, the
     full certificate of a design begun before the choice (:func:`begin_full_certificate`),
-    taken when it is the chosen design's and cancelled when not."""
+    taken when it is the chosen design's (the caller cancels it when not)."""
     best = out.best
-    certificate = None
-    if pending is not None:
-        method, params, work = pending
-        if (method, params) == (out.chosen, best["params"]):
-            certificate = work.result()
-        else:
-            work.cancel()
-    if certificate is None:
+    if pending is not None and pending[:2] == (out.chosen, best["params"]):
+        certificate = pending[2].result()
+    else:
         certificate = certifier(out.chosen, best["params"], out.spec, out.domain, analysis=out.analysis)
     if not certificate.certified:
         raise AssertionError(f"internal error: {out.chosen} at {best['params']} was certified early "

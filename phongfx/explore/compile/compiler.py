@@ -98,11 +98,11 @@ class Compiled:
 
 def _designs(name, result, synth):
     """``(where, design)`` per design of a searched method that is priced: the dict its cost goes
-    in, and the design as :func:`~phongfx.explore.compile.costing.price_designs` takes it; its
-    default widths always
-    (the manifest's "saved against the defaults"), the searched ones when they meet the
-    requirement; an infeasible method's defaults by the proxy only and at the default
-    architecture, since neither its synthesis (minutes) nor its architecture can change the choice."""
+    in, and the design as :func:`~phongfx.explore.compile.costing.price_designs` takes it.  Its
+    default widths always (the manifest's "saved against the defaults"), the searched ones when
+    they meet the requirement; an infeasible method's defaults by the proxy only and at the
+    default architecture, since neither its synthesis (minutes) nor its architecture can change
+    the choice."""
     feasible = result["feasible"]
     return [(where, (name, where["params"], synth and feasible, not feasible))
             for where in ((result["default"], result) if feasible else (result["default"],))]
@@ -228,24 +228,19 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
                if certified and certifier is not None else None)
     try:
         choose(out, scene, cost, prove, prove_timeout, progress, search)
-    except BaseException:
+        if certified and out.rounds:  # a witness over the requirement on a design its certificate bounds
+            step = out.rounds[0]
+            raise AssertionError(f"internal error: {step['method']} at {step['params']} has a witness of "
+                                 f"{step['witness_levels']} levels over the requirement its certificate "
+                                 f"meets: the bound is not sound")
+        if certifier is not None and out.chosen is not None:
+            if progress:
+                progress(f"certifying {out.chosen}")
+            out.certificate = (full_certificate(out, certifier, pending) if certified else
+                               certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis))
+    finally:  # not taken (another design chosen, or none), or interrupted
         if pending is not None:
             pending[2].cancel()
-        raise
-    if certified and out.rounds:  # a witness over the requirement on a design its certificate bounds
-        if pending is not None:
-            pending[2].cancel()
-        step = out.rounds[0]
-        raise AssertionError(f"internal error: {step['method']} at {step['params']} has a witness of "
-                             f"{step['witness_levels']} levels over the requirement its certificate meets: "
-                             f"the bound is not sound")
-    if certifier is not None and out.chosen is not None:
-        if progress:
-            progress(f"certifying {out.chosen}")
-        out.certificate = (full_certificate(out, certifier, pending) if certified else
-                           certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis))
-    elif pending is not None:
-        pending[2].cancel()
     out.refused = refusal(out)
     if certified and out.chosen is None and out.refused is None:
         out.refused = {"why": "certificate", "text": refusal_lines(out)}

@@ -26,7 +26,7 @@ __all__ = ["GRACE", "MIN_POINTS", "count", "fork_imap", "fork_map", "Pending"]
 #: Domain points from which a measurement or a search is worth worker processes.
 MIN_POINTS = 1 << 17
 
-_JOB = None  # the function of the running fork_map, inherited by its forked workers
+_JOB = None  # the function of a worker being started (:func:`_start`), inherited by its fork
 
 
 def count(workers=None):
@@ -71,7 +71,12 @@ def _serve(link):
     # half-made cache entries of the worker are removed as they would be here
     signal.signal(signal.SIGTERM, _interrupted)
     signal.signal(signal.SIGINT, _interrupted)
+    # a killed parent closes no pipe of a worker forked before another (whose fork holds a copy
+    # of the first one's end): its sentinel ends the wait instead of leaving the worker behind
+    waited = [link, multiprocessing.parent_process().sentinel]
     while True:
+        if link not in multiprocessing.connection.wait(waited):
+            return
         try:
             message = link.recv()
         except EOFError:  # this process is gone
@@ -81,6 +86,11 @@ def _serve(link):
         index, item = message
         try:
             outcome = (True, _call(item))
+        except SystemExit as stop:
+            # interrupted, its half-made cache entries removed on the way here: it ends now,
+            # before the half-built objects its traceback holds are collected (Amaranth warns of
+            # each unelaborated one on stderr, where this process prints its one line)
+            os._exit(stop.code if isinstance(stop.code, int) else 1)
         except Exception as error:
             outcome = (False, error)
         try:
@@ -89,24 +99,33 @@ def _serve(link):
             link.send((index, (False, RuntimeError(f"{type(error).__name__}: {error}"))))
 
 
-def _once(link, function, item):
+def _context():
+    """The ``fork`` context, or None where this process forks no workers (the platform cannot,
+    or this is a worker: a worker has no workers of its own)."""
+    if "fork" not in multiprocessing.get_all_start_methods() or multiprocessing.current_process().daemon:
+        return None
+    return multiprocessing.get_context("fork")
+
+
+def _start(context, function):
+    """``(process, link)``: a worker serving ``function`` (inherited by the fork) on a pipe of its own."""
     global _JOB
-    _JOB = function
-    signal.signal(signal.SIGTERM, _interrupted)
-    signal.signal(signal.SIGINT, _interrupted)
+    before, _JOB = _JOB, function
     try:
-        outcome = (True, _call(item))
-    except SystemExit as stop:
-        # interrupted, its half-made cache entries removed on the way here: it ends now, before
-        # the half-built objects its traceback holds are collected (Amaranth warns of each
-        # unelaborated one on stderr, where the parent prints its one line)
-        os._exit(stop.code if isinstance(stop.code, int) else 1)
-    except Exception as error:
-        outcome = (False, error)
-    try:
-        link.send(outcome)
-    except Exception as error:  # a result or an error that does not pickle
-        link.send((False, RuntimeError(f"{type(error).__name__}: {error}")))
+        here, there = context.Pipe()
+        process = context.Process(target=_serve, args=(there,), daemon=True)
+        process.start()
+    finally:
+        _JOB = before
+    there.close()
+    return process, here
+
+
+def _lost(process):
+    """The error of a worker that ended without its result."""
+    process.join(GRACE)
+    return RuntimeError(f"a compile worker (pid {process.pid}) ended without its result, "
+                        f"exit code {process.exitcode}")
 
 
 def _stop(processes, links, finished):
@@ -135,28 +154,21 @@ def fork_imap(function, items, workers=None):
     """``function(item)`` of each of ``items``, in order, as each is ready, computed by up to
     :func:`count` ``(workers)`` forked processes (module docstring); an exception in a
     worker is raised here, and a worker that dies without its result is a RuntimeError."""
-    global _JOB
     items = list(items)
     workers = min(count(workers), len(items))
-    if (workers <= 1 or "fork" not in multiprocessing.get_all_start_methods()
-            or multiprocessing.current_process().daemon):  # a worker has no workers of its own
+    context = _context() if workers > 1 else None
+    if context is None:
         yield from (function(item) for item in items)
         return
-    context = multiprocessing.get_context("fork")
     processes, links, finished = [], [], False
-    _JOB = function
     try:
         for _ in range(workers):
-            here, there = context.Pipe()
-            process = context.Process(target=_serve, args=(there,), daemon=True)
-            process.start()
-            there.close()
+            process, link = _start(context, function)
             processes.append(process)
-            links.append(here)
+            links.append(link)
         yield from _ordered(items, processes, links)
         finished = True
     finally:
-        _JOB = None
         _stop(processes, links, finished)
 
 
@@ -185,52 +197,47 @@ def _ordered(items, processes, links):
             try:
                 index, outcome = link.recv()
             except EOFError:
-                process = processes[links.index(link)]
-                process.join(GRACE)
-                raise RuntimeError(f"a compile worker (pid {process.pid}) ended without its result, "
-                                   f"exit code {process.exitcode}") from None
+                raise _lost(processes[links.index(link)]) from None
             busy.discard(link)
             done[index] = outcome
             hand(link)
 
 
 class Pending:
-    """``function(item)``, begun now in a forked process (with ``fork`` True and where
-    forking is possible, else computed here when asked for); :meth:`result` waits for it and
+    """``function(item)``, begun now in a forked worker (with ``fork`` True and where this
+    process forks workers, else computed here when asked for); :meth:`result` waits for it and
     gives it (an exception in the worker is raised here, a worker that dies without its result
-    is a RuntimeError), :meth:`cancel` ends it unfinished.  Either must be called once."""
+    is a RuntimeError), :meth:`cancel` ends it unfinished, and does nothing once it has ended."""
 
     def __init__(self, function, item, fork=True):
-        self.function, self.item, self.process, self.link = function, item, None, None
-        if not fork or "fork" not in multiprocessing.get_all_start_methods() \
-                or multiprocessing.current_process().daemon:
-            return
-        context = multiprocessing.get_context("fork")
-        self.link, there = context.Pipe()
-        self.process = context.Process(target=_once, args=(there, function, item), daemon=True)
-        self.process.start()
-        there.close()
+        self.function, self.item, self.process, self.link, self.ended = function, item, None, None, False
+        context = _context() if fork else None
+        if context is not None:
+            self.process, self.link = _start(context, function)
+            self.link.send((0, item))
 
     def result(self):
         if self.process is None:
             return self.function(self.item)
         try:
-            ok, value = self.link.recv()
+            _, (ok, value) = self.link.recv()
         except EOFError:
-            self.process.join(GRACE)
-            raise RuntimeError(f"a compile worker (pid {self.process.pid}) ended without its result, "
-                               f"exit code {self.process.exitcode}") from None
+            raise _lost(self.process) from None
         except BaseException:  # interrupted while waiting: the worker too
             self.cancel()
             raise
-        _stop([self.process], [self.link], True)
+        self._end(True)
         if not ok:
             raise value
         return value
 
     def cancel(self):
-        if self.process is not None:
-            _stop([self.process], [self.link], False)
+        self._end(False)
+
+    def _end(self, finished):
+        if self.process is not None and not self.ended:
+            self.ended = True
+            _stop([self.process], [self.link], finished)
 
 
 def fork_map(function, items, workers=None):

@@ -17,6 +17,7 @@ from phongfx.explore.compile.workers import count, fork_map
 from phongfx.scene.file import parse_scene
 from tests.explore.compile.test_compiler import TORUS
 from tests.explore.compile.test_witness import NARROW
+from tests.explore.sweep.test_run import alive
 
 
 def _pid(_):
@@ -123,3 +124,32 @@ def test_the_witness_of_forked_chunks_is_that_of_one_process(tmp_path, monkeypat
     two = witnesses.search("fig7", NARROW, spec, domain, workers=2, **kwargs)
     one.pop("seconds"), two.pop("seconds")
     assert two == one and one["error_levels"] >= 2 and workers.MIN_POINTS == 1 << 17
+
+
+def test_workers_end_when_their_parent_is_killed(tmp_path):
+    """A parent killed outright (SIGKILL: no clean-up of its own) leaves no worker waiting."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    script = ("import os, sys, time\n"
+              "from phongfx.explore.compile.workers import fork_imap\n"
+              "def job(x):\n"
+              "    open(os.path.join(sys.argv[1], f'{os.getpid()}.pid'), 'w').close()\n"
+              "    return x\n"
+              "for x in fork_imap(job, range(2), 2):\n"
+              "    time.sleep(60)\n")
+    parent = subprocess.Popen([sys.executable, "-c", script, str(tmp_path)])
+    deadline = time.monotonic() + 30
+    while len(list(tmp_path.glob("*.pid"))) < 2 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    pids = [int(p.stem) for p in tmp_path.glob("*.pid")]
+    assert len(pids) == 2
+    parent.send_signal(signal.SIGKILL)
+    parent.wait()
+    deadline = time.monotonic() + 10
+    while any(alive(pid) for pid in pids) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not any(alive(pid) for pid in pids)
+

@@ -316,7 +316,7 @@ sys.exit(main(["sweep", os.path.join(sys.argv[1], "spec.toml"), "--workers", "2"
 '''
 
 
-def _alive(pid):
+def alive(pid):
     """Whether ``pid`` runs; a zombie (killed, its parent gone, not yet reaped by init) does not."""
     try:
         with open(f"/proc/{pid}/stat") as file:
@@ -358,7 +358,7 @@ def test_ctrl_c_stops_the_workers_at_once_and_a_rerun_resumes(tmp_path, to):
     assert len(err.strip().splitlines()) == 1 and err.startswith("phongfx: interrupted"), err
     time.sleep(0.3)
     tools = [int(p.read_text() or 0) for p in tmp_path.glob("tool*.pid")]
-    assert not any(_alive(pid) for pid in tools if pid), "a worker's tool outlived the sweep"
+    assert not any(alive(pid) for pid in tools if pid), "a worker's tool outlived the sweep"
     kept = load_records(jsonl)
     assert [(r["params"]["addr_bits"], r["status"]) for r in kept] == [(4, "ok")]
 
