@@ -35,14 +35,15 @@ from phongfx.explore.compile.units import BLINN, CONVENTIONAL
 from phongfx.golden.blinn import blinn
 from phongfx.golden.conventional import conventional
 
-from .branch import bound_boxes
+from .branch import bound_boxes, cases
 from .codes import code_errors, code_ranges
-from .figures import directional_why_not
+from .cones import cone_why_not, directions, spread
 from .interval import rounding_error
-from .normalizer import (clamp, cosine, cosine_range, direction, inverse_length, length_cases, normal_codes, product_of, rounded,
-                         squared_length)
+from .local_vectors import local_vector
+from .normalizer import (LIGHT, LOCAL_SYMBOLS, SYMBOLS, VIEW, clamp, cosine, cosine_range, direction, inverse_length,
+                         length_cases, normal_codes, product_of, rounded, squared_length)
 from .outputs import coefficient_tables
-from .sphere import frame
+from .sphere import cover
 from .tables import power_bound
 
 __all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
@@ -81,20 +82,17 @@ def _direct(boxes, basis, light, half):
     return cosine_range(boxes, basis, half)
 
 
-def light_terms(unit, boxes, basis, light, second, specular, cosine_range, n_hw):
+def light_terms(unit, boxes, basis, vectors, ideal, specular, n_hw):
     """Per box the unit's terms for one light (B,) each: ``(e_d, d_hi, e_s, ideal_hi, hw_hi,
     faults)``, the diffuse term's deviation from ``max(N̂·L, 0)`` and its largest value, the
     specular term's deviation from the ideal ``t^n'`` and the largest ideal and hardware
-    values; ``second`` the unit's other vector (``V`` or ``H``), ``specular`` the unit's
-    cosine stage (:func:`_conventional`, :func:`_blinn`), ``cosine_range`` the exact range
-    of its ideal cosine over each box (:func:`_reflected`, :func:`_direct`), ``n_hw`` the
-    applied ``n'``."""
-    count, vec = len(boxes), unit.fmt("vec")
-    normal = normal_codes(vec, boxes, basis)
-    l_code, s_code = direction(light, vec, count), direction(second, vec, count)
-    light_view = product_of(l_code, s_code, count)
-    ideal = cosine_range(boxes, basis, light, second)
-    out, faults, worst = unit.fmt("out"), set(normal.faults), None
+    values; ``vectors`` the unit's ``(L, S, L·S)`` as Intervals against the reference's
+    (``S`` its other vector, ``V`` or ``H``), ``ideal`` the exact range of its ideal cosine
+    over each box, ``specular`` the unit's cosine stage (:func:`_conventional`,
+    :func:`_blinn`), ``n_hw`` the applied ``n'``."""
+    l_code, s_code, light_view = vectors
+    normal = normal_codes(unit.fmt("vec"), boxes, basis, l_code.terms.shape[-1])
+    out, faults, worst = unit.fmt("out"), set(normal.faults) | l_code.faults | s_code.faults, None
     for q in length_cases(squared_length(normal, boxes.z)):  # each point is in one of them
         k, y_max = inverse_length(unit, q)
         c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view)
@@ -151,32 +149,60 @@ class TableUnit:
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
-        why = directional_why_not(domain)
+        why = cone_why_not(domain)
         if why:
             return why
-        if any(getattr(unit, "local_light", False) or getattr(unit, "local_viewer", False)
-               for unit in shader.units):
-            return "a unit normalizing its own L or V (a point light, a local viewer) is not bounded yet"
+        if not any(values for _, values in domain.materials):
+            return "the domain admits no shininess n"
+        vectors = [vector for kind, vector, _ in domain.lights if kind == "directional"]
+        if domain.camera[0] == "infinity":
+            vectors.append(domain.camera[1])
+        if any(abs(float(np.linalg.norm(v)) - 1.0) > 1e-9 for v in vectors):
+            return "the light and camera directions must be unit vectors, as the bound's geometry takes them"
         if len(shader.units) != len(domain.lights):
             return f"the shader holds {len(shader.units)} copies of the unit for {len(domain.lights)} lights"
+        local = domain.camera[0] == "point" or any(kind == "point" for kind, _, _ in domain.lights)
+        if local and self.halfway:
+            return ("Blinn's unit with point lights or a local viewer is fed the pixel's exact H, whose "
+                    "direction the light and viewer cones do not bound where L and V nearly oppose")
+        for index, (unit, (kind, _, _)) in enumerate(zip(shader.units, domain.lights)):
+            if getattr(unit, "local_light", False) != (kind == "point"):
+                return f"light {index} is a {kind} light but its unit's local_light is {unit.local_light}"
+            if getattr(unit, "local_viewer", False) != (domain.camera[0] == "point"):
+                return f"the camera is {domain.camera[0]} but the unit's local_viewer is {unit.local_viewer}"
         return None
 
-    def errors(self, shader, against, boxes, basis, lights, floor=-np.inf):
-        """``errors(boxes, floor)`` of :func:`~phongfx.certify.branch.bound_boxes`."""
+    def errors(self, shader, against, boxes, cones, floor=-np.inf):
+        """``errors(boxes, floor)`` of :func:`~phongfx.certify.branch.bound_boxes`; ``cones`` the
+        light and viewer :class:`~phongfx.certify.cones.Directions` (the boxes about its axis)."""
         n = boxes.n.astype(np.int64)
         n_hw = self.n_scale * n
-        view = basis[0]
+        basis, count = cones.basis, len(boxes)
+        symbols = LOCAL_SYMBOLS if cones.local else SYMBOLS
         terms, faults = [], set()
-        for unit, light in zip(shader.units, lights):
-            second = _unit(light + view) if self.halfway else view
-            e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, light, second,
-                                                                 self.specular, self.cosine_range, n_hw)
+        for unit, light in zip(shader.units, cones.lights):
+            axis, view = np.asarray(light.axis), basis[0]
+            second = _unit(axis + view) if self.halfway else view
+            vec = unit.fmt("vec")
+            l_code = (local_vector(unit, light, count, LIGHT, symbols) if light.local
+                      else direction(axis, vec, count, symbols))
+            s_code = (local_vector(unit, cones.view, count, VIEW, symbols) if cones.view.local
+                      else direction(second, vec, count, symbols))
+            light_view = (l_code.dot(s_code) if light.local or cones.view.local
+                          else product_of(l_code, s_code, count))
+            # the reference's L and V anywhere in their cones: R̂·L moves by both halves
+            ideal = spread(self.cosine_range(boxes, basis, axis, second), light.half + cones.view.half)
+            e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, (l_code, s_code, light_view),
+                                                                 ideal, self.specular, n_hw)
             faults |= found
-            approx = (_phong_distance(boxes, basis, light, second, n_hw, n)
+            approx = (_phong_distance(boxes, basis, axis, second, n_hw, n)
                       if self.halfway and against == "phong" else np.zeros(len(boxes)))
-            terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx, cosine_range(boxes, basis, light)))
+            terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx,
+                          spread(cosine_range(boxes, basis, axis), light.half)))
         rounding, approximation, gate = blend_errors(shader.blend, boxes.material, terms, shader.blend.levels)
-        self._listed(shader, against, boxes, basis, lights, (rounding, approximation, gate), floor)
+        if not cones.local:  # the listed codes take L and V as constants
+            lights = [np.asarray(light.axis) for light in cones.lights]
+            self._listed(shader, against, boxes, basis, lights, (rounding, approximation, gate), floor)
         return rounding, approximation, faults, gate
 
     def _listed(self, shader, against, boxes, basis, lights, parts, floor):
@@ -204,15 +230,18 @@ class TableUnit:
         rounding[pick], approximation[pick], gate[pick] = listed[better], 0.0, 0.0
 
     def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
-        """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
-        basis = frame(domain.camera[1])
-        lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
+        """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`);
+        point lights and a local viewer as :mod:`.cones` and :mod:`.local_vectors` bound them."""
+        cones = directions(domain)
         against = spec.requirement.against
+        boxes = None
+        if cones.view.half:  # the boxes cover the normals about the viewer cone's axis
+            boxes = cover(cones.cover_cos_min, domain.min_normal_length, cases(domain))
 
         def errors(boxes, floor):
-            return self.errors(shader, against, boxes, basis, lights, floor)
+            return self.errors(shader, against, boxes, cones, floor)
 
-        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough)
+        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)
 
 
 def _unit(v):

@@ -137,18 +137,22 @@ def _per_pixel(name, config, spec, light, n_scale):
                       light=light)
     if name == "light":
         if config.local_light:
-            return _entry(f"L{light}'", f"(1-a)*L0 + a*L1, L0 and L1 the unit vectors from the surface points "
-                          f"at the span's ends toward {target}: NOT normalized, the core normalizes it",
-                          space="eye", unit=False, by="core", light=light)
+            return _entry(f"L{light}", f"the unit vector from the pixel's surface point toward {target}, which "
+                          f"the core normalizes again: {_ANY_LENGTH}", space="eye", unit=False, by="core",
+                          light=light)
         return _entry(f"L{light}", f"the unit vector toward {target}: the same on every pixel", space="eye",
                       unit=True, rate="constant", by="host", light=light)
     viewer, _ = _viewer(spec)
     if config.local_viewer:
-        return _entry("V'", f"(1-a)*V0 + a*V1, V0 and V1 the unit vectors from the surface points at the "
-                      f"span's ends toward {viewer}: NOT normalized, the core normalizes it", space="eye",
-                      unit=False, by="core")
+        return _entry("V", f"the unit vector from the pixel's surface point toward {viewer}, which the core "
+                      f"normalizes again: {_ANY_LENGTH}", space="eye", unit=False, by="core")
     return _entry("V", f"the unit vector toward {viewer}: the same on every pixel", space="eye", unit=True,
                   rate="constant", by="host")
+
+
+#: What a local L or V of the conventional unit may be besides the unit vector it is fed.
+_ANY_LENGTH = ("any length up to 1 gives its direction, but the error measured and certified is for unit length "
+               "(a shorter vector's codes round relatively coarser)")
 
 
 #: The spherical unit's loads (Szirmay-Kalos et al. 2000, equations 15-19, section 4).

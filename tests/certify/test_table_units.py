@@ -11,6 +11,7 @@ from phongfx.certify.bound import shader_config
 from phongfx.certify.methods import BOUNDING
 from phongfx.certify.sphere import Boxes, frame
 from phongfx.certify.codes import code_errors, code_ranges
+from phongfx.certify.cones import at_infinity
 from phongfx.certify.outputs import coefficient_tables
 from phongfx.certify.normalizer import cosine_range
 from phongfx.certify.table_units import CODES_PER_BOX
@@ -27,6 +28,7 @@ from tests.certify.test_bound import sampled
 #: The widths ``phongfx compile`` chooses for conventional (its manifests' "widths").
 TORUS = {"vec_frac": 11, "rsqrt_addr": 8, "table_addr": 5, "coef": 0}
 LYON = {"vec_frac": 16, "rsqrt_addr": 9, "table_addr": 4, "coef": 2}
+LOCAL = {"vec_frac": 16, "rsqrt_addr": 9, "table_addr": 6, "coef": 1}
 
 
 def _scene(name):
@@ -111,11 +113,14 @@ def test_cosine_range_is_exact_and_sound(reflected):
 @pytest.mark.parametrize("method, name, params, ratio, certified", [
     ("conventional", "torus", TORUS, 1.4, True), ("conventional", "lyon-balls", LYON, 2.2, False),
     ("blinn", "torus", {}, 1.4, False), ("blinn", "lyon-balls", {}, 3.0, False),
+    ("conventional", "local-mesh", LOCAL, 4.0, True),
+    ("conventional", "local-mesh", {"vec_frac": 12, "rsqrt_addr": 8, "table_addr": 4, "coef": 1}, 12.0, False),
 ])
 def test_the_bound_holds_on_frames_and_domain_smoke(method, name, params, ratio, certified):
     """A small budget and sample: the bound is above what is measured, and within ``ratio`` of
     it (loose where a sample of 20000 points misses the rare worst: Lyon's n = 256, n' = 1024 for
-    Blinn); the torus's conventional design, the compiler's choice, is certified (its boxes near
+    Blinn; and with a point light and a local viewer, whose cones the boxes of normals do not
+    split); the torus's conventional design, the compiler's choice, is certified (its boxes near
     the worst error listed code by code)."""
     spec, dom = _scene(name)
     shader = shader_config(method, params, spec)
@@ -128,6 +133,7 @@ def test_the_bound_holds_on_frames_and_domain_smoke(method, name, params, ratio,
 
 @pytest.mark.parametrize("method, name, params, t", [
     ("conventional", "torus", TORUS, "1.9"), ("blinn", "lyon-balls", {}, "1.12"),
+    ("conventional", "local-mesh", LOCAL, "1.9"),
 ])
 def test_a_worse_quantize_breaks_the_old_bound_and_raises_the_new_one(method, name, params, t):
     """The check has teeth: a unit whose cosine ``t`` is rounded 6 (3) bits shorter and truncated
@@ -180,10 +186,19 @@ def test_a_wide_conventional_unit_is_certified_on_the_torus():
     assert got.certified and got.why == "" and 0.5 < got.bound_levels < 1.5
 
 
-def test_point_lights_are_not_bounded_yet():
+def test_blinn_with_point_lights_is_not_bounded():
     spec, dom = _scene("local-mesh")
-    got = certify("conventional", {}, spec, dom)
-    assert got.bound_levels is None and not got.certified and got.why == "point lights are not bounded yet"
+    got = certify("blinn", {}, spec, dom)
+    assert got.bound_levels is None and not got.certified
+    assert got.why.startswith("Blinn's unit with point lights or a local viewer is fed the pixel's exact H")
+
+
+def test_a_unit_that_takes_a_point_light_as_a_constant_is_refused():
+    spec, dom = _scene("local-mesh")
+    shader = shader_config("conventional", LOCAL, spec)
+    constant = replace(shader, units=tuple(unit.replace(local_light=False) for unit in shader.units))
+    got = certify("conventional", LOCAL, spec, dom, shader=constant)
+    assert got.bound_levels is None and got.why == "light 0 is a point light but its unit's local_light is False"
 
 
 @pytest.mark.slow
@@ -207,7 +222,8 @@ def test_codes_are_listed_only_above_the_floor():
     spec, dom = _scene("torus")
     shader = shader_config("conventional", TORUS, spec)
     unit = BOUNDING["conventional"]
-    basis, lights = frame(dom.camera[1]), [np.asarray(dom.lights[0][1])]
+    basis = frame(dom.camera[1])
+    lights = at_infinity(basis, [np.asarray(dom.lights[0][1])], dom.view_cos_min)
     # small boxes about the torus's largest error (as above), a few codes each
     theta, phi = np.meshgrid(np.arange(22.0, 27.0, 0.1), np.arange(314.0, 318.0, 0.2))
     theta, phi = np.radians(theta.ravel()), np.radians(phi.ravel())
@@ -215,13 +231,13 @@ def test_codes_are_listed_only_above_the_floor():
     boxes = Boxes(np.stack([theta, theta + np.radians(0.1)], -1), np.stack([phi, phi + np.radians(0.2)], -1),
                   np.tile([0.998, 1.0], (count, 1)), np.full(count, 16), np.zeros(count, dtype=np.int64))
     assert np.all(code_ranges(shader.units[0].fmt("vec"), boxes, basis)[2] <= CODES_PER_BOX)
-    listed = unit.errors(shader, "phong", boxes, basis, lights)
+    listed = unit.errors(shader, "phong", boxes, lights)
     total = np.max(listed[0] + listed[1], axis=-1)
-    interval = unit.errors(shader, "phong", boxes, basis, lights, floor=np.inf)
+    interval = unit.errors(shader, "phong", boxes, lights, floor=np.inf)
     plain = np.max(interval[0] + interval[1], axis=-1)
     assert np.all(plain >= total - 1e-12) and np.count_nonzero(plain > total + 0.05) > 10
     floor = float(np.median(total))
-    some = unit.errors(shader, "phong", boxes, basis, lights, floor=floor)
+    some = unit.errors(shader, "phong", boxes, lights, floor=floor)
     mixed = np.max(some[0] + some[1], axis=-1)
     above = plain > floor
     assert np.array_equal(mixed[~above], plain[~above]) and np.array_equal(mixed[above], total[above])

@@ -22,11 +22,14 @@ as it is.
   (spherical: Szirmay-Kalos's ``A^n'·cos²``).  ``spherical`` also needs mesh spans and
   one ``n`` (its per-span setup holds it).
 * ``conventional`` computes Phong's own ``(R·V)^n`` with ``n`` itself (no ``4n``), one copy
-  per light, fed per pixel the interpolated ``N`` and ``L``, ``V``: the exact unit vectors
-  of the pixel, or, for point lights (``local_light``) and a local viewer
-  (``local_viewer``), the un-normalized ``(1-a)·X0 + a·X1`` of the span ends' unit vectors
-  toward the light or viewer (what a Phong shader interpolates, Lyon 1993 Figure 1, and
-  what the datapaths' L and V LIRPs are fed), which the unit normalizes itself.  Its
+  per light, fed per pixel the interpolated ``N`` and the exact unit ``L``, ``V`` of the
+  pixel; for point lights (``local_light``) and a local viewer (``local_viewer``) the unit
+  normalizes them again with its own normalizer (in its cost), so a host may feed any vector
+  along them.  Not the interpolation of the span ends' unit vectors that Lyon's datapaths
+  take (Lyon 1993, "local viewer"): that bends the direction off the pixel's own by up to
+  ``(ℓ/D)²/8`` (:mod:`phongfx.certify.cones`), 0.0035 rad on the local mesh's 0.42-long spans
+  2.8 from the light, which at ``n = 32`` is worth up to 1.8 levels at the outputs by itself,
+  whereas the pixel's own ``P - x`` is affine along a span and interpolates exactly.  Its
   ``"self"`` is float Phong, whose backside test is the reference's, as for ``"phong"``.
 * ``schlick`` has no diffuse path and ``euler``/``gouraud`` no specular one (they
   interpolate ``N·L``, Hast et al.): rejected for scenes that need the missing term.
@@ -226,10 +229,10 @@ class _Conventional(_PerPixel):
             local_light=analysis.light_local[light], local_viewer=analysis.local_viewer)
 
     def streams(self, method, config, geometry, n):
-        view = _lirp(geometry, geometry.v0, geometry.v1) if config.units[0].local_viewer else geometry.viewer
-        return [conventional_codes(geometry.interpolated, _lirp(geometry, l0, l1) if sub.local_light else light,
-                                   view, n.astype(np.int64), sub)
-                for l0, l1, light, sub in zip(geometry.l0, geometry.l1, geometry.light, config.units)]
+        # a local L or V is the pixel's exact unit vector, which the unit normalizes again (module
+        # docstring): the normalizer is in the unit and its cost, for any length of the vector
+        return [conventional_codes(geometry.interpolated, light, geometry.viewer, n.astype(np.int64), sub)
+                for light, sub in zip(geometry.light, config.units)]
 
     def own_specular(self, method, config, params, geometry, n):
         # Phong itself: the reference's backside test (terminator_lit) is the unit's, as for every
@@ -241,12 +244,6 @@ class _Conventional(_PerPixel):
 
     def own_key(self, method, config, params, n):  # Phong's form: no width changes it
         return (method,)
-
-
-def _lirp(geometry, start, end):
-    """``(1-a)·start + a·end`` at every pixel (``start``, ``end``: (..., P, 3) span-end vectors)."""
-    a = np.asarray(geometry.a, dtype=np.float64)[:, None]
-    return (1 - a) * start + a * end
 
 
 DATAPATH, HALFWAY = Datapath(), Datapath(phong_form="blinn")
