@@ -20,7 +20,7 @@ exact unit ``X``):
   and the output rounding;
 * :func:`clamp`: the hardware's clamps (to 1, to 0 by an unsigned format's saturation), which
   move no value toward the outside of ``[low, high]``: with the ideal inside, the distance does
-  not grow; the terms stay, the move past the limit a remainder.
+  not grow, and the terms stay where the range is inside.
 """
 
 import numpy as np
@@ -191,14 +191,8 @@ def cosine(config, normal, k, y_max, vector, fmt):
 
 
 def clamp(x, low=-np.inf, high=np.inf):
-    """``x`` clamped to ``[low, high]``, against an ideal inside it (module docstring): where
-    the range crosses a limit the clamp moves a value by ``w``, between 0 and its excess over
-    the limit and never past ``dev`` (the ideal is inside), so the terms stay with ``|w|`` as
-    remainder, unless that exceeds the terms (then ``dev`` alone, as remainder)."""
+    """``x`` clamped to ``[low, high]``, against an ideal inside it (module docstring)."""
     inside = (x.lo >= low) & (x.hi <= high)
-    dev = x.dev
-    move = np.minimum(dev, np.maximum(np.maximum(x.hi - high, 0.0), np.maximum(low - x.lo, 0.0)))
-    keep = inside | (move < dev - x.err)
-    err = np.where(inside, x.err, np.where(keep, x.err + move, dev))
-    terms = None if x.terms is None else np.where(keep[..., None], x.terms, 0.0)
+    err = np.where(inside, x.err, x.dev)
+    terms = None if x.terms is None else np.where(inside[..., None], x.terms, 0.0)
     return Interval(np.clip(x.lo, low, high), np.clip(x.hi, low, high), err, x.fmt, x.faults, terms)

@@ -38,7 +38,8 @@ from phongfx.golden.conventional import conventional
 from .branch import bound_boxes, cases
 from .codes import code_errors, code_ranges
 from .cones import cone_why_not, directions, spread
-from .interval import rounding_error
+from .datapath import within
+from .interval import Interval, rounding_error
 from .local_vectors import local_vector
 from .normalizer import (LIGHT, LOCAL_SYMBOLS, SYMBOLS, VIEW, clamp, cosine, cosine_range, direction, inverse_length,
                          length_cases, normal_codes, product_of, rounded, squared_length)
@@ -61,13 +62,40 @@ def _t(config, pre):
     return (t.lo, t.hi), t.dev
 
 
-def _conventional(unit, normal, k, y_max, light, view, light_view):
-    c_light = clamp(cosine(unit, normal, k, y_max, light, unit.fmt("cos")), high=1.0)
-    c_view = clamp(cosine(unit, normal, k, y_max, view, unit.fmt("cos")), high=1.0)
-    return (c_light, *_t(unit, (c_light * c_view).shift(1) - light_view))
+def _capped(c):
+    """The two cases of a cosine's clamp to 1 (:func:`phongfx.golden.blinn.cosine`): where the
+    hardware's value is at most 1, it and its terms as they are (its range cut at 1); where its
+    range passes 1, also exactly 1, then at most ``dev`` over an ideal that is at most 1 (no
+    terms).  Apart, the first keeps the shared symbols that ``R·V`` cancels, which one clamped
+    Interval would drop wherever its range meets 1 (every box a cone's direction can align)."""
+    over, above = c.hi > 1.0, c.lo > 1.0
+    if not np.any(over):
+        return [c]
+    ones = np.ones(c.shape)
+    terms = None if c.terms is None else np.where(over[..., None], 0.0, c.terms)
+    one = Interval(np.where(over, ones, c.lo), np.where(over, ones, c.hi), np.where(over, c.dev, c.err), c.fmt,
+                   c.faults, terms)
+    below = Interval(np.minimum(c.lo, 1.0), np.minimum(c.hi, 1.0), c.err, c.fmt, c.faults, c.terms)
+    below = Interval(np.where(above, ones, below.lo), np.where(above, ones, below.hi),
+                     np.where(above, one.err, below.err), c.fmt, c.faults,
+                     None if terms is None else np.where(above[..., None], 0.0, c.terms))
+    return [below, one]
 
 
-def _blinn(unit, normal, k, y_max, light, half, light_view):
+def _conventional(unit, normal, k, y_max, light, view, light_view, ranges):
+    # each Interval's range cut to the geometry's exact one widened by its deviation (within):
+    # with a cone of L or V, interval products alone would let them wander far past it
+    raw_light = within(cosine(unit, normal, k, y_max, light, unit.fmt("cos")), *ranges[0])
+    raw_view = within(cosine(unit, normal, k, y_max, view, unit.fmt("cos")), *ranges[1])
+    lo, hi, dev = np.inf, -np.inf, 0.0
+    for c_light in _capped(raw_light):  # each case of the two clamps, the worst of them
+        for c_view in _capped(raw_view):
+            (t_lo, t_hi), t_dev = _t(unit, within((c_light * c_view).shift(1) - light_view, *ranges[2]))
+            lo, hi, dev = np.minimum(lo, t_lo), np.maximum(hi, t_hi), np.maximum(dev, t_dev)
+    return clamp(raw_light, high=1.0), (lo, hi), dev
+
+
+def _blinn(unit, normal, k, y_max, light, half, light_view, ranges):
     c_light = clamp(cosine(unit, normal, k, y_max, light, unit.fmt("out")), 0.0, 1.0)
     return (c_light, *_t(unit, clamp(cosine(unit, normal, k, y_max, half, unit.fmt("t")), 0.0, 1.0)))
 
@@ -82,22 +110,22 @@ def _direct(boxes, basis, light, half):
     return cosine_range(boxes, basis, half)
 
 
-def light_terms(unit, boxes, basis, vectors, ideal, specular, n_hw):
+def light_terms(unit, boxes, basis, vectors, ranges, specular, n_hw):
     """Per box the unit's terms for one light (B,) each: ``(e_d, d_hi, e_s, ideal_hi, hw_hi,
     faults)``, the diffuse term's deviation from ``max(N̂·L, 0)`` and its largest value, the
     specular term's deviation from the ideal ``t^n'`` and the largest ideal and hardware
     values; ``vectors`` the unit's ``(L, S, L·S)`` as Intervals against the reference's
-    (``S`` its other vector, ``V`` or ``H``), ``ideal`` the exact range of its ideal cosine
-    over each box, ``specular`` the unit's cosine stage (:func:`_conventional`,
-    :func:`_blinn`), ``n_hw`` the applied ``n'``."""
+    (``S`` its other vector, ``V`` or ``H``), ``ranges`` the exact ranges over each box of
+    ``N̂·L``, ``N̂·S`` and the unit's ideal cosine, ``specular`` the unit's cosine stage
+    (:func:`_conventional`, :func:`_blinn`), ``n_hw`` the applied ``n'``."""
     l_code, s_code, light_view = vectors
     normal = normal_codes(unit.fmt("vec"), boxes, basis, l_code.terms.shape[-1])
     out, faults, worst = unit.fmt("out"), set(normal.faults) | l_code.faults | s_code.faults, None
     for q in length_cases(squared_length(normal, boxes.z)):  # each point is in one of them
         k, y_max = inverse_length(unit, q)
-        c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view)
+        c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view, ranges)
         diff = clamp(rounded(c_light, rounding_error(c_light.fmt, out, unit.rounding)), 0.0, 1.0)
-        case = (diff.dev, diff.hi, *power_bound(unit, n_hw, ideal, dev, hardware))
+        case = (diff.dev, diff.hi, *power_bound(unit, n_hw, ranges[2], dev, hardware))
         worst = case if worst is None else tuple(np.maximum(a, b) for a, b in zip(worst, case))
         faults |= diff.faults | c_light.faults
     e_d, d_hi, e_s, hw_hi, ideal_hi = worst
@@ -192,13 +220,14 @@ class TableUnit:
                           else product_of(l_code, s_code, count))
             # the reference's L and V anywhere in their cones: R̂·L moves by both halves
             ideal = spread(self.cosine_range(boxes, basis, axis, second), light.half + cones.view.half)
+            q = spread(cosine_range(boxes, basis, axis), light.half)
+            ranges = (q, spread(cosine_range(boxes, basis, second), cones.view.half), ideal)
             e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, (l_code, s_code, light_view),
-                                                                 ideal, self.specular, n_hw)
+                                                                 ranges, self.specular, n_hw)
             faults |= found
             approx = (_phong_distance(boxes, basis, axis, second, n_hw, n)
                       if self.halfway and against == "phong" else np.zeros(len(boxes)))
-            terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx,
-                          spread(cosine_range(boxes, basis, axis), light.half)))
+            terms.append((e_d, d_hi, e_s, ideal_hi, hw_hi, approx, q))
         rounding, approximation, gate = blend_errors(shader.blend, boxes.material, terms, shader.blend.levels)
         if not cones.local:  # the listed codes take L and V as constants
             lights = [np.asarray(light.axis) for light in cones.lights]
