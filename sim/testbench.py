@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from phongfx.core.files import atomic_write
+from phongfx.hdl.block import unbuilt
 from phongfx.hdl.top import top_verilog
 
 from .simulators import (COROUTINES, SIMULATORS, VERILATOR_WARNINGS, SimulatorMissing, require_simulator,
@@ -249,7 +250,8 @@ def write_testbench(block, raw_inputs, expected, out_dir, name, *, seed=1, stall
         raise ValueError("a testbench needs at least one vector")
     if _count(expected) != count:
         raise ValueError(f"expected has {_count(expected)} vectors, the inputs {count}")
-    component = block.component()
+    # given the shipped top's text, the component is only asked its latency and interval
+    component = block.component() if top is None else unbuilt(block.component())
     latency = component.latency
     reset_at = restart_point(block, raw_inputs)
     files = {
