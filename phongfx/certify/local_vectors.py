@@ -8,13 +8,18 @@ component scaled like a cosine).  Seen from the domain's ball the vector lies in
 :mod:`.cones` (its ``half`` angle about its ``axis``).  The cone is cut into sub-cones
 (:data:`~phongfx.certify.datapath.SUB_CONES`), each run through the table units' normalizer on
 Intervals (:mod:`.normalizer`: the host's rounding as three shared symbols, which the
-normalizer's division takes out along the vector); the unit's vector is their hull, each
-component within its largest deviation of the reference's own unit vector at that pixel (the
-ideal normalizes the exact vector exactly).  Downstream that deviation is a noise symbol per
-component (:data:`~phongfx.certify.normalizer.LIGHT`, :data:`~phongfx.certify.normalizer.VIEW`),
-so that ``R·V = 2(N̂·L)(N̂·V) - L·V`` cancels what it cancels: an error ``δL`` enters
-``2c_L·c_V`` as ``2(N̂·δL)(N̂·V)`` and ``L·V`` as ``δL·V``, ``δL`` against ``V`` reflected about
-``N̂`` in all.
+normalizer's division takes out along the vector); the unit's vector ``L̂`` is their hull, each
+component within its largest deviation of the reference's own unit vector ``L`` at that pixel
+(the ideal normalizes the exact vector exactly), so ``|δL| = |L̂ - L|`` is at most the root sum
+of their squares.
+
+Downstream, ``L̂`` enters as an exact vector over that hull, so the cosines and ``R·V`` are
+bounded against ``G(L̂, V̂)`` with ``G(X, Y) = 2(N̂·X)(N̂·Y) - X·Y`` (Phong's ``R·V``, exact
+algebra for any vectors), and ``G(L̂, V̂) - G(L, V) = δL·R_V + δV·R_L + 2(N̂·δL)(N̂·δV) - δL·δV``
+with ``R_V``, ``R_L`` the unit reflections of ``V`` and ``L`` about ``N̂``: at most
+``|δL| + |δV| + 3|δL||δV|`` (:func:`geometry_error`), whatever the directions.  Symbols per
+component of ``δL`` would cancel the same way only where the coefficient vectors were known;
+over a cone of ``V`` they range widely and the interval products lose the cancellation.
 
 Its bend is none: the vector is the pixel's own, not the interpolation of the span ends' unit
 vectors that Lyon's datapaths take (whose bend :mod:`.cones` bounds); a host that interpolates
@@ -31,12 +36,13 @@ from .interval import Interval
 from .normalizer import clamp, cosine, direction, inverse_length, length_cases, normal_codes, squared_length
 from .sphere import cover, frame
 
-__all__ = ["local_vector"]
+__all__ = ["local_vector", "geometry_error"]
 
 
 @functools.lru_cache(maxsize=64)
 def _normalized(unit, cone):
-    """``(lo, hi, dev, faults)`` per component of the unit's normalized vector over ``cone``."""
+    """``(lo, hi, delta, faults)``: per component the range of the unit's normalized vector over
+    ``cone``, and the bound on ``|δL|``."""
     vec = unit.fmt("vec")
     pieces = cover(np.cos(cone.half), 1.0, [(0, 0)], *SUB_CONES)
     x = normal_codes(vec, pieces, frame(cone.axis))
@@ -48,15 +54,21 @@ def _normalized(unit, cone):
             lo[i], hi[i] = min(lo[i], float(part.lo.min())), max(hi[i], float(part.hi.max()))
             dev[i] = max(dev[i], float(part.dev.max()))
             faults |= part.faults
-    return tuple(lo), tuple(hi), tuple(dev * (1 + 1e-12)), frozenset(faults)
+    return tuple(lo), tuple(hi), float(np.sqrt(np.sum(dev ** 2))) * (1 + 1e-12), frozenset(faults)
 
 
-def local_vector(unit, cone, count, slot, symbols):
-    """The unit's normalized vector toward the local :class:`~phongfx.certify.cones.Direction`
-    ``cone`` as an Interval (count, 3) against the reference's unit vector (module docstring):
-    its deviation per component on the noise symbols ``slot .. slot + 2`` of ``symbols``."""
-    lo, hi, dev, faults = _normalized(unit, cone)
-    terms = np.zeros((count, 3, symbols))
-    terms[:, np.arange(3), slot + np.arange(3)] = dev
+def local_vector(unit, cone, count, symbols):
+    """``(L̂, delta)``: the unit's normalized vector toward the local
+    :class:`~phongfx.certify.cones.Direction` ``cone`` as an exact Interval (count, 3) over its
+    hull, with ``symbols`` noise symbols (all 0), and the bound ``delta`` on its distance
+    ``|δL|`` from the reference's unit vector (module docstring)."""
+    lo, hi, delta, faults = _normalized(unit, cone)
     wide = (count, 3)
-    return Interval(np.broadcast_to(lo, wide), np.broadcast_to(hi, wide), 0.0, unit.fmt("vec"), faults, terms)
+    return Interval(np.broadcast_to(lo, wide), np.broadcast_to(hi, wide), 0.0, unit.fmt("vec"), faults,
+                    np.zeros(wide + (symbols,))), delta
+
+
+def geometry_error(light, view):
+    """A bound on ``|G(L̂, V̂) - G(L, V)|`` from ``|δL| <= light`` and ``|δV| <= view`` (module
+    docstring)."""
+    return (light + view + 3 * light * view) * (1 + 1e-12)

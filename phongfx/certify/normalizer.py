@@ -33,7 +33,7 @@ from .interval import Interval, rounding_error
 from .sphere import cos_range, product
 from .tables import rsqrt_factor
 
-__all__ = ["SYMBOLS", "LOCAL_SYMBOLS", "LIGHT", "VIEW", "cosine_range", "normal_codes", "direction", "product_of", "squared_length", "length_cases", "inverse_length", "cosine", "clamp", "rounded"]
+__all__ = ["SYMBOLS", "cosine_range", "normal_codes", "direction", "product_of", "squared_length", "length_cases", "inverse_length", "cosine", "clamp", "rounded"]
 
 #: A format finer than any the units' exact products have: rounding from it costs a full half LSB
 _EXACT = Format(2, 40, signed=True)
@@ -45,9 +45,6 @@ _EXACT = Format(2, 40, signed=True)
 #: where the datapath cancels them; :data:`TABLE`, the rest of ``r`` (the same in every cosine
 #: of a pixel: they share ``y1``)
 SYMBOLS, OFFSET, TABLE = 5, 3, 4
-#: With a point light or a local viewer, three more per vector (:mod:`.local_vectors`): the
-#: deviation of each component of the unit's L from ``LIGHT``, of its V from ``VIEW``
-LOCAL_SYMBOLS, LIGHT, VIEW = 11, 5, 8
 
 
 def cosine_range(boxes, basis, w, reflected=False):
@@ -71,7 +68,7 @@ def cosine_range(boxes, basis, w, reflected=False):
     return lo - 1e-14, hi + 1e-14
 
 
-def normal_codes(vec, boxes, basis, symbols=SYMBOLS):
+def normal_codes(vec, boxes, basis):
     """The host's ``N`` codes (B, 3) as an Interval over ``boxes`` (:mod:`.sphere`): ``N' =
     √z·N̂`` rounded to nearest in ``vec`` (``|δ| <= lsb/2``) and saturated (a component over the
     largest code moves by its excess); symbols ``0..2`` of :data:`SYMBOLS`."""
@@ -80,17 +77,17 @@ def normal_codes(vec, boxes, basis, symbols=SYMBOLS):
     lo, hi = np.stack([p[0] for p in parts], -1), np.stack([p[1] for p in parts], -1)
     top, low = vec.max_raw * vec.lsb, vec.min_raw * vec.lsb
     e = np.maximum(vec.lsb / 2, np.maximum(hi - top, low - lo)) * (1 + 1e-12)
-    terms = np.zeros(lo.shape + (symbols,))
+    terms = np.zeros(lo.shape + (SYMBOLS,))
     terms[..., :3] = e[..., None] * np.eye(3)
     return Interval(np.clip(lo - e, low, top), np.clip(hi + e, low, top), 0.0, vec, terms=terms)
 
 
-def direction(vector, fmt, count, symbols=SYMBOLS):
+def direction(vector, fmt, count):
     """A constant unit ``vector`` (a light or viewer at infinity) as the host encodes it (to
     nearest, saturated), (count, 3): its code, whose error is a term on :data:`OFFSET`."""
     vector = np.asarray(vector, dtype=np.float64)
     code = Fixed.from_float(vector, fmt, rounding="round_half_up", overflow="saturate").to_float()
-    terms = np.zeros((count, 3, symbols))
+    terms = np.zeros((count, 3, SYMBOLS))
     terms[..., OFFSET] = code - vector
     wide = np.broadcast_to(code, (count, 3))
     return Interval(wide, wide, 0.0, fmt, terms=terms)
@@ -101,7 +98,7 @@ def product_of(a, b, count):
     against the exact ``A·B``: ``ΔA·B_code + A·ΔB`` on :data:`OFFSET`."""
     code_a, code_b = a.lo[0], b.lo[0]
     delta_a, delta_b = a.terms[0, :, OFFSET], b.terms[0, :, OFFSET]
-    terms = np.zeros((count, a.terms.shape[-1]))
+    terms = np.zeros((count, SYMBOLS))
     terms[:, OFFSET] = float(delta_a @ code_b) + float((code_a - delta_a) @ delta_b)
     value = np.full(count, float(code_a @ code_b))
     return Interval(value, value, 0.0, a.fmt.mul(b.fmt).add(a.fmt.mul(b.fmt)), terms=terms)

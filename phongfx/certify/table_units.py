@@ -40,8 +40,8 @@ from .codes import code_errors, code_ranges
 from .cones import cone_why_not, directions, spread
 from .datapath import within
 from .interval import Interval, rounding_error
-from .local_vectors import local_vector
-from .normalizer import (LIGHT, LOCAL_SYMBOLS, SYMBOLS, VIEW, clamp, cosine, cosine_range, direction, inverse_length,
+from .local_vectors import geometry_error, local_vector
+from .normalizer import (SYMBOLS, clamp, cosine, cosine_range, direction, inverse_length,
                          length_cases, normal_codes, product_of, rounded, squared_length)
 from .outputs import coefficient_tables
 from .sphere import cover
@@ -62,19 +62,19 @@ def _t(config, pre):
     return (t.lo, t.hi), t.dev
 
 
-def _capped(c):
+def _capped(c, excess=0.0):
     """The two cases of a cosine's clamp to 1 (:func:`phongfx.golden.blinn.cosine`): where the
     hardware's value is at most 1, it and its terms as they are (its range cut at 1); where its
-    range passes 1, also exactly 1, then at most ``dev`` over an ideal that is at most 1 (no
-    terms).  Apart, the first keeps the shared symbols that ``R·V`` cancels, which one clamped
-    Interval would drop wherever its range meets 1 (every box a cone's direction can align)."""
+    range passes 1, also exactly 1, then within ``dev`` of an ideal that is at most ``1 +
+    excess`` (no terms).  Apart, the first keeps the shared symbols that ``R·V`` cancels, which one
+    clamped Interval would drop wherever its range meets 1."""
     over, above = c.hi > 1.0, c.lo > 1.0
     if not np.any(over):
         return [c]
     ones = np.ones(c.shape)
     terms = None if c.terms is None else np.where(over[..., None], 0.0, c.terms)
-    one = Interval(np.where(over, ones, c.lo), np.where(over, ones, c.hi), np.where(over, c.dev, c.err), c.fmt,
-                   c.faults, terms)
+    one = Interval(np.where(over, ones, c.lo), np.where(over, ones, c.hi),
+                   np.where(over, np.maximum(c.dev, excess), c.err), c.fmt, c.faults, terms)
     below = Interval(np.minimum(c.lo, 1.0), np.minimum(c.hi, 1.0), c.err, c.fmt, c.faults, c.terms)
     below = Interval(np.where(above, ones, below.lo), np.where(above, ones, below.hi),
                      np.where(above, one.err, below.err), c.fmt, c.faults,
@@ -83,16 +83,20 @@ def _capped(c):
 
 
 def _conventional(unit, normal, k, y_max, light, view, light_view, ranges):
-    # each Interval's range cut to the geometry's exact one widened by its deviation (within):
+    # against G(L̂, V̂) (module docstring of .local_vectors; L̂ = L at infinity), each Interval's
+    # range cut to the geometry's exact one widened by its deviation and by |δL|, |δV| (within):
     # with a cone of L or V, interval products alone would let them wander far past it
-    raw_light = within(cosine(unit, normal, k, y_max, light, unit.fmt("cos")), *ranges[0])
-    raw_view = within(cosine(unit, normal, k, y_max, view, unit.fmt("cos")), *ranges[1])
+    (q, p, ideal), (e_light, e_view) = ranges
+    near = geometry_error(e_light, e_view)
+    raw_light = within(cosine(unit, normal, k, y_max, light, unit.fmt("cos")), q[0] - e_light, q[1] + e_light)
+    raw_view = within(cosine(unit, normal, k, y_max, view, unit.fmt("cos")), p[0] - e_view, p[1] + e_view)
     lo, hi, dev = np.inf, -np.inf, 0.0
-    for c_light in _capped(raw_light):  # each case of the two clamps, the worst of them
-        for c_view in _capped(raw_view):
-            (t_lo, t_hi), t_dev = _t(unit, within((c_light * c_view).shift(1) - light_view, *ranges[2]))
+    for c_light in _capped(raw_light, e_light):  # each case of the two clamps, the worst of them
+        for c_view in _capped(raw_view, e_view):
+            pre = within((c_light * c_view).shift(1) - light_view, ideal[0] - near, ideal[1] + near)
+            (t_lo, t_hi), t_dev = _t(unit, pre)
             lo, hi, dev = np.minimum(lo, t_lo), np.maximum(hi, t_hi), np.maximum(dev, t_dev)
-    return clamp(raw_light, high=1.0), (lo, hi), dev
+    return clamp(raw_light, high=1.0), (lo, hi), dev + near
 
 
 def _blinn(unit, normal, k, y_max, light, half, light_view, ranges):
@@ -115,17 +119,20 @@ def light_terms(unit, boxes, basis, vectors, ranges, specular, n_hw):
     faults)``, the diffuse term's deviation from ``max(N̂·L, 0)`` and its largest value, the
     specular term's deviation from the ideal ``t^n'`` and the largest ideal and hardware
     values; ``vectors`` the unit's ``(L, S, L·S)`` as Intervals against the reference's
-    (``S`` its other vector, ``V`` or ``H``), ``ranges`` the exact ranges over each box of
-    ``N̂·L``, ``N̂·S`` and the unit's ideal cosine, ``specular`` the unit's cosine stage
-    (:func:`_conventional`, :func:`_blinn`), ``n_hw`` the applied ``n'``."""
+    (``S`` its other vector, ``V`` or ``H``; a local one exact over its hull, its distance from the
+    reference's bounded apart), ``ranges`` ``((N̂·L, N̂·S, ideal), (|δL|, |δS|))``: the exact ranges
+    over each box of the two cosines and the unit's ideal one, and those distances (0 at
+    infinity); ``specular`` the unit's cosine stage (:func:`_conventional`, :func:`_blinn`),
+    ``n_hw`` the applied ``n'``."""
     l_code, s_code, light_view = vectors
-    normal = normal_codes(unit.fmt("vec"), boxes, basis, l_code.terms.shape[-1])
+    normal = normal_codes(unit.fmt("vec"), boxes, basis)
     out, faults, worst = unit.fmt("out"), set(normal.faults) | l_code.faults | s_code.faults, None
     for q in length_cases(squared_length(normal, boxes.z)):  # each point is in one of them
         k, y_max = inverse_length(unit, q)
         c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view, ranges)
         diff = clamp(rounded(c_light, rounding_error(c_light.fmt, out, unit.rounding)), 0.0, 1.0)
-        case = (diff.dev, diff.hi, *power_bound(unit, n_hw, ranges[2], dev, hardware))
+        # the diffuse term against max(N̂·L̂, 0), then within |δL| of max(N̂·L, 0)
+        case = (diff.dev + ranges[1][0], diff.hi, *power_bound(unit, n_hw, ranges[0][2], dev, hardware))
         worst = case if worst is None else tuple(np.maximum(a, b) for a, b in zip(worst, case))
         faults |= diff.faults | c_light.faults
     e_d, d_hi, e_s, hw_hi, ideal_hi = worst
@@ -206,22 +213,21 @@ class TableUnit:
         n = boxes.n.astype(np.int64)
         n_hw = self.n_scale * n
         basis, count = cones.basis, len(boxes)
-        symbols = LOCAL_SYMBOLS if cones.local else SYMBOLS
         terms, faults = [], set()
         for unit, light in zip(shader.units, cones.lights):
             axis, view = np.asarray(light.axis), basis[0]
             second = _unit(axis + view) if self.halfway else view
             vec = unit.fmt("vec")
-            l_code = (local_vector(unit, light, count, LIGHT, symbols) if light.local
-                      else direction(axis, vec, count, symbols))
-            s_code = (local_vector(unit, cones.view, count, VIEW, symbols) if cones.view.local
-                      else direction(second, vec, count, symbols))
+            l_code, e_light = (local_vector(unit, light, count, SYMBOLS) if light.local
+                               else (direction(axis, vec, count), 0.0))
+            s_code, e_view = (local_vector(unit, cones.view, count, SYMBOLS) if cones.view.local
+                              else (direction(second, vec, count), 0.0))
             light_view = (l_code.dot(s_code) if light.local or cones.view.local
                           else product_of(l_code, s_code, count))
             # the reference's L and V anywhere in their cones: R̂·L moves by both halves
             ideal = spread(self.cosine_range(boxes, basis, axis, second), light.half + cones.view.half)
             q = spread(cosine_range(boxes, basis, axis), light.half)
-            ranges = (q, spread(cosine_range(boxes, basis, second), cones.view.half), ideal)
+            ranges = ((q, spread(cosine_range(boxes, basis, second), cones.view.half), ideal), (e_light, e_view))
             e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, (l_code, s_code, light_view),
                                                                  ranges, self.specular, n_hw)
             faults |= found
