@@ -162,12 +162,14 @@ def rounded(x, error):
 
 def cosine(config, normal, k, y_max, vector, fmt):
     """``round(round(N·X·2^(j-h))·y1)`` in ``fmt`` before its clamps: ``N·X`` exact (``vector``
-    the constant ``X`` as an Interval, its code's distance to the exact one as remainder),
+    the constant ``X`` as an Interval, its code's distance to the exact one as remainder, or a
+    local one over its cone, :mod:`.local_vectors`),
     times ``k``, and the two roundings.  The scaled ``N·X`` must fit ``dot`` (it does for
     ``|X| < 2``: ``|N·X·2^(j-h)| <= sqrt(m)·|X|``).  Its rounding to ``dot`` costs nothing where
     it is on ``dot``'s grid already: with ``X``'s codes multiples of ``2^t`` LSBs, ``N·X`` is on
     a grid of ``2F - t`` fraction bits, and ``2^(j-h)`` moves it right by at most one bit
-    (``q < 4``), so an axis-aligned viewer's ``N·V`` is exact there."""
+    (``q < 4``), so an axis-aligned viewer's ``N·V`` is exact there; a vector over a cone takes
+    any codes (``t = 0``)."""
     dot = config.fmt("dot")
     d = normal.dot(vector)
     c = d * k
