@@ -10,8 +10,9 @@ component scaled like a cosine).  Seen from the domain's ball the vector lies in
 Intervals (:mod:`.normalizer`: the host's rounding as three shared symbols, which the
 normalizer's division takes out along the vector); the unit's vector ``L̂`` is their hull, each
 component within its largest deviation of the reference's own unit vector ``L`` at that pixel
-(the ideal normalizes the exact vector exactly), so ``|δL| = |L̂ - L|`` is at most the root sum
-of their squares.
+(the ideal normalizes the exact vector exactly), and ``|δL| = |L̂ - L|`` is bounded from their
+shared symbols (the host's rounding, which the normalizer turns across the vector) and their
+remainders (:func:`_length`).
 
 Downstream, ``L̂`` enters as an exact vector over that hull, so the cosines and ``R·V`` are
 bounded against ``G(L̂, V̂)`` with ``G(X, Y) = 2(N̂·X)(N̂·Y) - X·Y`` (Phong's ``R·V``, exact
@@ -46,15 +47,27 @@ def _normalized(unit, cone):
     vec = unit.fmt("vec")
     pieces = cover(np.cos(cone.half), 1.0, [(0, 0)], *SUB_CONES)
     x = normal_codes(vec, pieces, frame(cone.axis))
-    lo, hi, dev, faults = np.full(3, np.inf), np.full(3, -np.inf), np.zeros(3), set(x.faults)
+    lo, hi, delta, faults = np.full(3, np.inf), np.full(3, -np.inf), 0.0, set(x.faults)
     for q in length_cases(squared_length(x, pieces.z)):
         k, y_max = inverse_length(unit, q)
-        for i, axis in enumerate(np.eye(3)):
-            part = clamp(cosine(unit, x, k, y_max, direction(axis, vec, len(pieces)), vec), high=1.0)
+        parts = [clamp(cosine(unit, x, k, y_max, direction(axis, vec, len(pieces)), vec), high=1.0)
+                 for axis in np.eye(3)]
+        for i, part in enumerate(parts):
             lo[i], hi[i] = min(lo[i], float(part.lo.min())), max(hi[i], float(part.hi.max()))
-            dev[i] = max(dev[i], float(part.dev.max()))
             faults |= part.faults
-    return tuple(lo), tuple(hi), float(np.sqrt(np.sum(dev ** 2))) * (1 + 1e-12), frozenset(faults)
+        delta = max(delta, float(np.max(_length(parts))))
+    return tuple(lo), tuple(hi), delta * (1 + 1e-12), frozenset(faults)
+
+
+def _length(parts):
+    """Per sub-cone a bound on ``|δL|`` from the components' Intervals: their shared symbols
+    ``T·ε`` (the host's rounding, mostly across the vector once normalized) at the worst corner
+    of ``|ε_k| <= 1``, ``|T·ε|`` being convex, plus the remainders' root sum of squares."""
+    terms = np.stack([p.terms for p in parts], axis=-2)  # (S, 3, symbols)
+    err = np.stack([p.err for p in parts], axis=-1)  # (S, 3)
+    corners = np.array(np.meshgrid(*[[-1.0, 1.0]] * terms.shape[-1], indexing="ij")).reshape(terms.shape[-1], -1)
+    shared = np.sqrt(np.max(np.sum((terms @ corners) ** 2, axis=-2), axis=-1))
+    return shared + np.sqrt(np.sum(err ** 2, axis=-1))
 
 
 def local_vector(unit, cone, count, symbols):
