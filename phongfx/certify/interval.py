@@ -39,6 +39,8 @@ by a relative ``2^-50``, which covers float64's own rounding of these few operat
 rounding, the bounds snap to the source format's grid, on which every hardware value lies.
 """
 
+import functools
+
 import numpy as np
 
 from phongfx.core.format import Format
@@ -138,12 +140,16 @@ class Interval(Fixed):
         return Interval(np.broadcast_to(self.lo, self.shape)[index], np.broadcast_to(self.hi, self.shape)[index],
                         self.err[index], self.fmt, self.faults, terms)
 
-    @property
+    @functools.cached_property
     def dev(self):
-        """A bound on ``|hardware - ideal|`` per element."""
+        """A bound on ``|hardware - ideal|`` per element (an Interval is not changed once made)."""
         if self.terms is None:
             return self.err
-        return self.err + np.abs(self.terms).sum(axis=-1)
+        # the symbols added one by one: the same sum as np.sum's over so few, several times faster
+        total = np.abs(self.terms[..., 0])
+        for k in range(1, self.terms.shape[-1]):
+            total = total + np.abs(self.terms[..., k])
+        return self.err + total
 
     @property
     def magnitude(self):
@@ -212,12 +218,21 @@ class Interval(Fixed):
                         self._terms(scale))
 
     def sum(self, axis=-1):
-        lanes = [self[(slice(None),) * (self.err.ndim + axis if axis < 0 else axis) + (i,)]
-                 for i in range(self.shape[axis])]
-        total = lanes[0]
-        for lane in lanes[1:]:
-            total = total + lane
-        return total
+        """The lanes along ``axis`` added in order, as ``+`` adds them one by one (the same float
+        operations, on the arrays rather than an Interval per lane)."""
+        axis = self.err.ndim + axis if axis < 0 else axis
+        shape = self.shape
+        lo, hi = (np.moveaxis(np.broadcast_to(v, shape), axis, 0) for v in (self.lo, self.hi))
+        err = np.moveaxis(self.err, axis, 0)
+        terms = None if self.terms is None else np.moveaxis(self.terms, axis, 0)
+        total_lo, total_hi, total_err, fmt = lo[0], hi[0], err[0], self.fmt
+        total_terms = None if terms is None else terms[0]
+        for i in range(1, shape[axis]):
+            total_lo, total_hi = _widen(total_lo + lo[i], total_hi + hi[i])
+            total_err = (total_err + err[i]) * _GROW
+            total_terms = None if terms is None else total_terms + terms[i]
+            fmt = fmt.add(self.fmt)
+        return Interval(total_lo, total_hi, total_err, fmt, self.faults, total_terms)
 
     def dot(self, other):
         other = Interval.of(other)

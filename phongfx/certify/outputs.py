@@ -88,7 +88,11 @@ def _applied_n(unit, n):
 def _form(against, unit, n_hw, n, k, c):
     """Per box the distance of the ideal form at ``s = 1`` from the reference's (grouped by n)."""
     out = np.zeros(len(n))
-    for pair in np.unique(np.stack([n_hw, n], -1), axis=0).astype(np.int64).tolist():
+    # the distinct (n_hw, n) pairs, as one integer each (a row-wise unique sorts far slower)
+    hw, ref = np.asarray(n_hw).astype(np.int64), np.asarray(n).astype(np.int64)
+    base = int(ref.max(initial=0)) + 1
+    for key in np.unique(hw * base + ref).tolist():
+        pair = divmod(key, base)
         if against == "self" and pair[0] == pair[1]:
             continue
         pick = (n_hw == pair[0]) & (n == pair[1])
