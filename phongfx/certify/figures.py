@@ -14,7 +14,7 @@ from .cones import cone_why_not, directions
 from .outputs import box_errors
 from .sphere import cover
 
-__all__ = ["LyonDatapaths", "LYON_DATAPATHS", "directional_why_not"]
+__all__ = ["LyonDatapaths", "LYON_DATAPATHS", "directional_why_not", "unit_directions_why_not"]
 
 
 def directional_why_not(domain):
@@ -40,7 +40,7 @@ class LyonDatapaths:
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
-        why = cone_why_not(domain) or _directional_units(domain)
+        why = cone_why_not(domain) or unit_directions_why_not(domain)
         if why:
             return why
         if not any(values for _, values in domain.materials):
@@ -75,7 +75,7 @@ class LyonDatapaths:
         return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)
 
 
-def _directional_units(domain):
+def unit_directions_why_not(domain):
     """Why the directions at infinity are outside the bound's geometry (None when inside)."""
     vectors = [vector for kind, vector, _ in domain.lights if kind == "directional"]
     if domain.camera[0] == "infinity":

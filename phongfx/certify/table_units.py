@@ -39,6 +39,7 @@ from .branch import bound_boxes, cases
 from .codes import code_errors, code_ranges
 from .cones import cone_why_not, directions, spread
 from .datapath import within
+from .figures import unit_directions_why_not
 from .interval import Interval, rounding_error
 from .local_vectors import geometry_error, local_vector
 from .normalizer import (SYMBOLS, clamp, cosine, cosine_range, direction, inverse_length,
@@ -189,11 +190,9 @@ class TableUnit:
             return why
         if not any(values for _, values in domain.materials):
             return "the domain admits no shininess n"
-        vectors = [vector for kind, vector, _ in domain.lights if kind == "directional"]
-        if domain.camera[0] == "infinity":
-            vectors.append(domain.camera[1])
-        if any(abs(float(np.linalg.norm(v)) - 1.0) > 1e-9 for v in vectors):
-            return "the light and camera directions must be unit vectors, as the bound's geometry takes them"
+        why = unit_directions_why_not(domain)
+        if why:
+            return why
         if len(shader.units) != len(domain.lights):
             return f"the shader holds {len(shader.units)} copies of the unit for {len(domain.lights)} lights"
         local = domain.camera[0] == "point" or any(kind == "point" for kind, _, _ in domain.lights)
