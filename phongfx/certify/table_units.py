@@ -72,15 +72,15 @@ def _capped(c, excess=0.0):
     over, above = c.hi > 1.0, c.lo > 1.0
     if not np.any(over):
         return [c]
-    ones = np.ones(c.shape)
-    terms = None if c.terms is None else np.where(over[..., None], 0.0, c.terms)
-    one = Interval(np.where(over, ones, c.lo), np.where(over, ones, c.hi),
-                   np.where(over, np.maximum(c.dev, excess), c.err), c.fmt, c.faults, terms)
-    below = Interval(np.minimum(c.lo, 1.0), np.minimum(c.hi, 1.0), c.err, c.fmt, c.faults, c.terms)
-    below = Interval(np.where(above, ones, below.lo), np.where(above, ones, below.hi),
-                     np.where(above, one.err, below.err), c.fmt, c.faults,
-                     None if terms is None else np.where(above[..., None], 0.0, c.terms))
-    return [below, one]
+    one_err = np.maximum(c.dev, excess)
+
+    def case(one):  # exactly 1 where ``one``, with no terms there
+        terms = None if c.terms is None else np.where(one[..., None], 0.0, c.terms)
+        return Interval(np.where(one, 1.0, np.minimum(c.lo, 1.0)), np.where(one, 1.0, np.minimum(c.hi, 1.0)),
+                        np.where(one, one_err, c.err), c.fmt, c.faults, terms)
+
+    # below 1 it cannot be where the whole range is over 1: there too exactly 1
+    return [case(above), case(over)]
 
 
 def _conventional(unit, normal, k, y_max, light, view, light_view, ranges):
