@@ -30,7 +30,7 @@ unchanged on intervals; these steps are written here instead:
 * **Reflect and difference with a point light or a local viewer** (:mod:`.cones`): ``L`` and
   ``V`` then range over cones, and interval arithmetic would let ``R`` and ``D·D`` wander far
   past what the geometry allows (and saturate there).  Their hardware ranges are cut to the
-  ideal's geometric range widened by their deviation (:func:`within`) before the golden
+  ideal's geometric range widened by their deviation (:meth:`~.interval.Interval.within`) before the golden
   blocks' saturating quantizes, which are otherwise the golden ones; Figure 7's shape function
   runs per piece of the ideal ``|D|`` (:func:`_pieces`).  With lights and viewer at infinity
   the golden blocks run unchanged.
@@ -53,7 +53,7 @@ from .cones import at_infinity
 from .interval import Interval, rounding_error
 from .sphere import cover, frame, product, projection
 
-__all__ = ["UNITS", "SUB_CONES", "encoding_error", "lirp_error", "front", "interpolated", "within", "constant", "shape", "magnitude", "root", "unit_terms"]
+__all__ = ["UNITS", "SUB_CONES", "encoding_error", "lirp_error", "front", "interpolated", "constant", "shape", "magnitude", "root", "unit_terms"]
 
 #: The specular units bounded here (Lyon's Figures 7 and 8 and the halfway unit of Figure 5).
 UNITS = ("fig7", "fig8", "halfway")
@@ -198,30 +198,21 @@ def _shininess(config, n):
     return Fixed(np.clip(np.round(value), 1, top).astype(np.int64), fmt)
 
 
-def within(x, lo, hi):
-    """``x`` with its hardware range cut to ``[lo - dev, hi + dev]``: where the hardware can be
-    when the ideal value is known to lie in ``[lo, hi]`` (a bound from the geometry, tighter
-    than interval arithmetic's where L and V range over cones, :mod:`.cones`)."""
-    dev = x.dev
-    low = np.minimum(np.maximum(x.lo, lo - dev), x.hi)
-    return Interval(low, np.maximum(np.minimum(x.hi, hi + dev), low), x.err, x.fmt, x.faults, x.terms)
-
-
 def _reflected(config, normal, view, hints):
-    """:func:`phongfx.golden.reflect.reflect`'s ``R``, cut by :func:`within` to the ideal's range
+    """:func:`phongfx.golden.reflect.reflect`'s ``R``, cut by :meth:`~.interval.Interval.within` to the ideal's range
     ``hints["r"]`` before its saturating quantize (``hints`` None: the golden block)."""
     if hints is None:
         return reflect(config.reflect, normal, view)["r"]
     cfg = config.reflect
     dot = normal.dot(view).quantize(cfg.dot, cfg.rounding, "saturate", op="reflect N·V")
-    r = within(normal * (dot << 1)[:, None] - view, *hints["r"])
+    r = (normal * (dot << 1)[:, None] - view).within(*hints["r"])
     return r.quantize(cfg.out, cfg.rounding, "saturate", op="reflect R")
 
 
 def _pieces(config, r, l, n, span):
     """The shape function's ``spec`` (Figure 7c–d) from ``R`` and ``L``, taken in
     :data:`~.approximation.PIECES` pieces ``[a, b]`` of the ideal ``|D|``'s range ``span``
-    (``hints["d"]``): in each, ``D·D`` lies in ``[a² - dev, b² + dev]`` (:func:`within`) and
+    (``hints["d"]``): in each, ``D·D`` lies in ``[a² - dev, b² + dev]`` (:meth:`~.interval.Interval.within`) and
     ``|D·D - D'·D'| <= |δ|(2b + |δ|)`` for ``D`` within ``|δ|`` of the ideal ``D'``, so a
     large ``D`` (a steep ``x``) and a small one (a steep shape function) are bounded apart.
     Every point of a box lies in one piece: the box's Interval is their hull and their
@@ -236,7 +227,7 @@ def _pieces(config, r, l, n, span):
     norm = np.sqrt(np.sum(d.dev ** 2, axis=-1))[:, None]
     err = np.minimum(dd.dev[:, None], norm * (2 * b + norm)) * (1 + 1e-12)
     wide = Interval(np.repeat(dd.lo, PIECES), np.repeat(dd.hi, PIECES), err.ravel(), dd.fmt, dd.faults)
-    dd = within(wide, (a * a).ravel(), (b * b).ravel())
+    dd = wide.within((a * a).ravel(), (b * b).ravel())
     dd = dd.quantize(config.dd, config.rounding, "saturate", op="difference D·D")
     x2 = (Fixed(np.repeat(n.raw, PIECES), n.fmt) * dd).quantize(config.x2, config.rounding, "saturate",
                                                                  op="difference 2x")

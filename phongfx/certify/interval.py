@@ -238,6 +238,14 @@ class Interval(Fixed):
         other = Interval.of(other)
         return (self * self if other is self else self * other).sum(axis=-1)
 
+    def within(self, lo, hi):
+        """This value with its hardware range cut to ``[lo - dev, hi + dev]``: where the hardware
+        can be when the ideal value is known to lie in ``[lo, hi]`` (a bound from the geometry,
+        tighter than interval arithmetic's where L and V range over cones, :mod:`.cones`)."""
+        dev = self.dev
+        low = np.minimum(np.maximum(self.lo, lo - dev), self.hi)
+        return Interval(low, np.maximum(np.minimum(self.hi, hi + dev), low), self.err, self.fmt, self.faults, self.terms)
+
     # -- the one narrowing step -------------------------------------------------------------
 
     def quantize(self, to, rounding, overflow, op="quantize"):

@@ -18,7 +18,13 @@ Downstream, ``L̂`` enters as an exact vector over that hull, so the cosines and
 bounded against ``G(L̂, V̂)`` with ``G(X, Y) = 2(N̂·X)(N̂·Y) - X·Y`` (Phong's ``R·V``, exact
 algebra for any vectors), and ``G(L̂, V̂) - G(L, V) = δL·R_V + δV·R_L + 2(N̂·δL)(N̂·δV) - δL·δV``
 with ``R_V``, ``R_L`` the unit reflections of ``V`` and ``L`` about ``N̂``: at most
-``|δL| + |δV| + 3|δL||δV|`` (:func:`geometry_error`), whatever the directions.  Symbols per
+``|δL| + |δV| + 3|δL||δV|`` (:func:`geometry_error`), whatever the directions.  Closer where it
+matters, at the highlight: ``L·R_V = V·R_L = t``, Phong's ``R·V`` itself, so with ``δL`` split
+along ``L`` and across it, ``|δL·R_V| <= |δL·L|·|t| + |δL|·√(1 - t²)`` (``R_V - tL`` is
+``R_V``'s part across ``L``, of length ``√(1 - t²)``); at ``t`` near 1, where ``t^n`` is steep,
+only the part along ``L`` counts, and the normalizer has taken the host's rounding out of it
+(:func:`_along`: what is left is its table's and its own roundings').  The power's bound takes
+``t``'s deviation per band of ``t`` (:mod:`.table_units`).  Symbols per
 component of ``δL`` would cancel the same way only where the coefficient vectors were known;
 over a cone of ``V`` they range widely and the interval products lose the cancellation.
 
@@ -29,6 +35,7 @@ unit length by a constant gives vectors shorter than 1, whose rounding this boun
 """
 
 import functools
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -37,17 +44,32 @@ from .interval import Interval
 from .normalizer import clamp, cosine, direction, inverse_length, length_cases, normal_codes, squared_length
 from .sphere import cover, frame
 
-__all__ = ["local_vector", "geometry_error"]
+__all__ = ["Deviation", "EXACT", "local_vector", "geometry_error"]
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """Bounds on a vector's distance ``δL`` from the reference's unit ``L``: ``|δL| <= whole``
+    and ``|δL·L| <= along`` (the normalizer takes the host's rounding out along ``L``: what is
+    left there is its table's and its own roundings')."""
+
+    whole: float
+    along: float
+
+
+#: The deviation of a light or viewer at infinity: its code's error is the cosines' own symbol
+EXACT = Deviation(0.0, 0.0)
 
 
 @functools.lru_cache(maxsize=64)
 def _normalized(unit, cone):
-    """``(lo, hi, delta, faults)``: per component the range of the unit's normalized vector over
-    ``cone``, and the bound on ``|δL|``."""
+    """``(lo, hi, deviation, faults)``: per component the range of the unit's normalized vector
+    over ``cone``, and the bounds on ``δL`` (a :class:`Deviation`)."""
     vec = unit.fmt("vec")
     pieces = cover(np.cos(cone.half), 1.0, [(0, 0)], *SUB_CONES)
-    x = normal_codes(vec, pieces, frame(cone.axis))
-    lo, hi, delta, faults = np.full(3, np.inf), np.full(3, -np.inf), 0.0, set(x.faults)
+    basis = frame(cone.axis)
+    x = normal_codes(vec, pieces, basis)
+    lo, hi, delta, along, faults = np.full(3, np.inf), np.full(3, -np.inf), 0.0, 0.0, set(x.faults)
     for q in length_cases(squared_length(x, pieces.z)):
         k, y_max = inverse_length(unit, q)
         parts = [clamp(cosine(unit, x, k, y_max, direction(axis, vec, len(pieces)), vec), high=1.0)
@@ -55,8 +77,11 @@ def _normalized(unit, cone):
         for i, part in enumerate(parts):
             lo[i], hi[i] = min(lo[i], float(part.lo.min())), max(hi[i], float(part.hi.max()))
             faults |= part.faults
-        delta = max(delta, float(np.max(_length(parts))))
-    return tuple(lo), tuple(hi), delta * (1 + 1e-12), frozenset(faults)
+        whole = _length(parts)
+        delta = max(delta, float(np.max(whole)))
+        along = max(along, float(np.max(_along(parts, pieces, basis, whole))))
+    grow = 1 + 1e-12
+    return tuple(lo), tuple(hi), Deviation(delta * grow, min(along, delta) * grow), frozenset(faults)
 
 
 def _length(parts):
@@ -70,18 +95,39 @@ def _length(parts):
     return shared + np.sqrt(np.sum(err ** 2, axis=-1))
 
 
+def _along(parts, pieces, basis, whole):
+    """Per sub-cone a bound on ``|δL·L|``: about the sub-cone's middle direction ``u``, ``δL·u``
+    from the components' shared symbols (a linear form: its largest ``Σ_k |Σ_i u_i T_ik|``) and
+    remainders (``Σ_i |u_i| err_i``), and ``|δL·(L - u)| <= |δL|·|L - u|``, ``|L - u|`` at most
+    the arc from the middle to a corner (half the θ cut plus half the φ cut's arc at its widest)."""
+    theta, phi = pieces.theta.mean(axis=-1), pieces.phi.mean(axis=-1)
+    v, e1, e2 = basis
+    u = (np.cos(theta)[:, None] * v
+         + np.sin(theta)[:, None] * (np.cos(phi)[:, None] * e1 + np.sin(phi)[:, None] * e2))  # (S, 3)
+    terms = np.stack([p.terms for p in parts], axis=-2)  # (S, 3, symbols)
+    err = np.stack([p.err for p in parts], axis=-1)  # (S, 3)
+    shared = np.sum(np.abs(np.einsum("si,sik->sk", u, terms)), axis=-1)
+    arc = (np.diff(pieces.theta, axis=-1)[:, 0] / 2
+           + np.sin(np.minimum(pieces.theta[:, 1], np.pi / 2)) * np.diff(pieces.phi, axis=-1)[:, 0] / 2)
+    return shared + np.sum(np.abs(u) * err, axis=-1) + whole * arc
+
+
 def local_vector(unit, cone, count, symbols):
-    """``(L̂, delta)``: the unit's normalized vector toward the local
+    """``(L̂, deviation)``: the unit's normalized vector toward the local
     :class:`~phongfx.certify.cones.Direction` ``cone`` as an exact Interval (count, 3) over its
-    hull, with ``symbols`` noise symbols (all 0), and the bound ``delta`` on its distance
-    ``|δL|`` from the reference's unit vector (module docstring)."""
-    lo, hi, delta, faults = _normalized(unit, cone)
+    hull, with ``symbols`` noise symbols (all 0), and the :class:`Deviation` bounding its distance
+    ``δL = L̂ - L`` from the reference's unit vector (module docstring)."""
+    lo, hi, deviation, faults = _normalized(unit, cone)
     wide = (count, 3)
     return Interval(np.broadcast_to(lo, wide), np.broadcast_to(hi, wide), 0.0, unit.fmt("vec"), faults,
-                    np.zeros(wide + (symbols,))), delta
+                    np.zeros(wide + (symbols,))), deviation
 
 
-def geometry_error(light, view):
-    """A bound on ``|G(L̂, V̂) - G(L, V)|`` from ``|δL| <= light`` and ``|δV| <= view`` (module
-    docstring)."""
-    return (light + view + 3 * light * view) * (1 + 1e-12)
+def geometry_error(light, view, t=1.0, sine=1.0):
+    """A bound on ``|G(L̂, V̂) - G(L, V)|`` from the :class:`Deviation` of ``L̂`` and of ``V̂``
+    where Phong's ``t = R·V`` has ``|t| <= t`` and ``√(1 - t²) <= sine`` (module docstring);
+    arrays broadcast."""
+    def part(d):
+        return np.minimum(d.whole, d.along * t + d.whole * sine)
+
+    return (part(light) + part(view) + 3 * light.whole * view.whole) * (1 + 1e-12)

@@ -160,7 +160,7 @@ def rounded(x, error):
     return Interval(x.lo - error, x.hi + error, (x.err + error) * (1 + 1e-12), x.fmt, x.faults, x.terms)
 
 
-def cosine(config, normal, k, y_max, vector, fmt):
+def cosine(config, normal, k, y_max, vector, fmt, ideal=None):
     """``round(round(N·X·2^(j-h))·y1)`` in ``fmt`` before its clamps: ``N·X`` exact (``vector``
     the constant ``X`` as an Interval, its code's distance to the exact one as remainder, or a
     local one over its cone, :mod:`.local_vectors`),
@@ -169,9 +169,13 @@ def cosine(config, normal, k, y_max, vector, fmt):
     it is on ``dot``'s grid already: with ``X``'s codes multiples of ``2^t`` LSBs, ``N·X`` is on
     a grid of ``2F - t`` fraction bits, and ``2^(j-h)`` moves it right by at most one bit
     (``q < 4``), so an axis-aligned viewer's ``N·V`` is exact there; a vector over a cone takes
-    any codes (``t = 0``)."""
+    any codes (``t = 0``).  ``ideal``: ``(lo, hi)``, where the ideal ``N'·X`` is known to lie (the
+    geometry's range, :meth:`~.interval.Interval.within`), which keeps a vector over a cone from
+    widening the product's remainders by the whole of its hull."""
     dot = config.fmt("dot")
     d = normal.dot(vector)
+    if ideal is not None:
+        d = d.within(*ideal)
     c = d * k
     faults = c.faults
     if np.max(np.linalg.norm(vector.magnitude, axis=-1)) >= dot.max_raw * dot.lsb:

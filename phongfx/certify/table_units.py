@@ -38,14 +38,13 @@ from phongfx.golden.conventional import conventional
 from .branch import bound_boxes, cases
 from .codes import code_errors, code_ranges
 from .cones import cone_why_not, directions, spread
-from .datapath import within
 from .figures import unit_directions_why_not
 from .interval import Interval, rounding_error
-from .local_vectors import geometry_error, local_vector
+from .local_vectors import EXACT, geometry_error, local_vector
 from .normalizer import (SYMBOLS, clamp, cosine, cosine_range, direction, inverse_length,
                          length_cases, normal_codes, product_of, rounded, squared_length)
 from .outputs import coefficient_tables
-from .sphere import cover
+from .sphere import cover, product
 from .tables import power_bound
 
 __all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "TableUnit", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
@@ -87,17 +86,21 @@ def _conventional(unit, normal, k, y_max, light, view, light_view, ranges):
     # against G(L̂, V̂) (module docstring of .local_vectors; L̂ = L at infinity), each Interval's
     # range cut to the geometry's exact one widened by its deviation and by |δL|, |δV| (within):
     # with a cone of L or V, interval products alone would let them wander far past it
-    (q, p, ideal), (e_light, e_view) = ranges
-    near = geometry_error(e_light, e_view)
-    raw_light = within(cosine(unit, normal, k, y_max, light, unit.fmt("cos")), q[0] - e_light, q[1] + e_light)
-    raw_view = within(cosine(unit, normal, k, y_max, view, unit.fmt("cos")), p[0] - e_view, p[1] + e_view)
+    (q, p, ideal), (d_light, d_view), root = ranges
+    near, e_light, e_view = geometry_error(d_light, d_view), d_light.whole, d_view.whole
+    # N'·L̂ = |N'|(N̂·L̂), N̂·L̂ within |δL| of N̂·L
+    raw_light = cosine(unit, normal, k, y_max, light, unit.fmt("cos"),
+                       product(root, (q[0] - e_light, q[1] + e_light))).within(q[0] - e_light, q[1] + e_light)
+    raw_view = cosine(unit, normal, k, y_max, view, unit.fmt("cos"),
+                      product(root, (p[0] - e_view, p[1] + e_view))).within(p[0] - e_view, p[1] + e_view)
     lo, hi, dev = np.inf, -np.inf, 0.0
     for c_light in _capped(raw_light, e_light):  # each case of the two clamps, the worst of them
         for c_view in _capped(raw_view, e_view):
-            pre = within((c_light * c_view).shift(1) - light_view, ideal[0] - near, ideal[1] + near)
+            pre = ((c_light * c_view).shift(1) - light_view).within(ideal[0] - near, ideal[1] + near)
             (t_lo, t_hi), t_dev = _t(unit, pre)
             lo, hi, dev = np.minimum(lo, t_lo), np.maximum(hi, t_hi), np.maximum(dev, t_dev)
-    return clamp(raw_light, high=1.0), (lo, hi), dev + near
+    # against G(L̂, V̂): the geometry's part (δL, δV) is added per band of t by _power
+    return clamp(raw_light, high=1.0), (lo, hi), dev
 
 
 def _blinn(unit, normal, k, y_max, light, half, light_view, ranges):
@@ -113,6 +116,41 @@ def _reflected(boxes, basis, light, view):
 def _direct(boxes, basis, light, half):
     """``N̂·H`` over each box."""
     return cosine_range(boxes, basis, half)
+
+
+#: Edges of the bands of the ideal ``t`` over which the power's bound takes the geometry's part of
+#: ``t``'s deviation (:func:`~.local_vectors.geometry_error`): ``1 - t`` quartered toward 1, where
+#: ``t^n`` is steep and the part across ``L`` and ``V`` fades as ``√(1 - t²)`` (halved per band)
+BANDS = (-1.0, 0.0) + tuple(1.0 - 4.0 ** -k for k in range(1, 8)) + (1.0,)
+
+
+def _power(unit, n_hw, ideal, dev, deviations, hardware):
+    """:func:`~phongfx.certify.tables.power_bound` for an ideal ``t`` in ``ideal`` and a hardware
+    ``t`` within ``dev`` of ``G(L̂, V̂)`` (or ``V̂``'s ``N̂·H``), itself within the geometry's
+    bound of Phong's ``t`` for the ``deviations`` ``(δL, δV)``: over the whole range when both
+    are exact (at infinity), else the largest over the :data:`BANDS` the range meets, each with
+    the geometry's bound at its own ``|t|`` and ``√(1 - t²)``."""
+    light, view = deviations
+    if light.whole == 0 and view.whole == 0:
+        return power_bound(unit, n_hw, ideal, dev, hardware)
+    # Phong's t is a cosine: its ranges pass [-1, 1] only by their float slack
+    a, b = (np.clip(np.asarray(v, dtype=np.float64), -1.0, 1.0) for v in ideal)
+    dev, n_hw = np.broadcast_to(dev, a.shape), np.broadcast_to(n_hw, a.shape)
+    found = [np.zeros(a.shape) for _ in range(3)]
+    for edge_lo, edge_hi in zip(BANDS[:-1], BANDS[1:]):
+        lo, hi = np.maximum(a, edge_lo), np.minimum(b, edge_hi)
+        meet = lo <= hi
+        if not np.any(meet):
+            continue
+        lo, hi = lo[meet], hi[meet]
+        least = np.where((lo <= 0) & (hi >= 0), 0.0, np.minimum(np.abs(lo), np.abs(hi)))
+        sine = np.sqrt(np.clip(1.0 - least ** 2, 0.0, 1.0))
+        near = geometry_error(light, view, np.minimum(np.maximum(np.abs(lo), np.abs(hi)), 1.0), sine)
+        parts = power_bound(unit, n_hw[meet], (lo, hi), dev[meet] + near,
+                            (np.broadcast_to(hardware[0], a.shape)[meet], np.broadcast_to(hardware[1], a.shape)[meet]))
+        for total, part in zip(found, parts):
+            total[meet] = np.maximum(total[meet], part)
+    return tuple(found)
 
 
 def light_terms(unit, boxes, basis, vectors, ranges, specular, n_hw):
@@ -133,7 +171,7 @@ def light_terms(unit, boxes, basis, vectors, ranges, specular, n_hw):
         c_light, hardware, dev = specular(unit, normal, k, y_max, l_code, s_code, light_view, ranges)
         diff = clamp(rounded(c_light, rounding_error(c_light.fmt, out, unit.rounding)), 0.0, 1.0)
         # the diffuse term against max(N̂·L̂, 0), then within |δL| of max(N̂·L, 0)
-        case = (diff.dev + ranges[1][0], diff.hi, *power_bound(unit, n_hw, ranges[0][2], dev, hardware))
+        case = (diff.dev + ranges[1][0].whole, diff.hi, *_power(unit, n_hw, ranges[0][2], dev, ranges[1], hardware))
         worst = case if worst is None else tuple(np.maximum(a, b) for a, b in zip(worst, case))
         faults |= diff.faults | c_light.faults
     e_d, d_hi, e_s, hw_hi, ideal_hi = worst
@@ -218,15 +256,16 @@ class TableUnit:
             second = _unit(axis + view) if self.halfway else view
             vec = unit.fmt("vec")
             l_code, e_light = (local_vector(unit, light, count, SYMBOLS) if light.local
-                               else (direction(axis, vec, count), 0.0))
+                               else (direction(axis, vec, count), EXACT))
             s_code, e_view = (local_vector(unit, cones.view, count, SYMBOLS) if cones.view.local
-                              else (direction(second, vec, count), 0.0))
+                              else (direction(second, vec, count), EXACT))
             light_view = (l_code.dot(s_code) if light.local or cones.view.local
                           else product_of(l_code, s_code, count))
             # the reference's L and V anywhere in their cones: R̂·L moves by both halves
             ideal = spread(self.cosine_range(boxes, basis, axis, second), light.half + cones.view.half)
             q = spread(cosine_range(boxes, basis, axis), light.half)
-            ranges = ((q, spread(cosine_range(boxes, basis, second), cones.view.half), ideal), (e_light, e_view))
+            root = tuple(np.sqrt(np.clip(boxes.z[:, i], 0.0, 1.0)) for i in (0, 1))
+            ranges = ((q, spread(cosine_range(boxes, basis, second), cones.view.half), ideal), (e_light, e_view), root)
             e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, (l_code, s_code, light_view),
                                                                  ranges, self.specular, n_hw)
             faults |= found
