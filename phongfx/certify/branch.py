@@ -20,7 +20,7 @@ import numpy as np
 
 from .sphere import Boxes, cover
 
-__all__ = ["bound_boxes", "cases"]
+__all__ = ["bound_boxes", "cases", "first_boxes"]
 
 
 def cases(domain):
@@ -28,13 +28,19 @@ def cases(domain):
     return [(n, m) for m, (_, values) in enumerate(domain.materials) for n in values]
 
 
+def first_boxes(domain):
+    """The first cover of the domain's normals (:func:`~phongfx.certify.sphere.cover`), one set
+    per admissible ``n``."""
+    return cover(domain.view_cos_min, domain.min_normal_length, cases(domain),
+                 view_cos_max=getattr(domain, "view_cos_max", 1.0))
+
+
 def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60.0, batch=2048,
-                max_batch=65536, enough=None, boxes=None):
+                max_batch=65536, enough=None, boxes=None, patience=4):
     """Branch and bound (module docstring): ``(bound, parts)``, ``bound`` inf when some box
     cannot be bounded (``parts["faults"]`` then names the quantizes that may overflow).
 
-    ``boxes``: the first cover (default :func:`~phongfx.certify.sphere.cover` of the domain's
-    normals, one set per admissible ``n``).  Each round halves the boxes within ``tolerance``
+    ``boxes``: the first cover (default :func:`first_boxes`).  Each round halves the boxes within ``tolerance``
     of the largest bound (at least the ``batch`` largest, at most ``max_batch``); it stops when
     the largest has fallen by under 0.2 % over four rounds that split every box near it, or once
     ``max_boxes`` boxes have been bounded (the budget that makes the result the same on every
@@ -52,10 +58,7 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
         total = np.max(rounding + approximation, axis=-1) + 0.5
         return boxes, np.nan_to_num(total, nan=np.inf), rounding, approximation, gate
 
-    if boxes is None:
-        boxes = cover(domain.view_cos_min, domain.min_normal_length, cases(domain),
-                      view_cos_max=getattr(domain, "view_cos_max", 1.0))
-    pool = evaluate(boxes)
+    pool = evaluate(first_boxes(domain) if boxes is None else boxes)
     evaluated = len(pool[0])
     while True:
         boxes, total = pool[0], pool[1]
@@ -63,8 +66,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
         near = total >= top - tolerance
         whole = np.count_nonzero(near) <= max_batch
         history.append((top, whole))
-        settled = (len(history) > 4 and all(w for _, w in history[-4:])
-                   and history[-5][0] - top <= 0.002 * max(top, 1.0))
+        settled = (len(history) > patience and all(w for _, w in history[-patience:])
+                   and history[-patience - 1][0] - top <= 0.002 * max(top, 1.0))
         met = enough is not None and top < enough
         spent.append(evaluated)
         if enough is not None and not met and len(history) > 3 and all(w for _, w in history[-4:]):
@@ -80,7 +83,7 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
                             [part[pick] for part in pool[1:]])
         evaluated += len(children[0])
         rest = [boxes.take(~pick)] + [part[~pick] for part in pool[1:]]
-        pool = (_concat(rest[0], children[0]),) + tuple(np.concatenate([a, b]) for a, b in zip(rest[1:], children[1:]))
+        pool = (Boxes.concat(rest[0], children[0]),) + tuple(np.concatenate([a, b]) for a, b in zip(rest[1:], children[1:]))
     bound, parts = _worst(*pool, domain)
     parts.update(boxes=int(evaluated), rounds=len(history))
     if abandoned:
@@ -102,10 +105,6 @@ def _inherit(children, parents):
     return (boxes, total, *rest)
 
 
-def _concat(a, b):
-    return Boxes(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in ("theta", "phi", "z", "n", "material")))
-
-
 def _box(boxes, i, domain, channel=None):
     """Where box ``i`` is: its ``n``, material, channel and ranges of θ, φ (degrees) and z."""
     out = {"n": int(boxes.n[i]), "material": domain.materials[int(boxes.material[i])][0]}
@@ -114,6 +113,8 @@ def _box(boxes, i, domain, channel=None):
     out.update(theta_deg=[round(float(np.degrees(x)), 4) for x in boxes.theta[i]],
                phi_deg=[round(float(np.degrees(x)), 4) for x in boxes.phi[i]],
                z=[round(float(x), 6) for x in boxes.z[i]])
+    if boxes.cells is not None:
+        out["cell"] = [[round(float(x), 6) for x in corner] for corner in boxes.cells[i]]
     return out
 
 

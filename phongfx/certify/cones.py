@@ -48,9 +48,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .approximation import scale_range
-from .sphere import cos_range, frame, projection
+from .sphere import cos_range, frame, product, projection
 
-__all__ = ["Direction", "Directions", "at_infinity", "directions", "cone_why_not", "spread"]
+__all__ = ["Direction", "Directions", "at_infinity", "directions", "cone_why_not", "spread", "between",
+           "reflection_range"]
 
 @dataclass(frozen=True)
 class Direction:
@@ -214,9 +215,30 @@ def directions(domain):
 
 def spread(cosines, half):
     """``(lo, hi)`` of ``cos(t)`` for ``t`` within ``half`` of an angle whose cosine is in
-    ``cosines = (lo, hi)`` (module docstring): ``cosines`` itself when ``half`` is 0."""
-    if half == 0:
+    ``cosines = (lo, hi)`` (module docstring): ``cosines`` itself when ``half`` is 0 (``half`` one
+    angle or one per element)."""
+    if np.all(np.asarray(half) == 0):
         return cosines
     near = np.arccos(np.clip(cosines[1], -1.0, 1.0))
     far = np.arccos(np.clip(cosines[0], -1.0, 1.0))
     return cos_range(np.maximum(near - half, 0.0), np.minimum(far + half, np.pi))
+
+
+def between(light, view):
+    """``(lo, hi)`` of ``L·V`` for ``L`` and ``V`` in the cones ``(axis, half)`` ``light`` and
+    ``view`` (one or one per box): the angle between the axes, widened by both halves."""
+    (l_axis, l_half), (v_axis, v_half) = light, view
+    l_axis, v_axis = np.asarray(l_axis, dtype=np.float64), np.asarray(v_axis, dtype=np.float64)
+    apart = np.arccos(np.clip(np.sum(l_axis * v_axis, -1), -1.0, 1.0))
+    return cos_range(np.maximum(apart - l_half - v_half, 0.0), np.minimum(apart + l_half + v_half, np.pi))
+
+
+def reflection_range(ideal, q, p, light, view):
+    """Phong's ``R·V = 2(N̂·L)(N̂·V) - L·V`` over a box with cells: ``ideal`` (about the frame's
+    ``V0``) cut to the product of the cell's ranges of ``N̂·L`` and ``N̂·V`` less its ``L·V`` (the
+    angle between the two cones' axes, widened by both halves)."""
+    lv = between(light, view)
+    qp = product(q, p)
+    lo = np.maximum(ideal[0], 2 * qp[0] - lv[1])
+    hi = np.minimum(ideal[1], 2 * qp[1] - lv[0])
+    return lo, np.maximum(hi, lo)

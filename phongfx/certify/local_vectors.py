@@ -39,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .cones import spread
 from .datapath import SUB_CONES
 from .interval import Interval
 from .normalizer import clamp, cosine, direction, inverse_length, length_cases, normal_codes, squared_length
@@ -56,6 +57,11 @@ class Deviation:
     whole: float
     along: float
 
+    @property
+    def excess(self):
+        """How far ``|L + δL|`` may pass 1: ``√(1 + 2δL·L + |δL|²) <= 1 + along + whole²/2``."""
+        return (self.along + self.whole ** 2 / 2) * (1 + 1e-12)
+
 
 #: The deviation of a light or viewer at infinity: its code's error is the cosines' own symbol
 EXACT = Deviation(0.0, 0.0)
@@ -63,25 +69,29 @@ EXACT = Deviation(0.0, 0.0)
 
 @functools.lru_cache(maxsize=64)
 def _normalized(unit, cone):
-    """``(lo, hi, deviation, faults)``: per component the range of the unit's normalized vector
-    over ``cone``, and the bounds on ``δL`` (a :class:`Deviation`)."""
+    """``(lo, hi, deviation, devs, faults)``: per component the range of the unit's normalized
+    vector over ``cone``, the bounds on ``δL`` (a :class:`Deviation`) and per component on
+    ``|L̂_i - L_i|``."""
     vec = unit.fmt("vec")
     pieces = cover(np.cos(cone.half), 1.0, [(0, 0)], *SUB_CONES)
     basis = frame(cone.axis)
     x = normal_codes(vec, pieces, basis)
     lo, hi, delta, along, faults = np.full(3, np.inf), np.full(3, -np.inf), 0.0, 0.0, set(x.faults)
+    devs = np.zeros(3)
     for q in length_cases(squared_length(x, pieces.z)):
         k, y_max = inverse_length(unit, q)
         parts = [clamp(cosine(unit, x, k, y_max, direction(axis, vec, len(pieces)), vec), high=1.0)
                  for axis in np.eye(3)]
         for i, part in enumerate(parts):
             lo[i], hi[i] = min(lo[i], float(part.lo.min())), max(hi[i], float(part.hi.max()))
+            devs[i] = max(devs[i], float(part.dev.max()))
             faults |= part.faults
         whole = _length(parts)
         delta = max(delta, float(np.max(whole)))
         along = max(along, float(np.max(_along(parts, pieces, basis, whole))))
     grow = 1 + 1e-12
-    return tuple(lo), tuple(hi), Deviation(delta * grow, min(along, delta) * grow), frozenset(faults)
+    return (tuple(lo), tuple(hi), Deviation(delta * grow, min(along, delta) * grow), tuple(devs * grow),
+            frozenset(faults))
 
 
 def _length(parts):
@@ -112,13 +122,20 @@ def _along(parts, pieces, basis, whole):
     return shared + np.sum(np.abs(u) * err, axis=-1) + whole * arc
 
 
-def local_vector(unit, cone, count, symbols):
+def local_vector(unit, cone, count, symbols, cells=None):
     """``(L̂, deviation)``: the unit's normalized vector toward the local
     :class:`~phongfx.certify.cones.Direction` ``cone`` as an exact Interval (count, 3) over its
     hull, with ``symbols`` noise symbols (all 0), and the :class:`Deviation` bounding its distance
-    ``δL = L̂ - L`` from the reference's unit vector (module docstring)."""
-    lo, hi, deviation, faults = _normalized(unit, cone)
+    ``δL = L̂ - L`` from the reference's unit vector (module docstring).  ``cells``: ``(axis (B,
+    3), half (B,))``, per box a narrower cone inside ``cone`` (:mod:`.cells`), whose hull is its
+    exact components' ranges widened by each component's largest deviation over ``cone``."""
+    lo, hi, deviation, devs, faults = _normalized(unit, cone)
     wide = (count, 3)
+    if cells is not None:
+        axis, half = cells
+        parts = [spread((axis[:, i], axis[:, i]), half) for i in range(3)]
+        lo = np.maximum(np.stack([p[0] for p in parts], -1) - devs, lo)
+        hi = np.minimum(np.stack([p[1] for p in parts], -1) + devs, hi)
     return Interval(np.broadcast_to(lo, wide), np.broadcast_to(hi, wide), 0.0, unit.fmt("vec"), faults,
                     np.zeros(wide + (symbols,))), deviation
 

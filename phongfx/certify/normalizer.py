@@ -48,15 +48,16 @@ SYMBOLS, OFFSET, TABLE = 5, 3, 4
 
 
 def cosine_range(boxes, basis, w, reflected=False):
-    """Exact ``(lo, hi)`` of ``W·N̂`` (or ``R̂·W``, ``reflected``) over each box: the form of
+    """Exact ``(lo, hi)`` of ``W·N̂`` (or ``R̂·W``, ``reflected``) over each box (``w`` one vector or
+    one per box): the form of
     :func:`~phongfx.certify.sphere.projection`, ``a·cos(sθ) + b·sin(sθ)·C`` with ``C = cos(φ - ψ)``,
     is linear in ``C``, so its extremes are at ``C``'s ends, and at a fixed ``C`` it is
     ``A·cos(sθ - α)``, whose range over ``θ`` is exact (:func:`~phongfx.certify.sphere.cos_range`).
     Interval products of the two factors would lose the first order at a cosine's peak, where a
     large ``n`` needs it."""
     v, e1, e2 = basis
-    w = np.asarray(w, dtype=np.float64)
-    a, b, psi = float(w @ v), float(np.hypot(w @ e1, w @ e2)), float(np.arctan2(w @ e2, w @ e1))
+    w = np.asarray(w, dtype=np.float64)  # one vector, or one per box (B, 3)
+    a, b, psi = w @ v, np.hypot(w @ e1, w @ e2), np.arctan2(w @ e2, w @ e1)
     s = 2.0 if reflected else 1.0
     turn = cos_range(boxes.phi[:, 0] - psi, boxes.phi[:, 1] - psi)
     lo, hi = np.full(len(boxes), np.inf), np.full(len(boxes), -np.inf)

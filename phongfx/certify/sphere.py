@@ -27,27 +27,41 @@ _SLACK = 1e-14
 @dataclass
 class Boxes:
     """``B`` boxes: ``theta``, ``phi``, ``z`` of shape (B, 2) (low, high), ``n`` and
-    ``material`` of shape (B,)."""
+    ``material`` of shape (B,); with point lights or a local viewer, optionally ``cells`` (B, 2,
+    3): per box an axis-aligned box of the surface points (low and high corners,
+    :mod:`.cells`), ``cell_scale`` ``(per_length, radius)``: the radians its half-diagonal turns
+    their directions by at most, per unit of length, up to the domain ball's ``radius``."""
 
     theta: np.ndarray
     phi: np.ndarray
     z: np.ndarray
     n: np.ndarray
     material: np.ndarray
+    cells: np.ndarray = None
+    cell_scale: tuple = (0.0, np.inf)
 
     def __len__(self):
         return len(self.n)
 
     def take(self, index):
-        return Boxes(self.theta[index], self.phi[index], self.z[index], self.n[index], self.material[index])
+        return Boxes(self.theta[index], self.phi[index], self.z[index], self.n[index], self.material[index],
+                     None if self.cells is None else self.cells[index], self.cell_scale)
 
     def widths(self):
-        """(B, 3) the extent of each box along θ, φ (as an arc at its widest) and z."""
+        """(B, 3) the extent of each box along θ, φ (as an arc at its widest) and z; (B, 4) with
+        cells, the fourth the angle their half-diagonal turns a light's or the viewer's direction
+        by (``cell_scale`` times it)."""
         arc = (self.phi[:, 1] - self.phi[:, 0]) * np.sin(np.minimum(self.theta[:, 1], np.pi / 2))
-        return np.stack([self.theta[:, 1] - self.theta[:, 0], arc, self.z[:, 1] - self.z[:, 0]], -1)
+        sides = [self.theta[:, 1] - self.theta[:, 0], arc, self.z[:, 1] - self.z[:, 0]]
+        if self.cells is not None:  # a cell's points are in the domain's ball too: no wider than it
+            per_length, radius = self.cell_scale
+            sides.append(per_length * np.minimum(np.linalg.norm(self.cells[:, 1] - self.cells[:, 0], axis=-1) / 2,
+                                                 radius))
+        return np.stack(sides, -1)
 
     def split(self):
-        """Each box halved along its widest side (:meth:`widths`): twice as many boxes."""
+        """Each box halved along its widest side (:meth:`widths`; a cell along its longest edge):
+        twice as many boxes, the low halves first."""
         axis = np.argmax(self.widths(), axis=-1)
         parts = [self.theta, self.phi, self.z]
         low = [p.copy() for p in parts]
@@ -57,8 +71,25 @@ class Boxes:
             mid = 0.5 * (p[cut, 0] + p[cut, 1])
             low[dim][cut, 1] = mid
             high[dim][cut, 0] = mid
+        cells = None
+        if self.cells is not None:
+            below, above = self.cells.copy(), self.cells.copy()
+            cut = np.flatnonzero(axis == 3)
+            edge = np.argmax(self.cells[cut, 1] - self.cells[cut, 0], axis=-1)
+            mid = 0.5 * (self.cells[cut, 0, edge] + self.cells[cut, 1, edge])
+            below[cut, 1, edge] = mid
+            above[cut, 0, edge] = mid
+            cells = np.concatenate([below, above])
         return Boxes(*(np.concatenate([a, b]) for a, b in zip(low, high)),
-                     np.concatenate([self.n, self.n]), np.concatenate([self.material, self.material]))
+                     np.concatenate([self.n, self.n]), np.concatenate([self.material, self.material]), cells,
+                     self.cell_scale)
+
+    @staticmethod
+    def concat(a, b):
+        """The boxes of ``a`` then those of ``b`` (both with cells or both without)."""
+        cells = None if a.cells is None else np.concatenate([a.cells, b.cells])
+        return Boxes(*(np.concatenate([getattr(a, f), getattr(b, f)]) for f in ("theta", "phi", "z", "n", "material")),
+                     cells, a.cell_scale)
 
 
 def frame(view):

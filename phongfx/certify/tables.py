@@ -144,7 +144,7 @@ def power_error(config, n):
     return _power_tables(_key(config, "t", "log", "log_addr", "exp", "exp_addr", "out", "rounding"), int(n))
 
 
-def power_bound(config, n, ideal, dev, hardware=None):
+def power_bound(config, n, ideal, dev, hardware=None, bands=()):
     """``(bound, spec_hi, ideal_hi)`` per element: a bound on ``|P(t_hw, n) - t^n|`` for an
     ideal ``t`` in ``ideal = (a, b)`` (within ``[0, 1]``) and a hardware code ``t_hw`` within
     ``dev`` of it (and in ``hardware = (lo, hi)`` when given), the largest ``P(t_hw)`` and the
@@ -156,7 +156,12 @@ def power_bound(config, n, ideal, dev, hardware=None):
     ``-max(t^n - max(t - dev, 0)^n)`` (rising with ``t``: at ``b``), with ``t_hw`` between the
     first and the last code of its range (near ``t = 1`` at a large ``n``, where the code's own
     step is most of ``dev``, that is what a bound needs); the signs of both parts are kept, as the
-    table's error is mostly one-signed."""
+    table's error is mostly one-signed.
+
+    ``bands``: ``((lo, hi), dev_b)`` per band of ``t`` (arrays like ``a``; ``lo > hi`` where an
+    element's range misses the band), within which ``t_hw`` is within the smaller ``dev_b`` of
+    ``t`` (``dev`` the largest, over the whole range): the second term is then the largest over
+    the bands, each with its own deviation."""
     fmt = config.fmt("t")
     a, b = (np.clip(np.asarray(v, dtype=np.float64), 0.0, 1.0) for v in ideal)
     lo, hi = np.maximum(a - dev, 0.0), np.minimum(b + dev, 1.0)
@@ -176,8 +181,16 @@ def power_bound(config, n, ideal, dev, hardware=None):
         e_hi[pick] = up.max(first[pick], last[pick])
         e_lo[pick] = -down.max(first[pick], last[pick])
         spec_hi[pick] = spec.max(first[pick], last[pick])
-    x = np.clip(top - dev, a, b)
-    rise = np.maximum(np.minimum(x + dev, top) ** n - x ** n, 0.0) * (1 + 1e-12)
-    fall = np.maximum(b ** n - np.maximum(b - dev, low) ** n, 0.0) * (1 + 1e-12)
+    rise, fall = np.zeros(a.shape), np.zeros(a.shape)
+    for (band_lo, band_hi), band_dev in (bands or [((a, b), dev)]):
+        meet = np.flatnonzero(np.ravel(band_lo <= band_hi))
+        u, v, d = (np.clip(np.ravel(np.broadcast_to(x, a.shape))[meet], 0.0, 1.0) if i < 2
+                   else np.ravel(np.broadcast_to(x, a.shape))[meet] for i, x in enumerate((band_lo, band_hi, band_dev)))
+        m, t_top, t_low = np.ravel(n)[meet], np.ravel(top)[meet], np.ravel(low)[meet]
+        x = np.clip(t_top - d, u, v)
+        up = np.maximum(np.minimum(x + d, t_top) ** m - x ** m, 0.0) * (1 + 1e-12)
+        down = np.maximum(v ** m - np.maximum(v - d, t_low) ** m, 0.0) * (1 + 1e-12)
+        rise.flat[meet] = np.maximum(rise.flat[meet], up)
+        fall.flat[meet] = np.maximum(fall.flat[meet], down)
     bound = np.maximum(np.abs(e_hi + rise), np.abs(e_lo - fall))
     return bound, spec_hi, b ** n * (1 + 1e-12)
