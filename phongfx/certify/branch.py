@@ -40,13 +40,14 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
     """Branch and bound (module docstring): ``(bound, parts)``, ``bound`` inf when some box
     cannot be bounded (``parts["faults"]`` then names the quantizes that may overflow).
 
-    ``boxes``: the first cover (default :func:`first_boxes`).  Each round halves the boxes within ``tolerance``
-    of the largest bound (at least the ``batch`` largest, at most ``max_batch``); it stops when
-    the largest has fallen by under 0.2 % over four rounds that split every box near it, or once
+    ``boxes``: the first cover (default :func:`first_boxes`).  Each round halves the boxes within
+    ``tolerance`` of the largest bound (at least the ``batch`` largest, at most ``max_batch``); it
+    stops when the largest has fallen by under 0.2 % over ``patience`` rounds that split every box
+    near it (a box with more sides needs more halvings before its children's bounds fall), or once
     ``max_boxes`` boxes have been bounded (the budget that makes the result the same on every
     machine), or at ``seconds``, or as soon as the largest is below ``enough`` (a width search
     needs no tighter bound).  With ``enough``, it also stops once the largest, falling at its
-    pace per box of the last three rounds that split every box near it, would still not be
+    pace per box of the last ``patience - 1`` rounds that split every box near it, would still not be
     below ``enough`` when the budget is spent (``parts["abandoned"]``): the bounds of a branch and
     bound fall ever more slowly, so the pace so far is the most the rest could give, and a width
     search's failing designs, the most of its certificates, cost a fraction of the budget."""
@@ -70,8 +71,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
                    and history[-patience - 1][0] - top <= 0.002 * max(top, 1.0))
         met = enough is not None and top < enough
         spent.append(evaluated)
-        if enough is not None and not met and len(history) > 3 and all(w for _, w in history[-4:]):
-            pace = (history[-4][0] - top) / max(evaluated - spent[-4], 1)
+        if enough is not None and not met and len(history) > patience - 1 and all(w for _, w in history[-patience:]):
+            pace = (history[-patience][0] - top) / max(evaluated - spent[-patience], 1)
             abandoned = top - pace * (max_boxes - evaluated) >= enough
         if met or settled or abandoned or time.perf_counter() - start > seconds or evaluated > max_boxes:
             break

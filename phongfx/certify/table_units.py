@@ -57,7 +57,7 @@ from .outputs import coefficient_tables
 from .sphere import cover, product
 from .tables import power_bound
 
-__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "CELL_WEIGHT", "TableUnit", "Ranges", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
+__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "CELL_WEIGHT", "CELL_PATIENCE", "TableUnit", "Ranges", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
 
 
 #: A box holding at most this many normal codes is bounded code by code (:mod:`.codes`) ...
@@ -66,6 +66,10 @@ CODES_PER_BOX = 256
 CODES_PER_CALL = 1 << 20
 #: How a cell's angle (:mod:`.cells`) weighs against the normals' sides when a box is halved
 CELL_WEIGHT = 1.0
+#: Rounds of the branch and bound over which boxes with cells must stop falling before it stops
+#: (:func:`~phongfx.certify.branch.bound_boxes`' ``patience``): with five sides a box is halved
+#: along each of them before its children's bounds fall, and four rounds would stop it there
+CELL_PATIENCE = 8
 
 
 def _t(config, pre):
@@ -381,7 +385,8 @@ class TableUnit:
         def errors(boxes, floor):
             return self.errors(shader, against, boxes, cones, floor, domain)
 
-        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)
+        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes,
+                           patience=CELL_PATIENCE if boxes is not None and boxes.cells is not None else 4)
 
 
 def _unit(v):
