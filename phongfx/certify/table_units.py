@@ -304,7 +304,8 @@ class TableUnit:
         n_hw = self.n_scale * n
         basis, count = cones.basis, len(boxes)
         terms, faults = [], set()
-        light_cells, view_cell = per_box(domain, boxes) if boxes.cells is not None else ([None] * count, None)
+        light_cells, view_cell = (per_box(domain, boxes) if boxes.cells is not None
+                                  else ([None] * len(cones.lights), None))
         # the cones about each box's own axes (the whole domain's without cells)
         v_axis, v_half = view_cell if view_cell is not None else (basis[0], cones.view.half)
         # R̂ reflects the box frame's V0: a cell's V is within its half of an axis off V0
