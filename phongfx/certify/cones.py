@@ -48,6 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .approximation import scale_range
+from .cells import root, toward
 from .sphere import cos_range, frame, product, projection
 
 __all__ = ["Direction", "Directions", "at_infinity", "directions", "cone_why_not", "spread", "between",
@@ -69,16 +70,13 @@ class Direction:
 def _local(domain, positions):
     """The :class:`Direction` toward a point light or local camera at ``positions`` (one, or a
     camera path's): one cone about the mean of the domain's cones' axes (:meth:`Domain.cone
-    <phongfx.scene.domain.Domain.cone>`) holding every one of them."""
+    <phongfx.scene.domain.Domain.cone>`) holding every one of them (:func:`.cells.toward`)."""
     centre, radius = np.asarray(domain.ball[0], dtype=np.float64), float(domain.ball[1])
-    offsets = [np.asarray(p, dtype=np.float64) - centre for p in positions]
-    cones = [domain.cone(p) for p in positions]
-    mean = np.sum([np.asarray(a) for a, _ in cones], axis=0)
-    axis = mean / max(float(np.linalg.norm(mean)), 1e-300)
-    half = max(math.acos(min(1.0, max(-1.0, float(axis @ np.asarray(a))))) + math.radians(h) for a, h in cones)
-    if float(np.linalg.norm(mean)) < 1e-9:
-        half = math.pi
-    half = min(math.pi, half)
+    positions = [np.asarray(p, dtype=np.float64) for p in positions]
+    offsets = [p - centre for p in positions]
+    # the cell that holds the whole ball sees them as the ball does
+    axes, halves = toward(domain, root(domain, 1), positions)
+    axis, half = axes[0], float(halves[0])
     near = min(float(np.linalg.norm(d)) for d in offsets) - radius
     far = max(float(np.linalg.norm(d)) for d in offsets) + radius
     span = min(float(domain.max_span_length), 2 * radius)
@@ -233,11 +231,10 @@ def between(light, view):
     return cos_range(np.maximum(apart - l_half - v_half, 0.0), np.minimum(apart + l_half + v_half, np.pi))
 
 
-def reflection_range(ideal, q, p, light, view):
+def reflection_range(ideal, q, p, lv):
     """Phong's ``R·V = 2(N̂·L)(N̂·V) - L·V`` over a box with cells: ``ideal`` (about the frame's
-    ``V0``) cut to the product of the cell's ranges of ``N̂·L`` and ``N̂·V`` less its ``L·V`` (the
-    angle between the two cones' axes, widened by both halves)."""
-    lv = between(light, view)
+    ``V0``) cut to the product of the cell's ranges of ``N̂·L`` and ``N̂·V`` less its range of
+    ``L·V``, ``lv`` (:func:`between`)."""
     qp = product(q, p)
     lo = np.maximum(ideal[0], 2 * qp[0] - lv[1])
     hi = np.minimum(ideal[1], 2 * qp[1] - lv[0])

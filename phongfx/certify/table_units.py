@@ -325,12 +325,12 @@ class TableUnit:
             q = spread(cosine_range(boxes, basis, l_axis), l_half)
             # the reference's L and V anywhere in their cones: R̂·L moves by both halves
             ideal = spread(self.cosine_range(boxes, basis, l_axis, second), l_half + v_turn)
+            lv = between((l_axis, l_half), (v_axis, v_half))
             if light_cell is not None or view_cell is not None:
-                ideal = reflection_range(ideal, q, p, (l_axis, l_half), (v_axis, v_half))
+                ideal = reflection_range(ideal, q, p, lv)
             root = tuple(np.sqrt(np.clip(boxes.z[:, i], 0.0, 1.0)) for i in (0, 1))
             s_range = p if not self.halfway else spread(cosine_range(boxes, basis, second), cones.view.half)
-            ranges = Ranges(q, s_range, ideal, between((l_axis, l_half), (v_axis, v_half)), (e_light, e_view),
-                            root)
+            ranges = Ranges(q, s_range, ideal, lv, (e_light, e_view), root)
             e_d, d_hi, e_s, ideal_hi, hw_hi, found = light_terms(unit, boxes, basis, (l_code, s_code, light_view),
                                                                  ranges, self.specular, n_hw)
             faults |= found
