@@ -12,6 +12,10 @@ splitting only makes the bound tighter.  ``floor`` (levels, before the output's 
 where the new boxes' bounds stop mattering this round: a box under it is not split while the
 largest stays above ``floor + tolerance``, so a method may spend its costlier, tighter bound
 only on the boxes above it (:mod:`.table_units` lists codes there) and give any sound bound below.
+
+A :class:`Resume` keeps where a branch and bound stopped, so that the same search given a larger
+budget goes on from there instead of halving the same boxes again: its rounds do not depend on
+the budget (only its stops do), so it ends where a fresh one with that budget would.
 """
 
 import time
@@ -20,7 +24,7 @@ import numpy as np
 
 from .sphere import Boxes, cover
 
-__all__ = ["bound_boxes", "cases", "first_boxes"]
+__all__ = ["Resume", "bound_boxes", "cases", "first_boxes"]
 
 
 def cases(domain):
@@ -35,8 +39,16 @@ def first_boxes(domain):
                  view_cos_max=getattr(domain, "view_cos_max", 1.0))
 
 
+class Resume:
+    """Where a branch and bound over one domain stopped (module docstring): ``bound_boxes(...,
+    resume=r)`` goes on from ``r`` when it holds a stop, and leaves its own stop in it."""
+
+    def __init__(self):
+        self.stop = None
+
+
 def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60.0, batch=2048,
-                max_batch=65536, enough=None, boxes=None, patience=4):
+                max_batch=65536, enough=None, boxes=None, patience=4, resume=None):
     """Branch and bound (module docstring): ``(bound, parts)``, ``bound`` inf when some box
     cannot be bounded (``parts["faults"]`` then names the quantizes that may overflow).
 
@@ -59,8 +71,13 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
         total = np.max(rounding + approximation, axis=-1) + 0.5
         return boxes, np.nan_to_num(total, nan=np.inf), rounding, approximation, gate
 
-    pool = evaluate(first_boxes(domain) if boxes is None else boxes)
-    evaluated = len(pool[0])
+    if resume is not None and resume.stop is not None:
+        pool, evaluated, history, spent, found = resume.stop
+        history, spent = list(history), list(spent)
+        faults.update(found)
+    else:
+        pool = evaluate(first_boxes(domain) if boxes is None else boxes)
+        evaluated = len(pool[0])
     while True:
         boxes, total = pool[0], pool[1]
         top = float(total.max())
@@ -85,6 +102,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
         evaluated += len(children[0])
         rest = [boxes.take(~pick)] + [part[~pick] for part in pool[1:]]
         pool = (Boxes.concat(rest[0], children[0]),) + tuple(np.concatenate([a, b]) for a, b in zip(rest[1:], children[1:]))
+    if resume is not None:  # before the last round's record: going on, the stops are asked again
+        resume.stop = (pool, evaluated, history[:-1], spent[:-1], set(faults))
     bound, parts = _worst(*pool, domain)
     parts.update(boxes=int(evaluated), rounds=len(history))
     if abandoned:

@@ -60,7 +60,7 @@ class LyonDatapaths:
             return f"the halfway unit's {unit.halfway.variant} variant is not bounded yet"
         return None
 
-    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
+    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None, resume=None):
         """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`);
         point lights and a local viewer as :mod:`.cones` bounds them."""
         cones = directions(domain)
@@ -72,7 +72,7 @@ class LyonDatapaths:
         def errors(boxes, floor):  # one bound for every box: the floor saves nothing
             return box_errors(shader, against, boxes, cones.basis, None, domain.min_normal_length, cones)
 
-        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)
+        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume)
 
 
 def unit_directions_why_not(domain):

@@ -5,10 +5,11 @@ A bounding method is an object with
 * ``name``: what the certificate names as its method (``"interval"``...);
 * ``why_not(shader, domain)``: None when it bounds the design ``shader`` (the compiler's
   ShaderConfig) over ``domain`` (:class:`phongfx.scene.domain.Domain`), else one sentence;
-* ``bound(shader, spec, domain, *, max_boxes, enough)``: ``(bound_levels, parts)``, a sound
+* ``bound(shader, spec, domain, *, max_boxes, enough, resume)``: ``(bound_levels, parts)``, a sound
   upper bound on ``|out - (2^bits - 1)·I_ref|`` over the domain in display levels (inf when some
   quantize may overflow, ``parts["faults"]`` naming them), refined until it falls below
-  ``enough`` when that is given (:func:`phongfx.certify.branch.bound_boxes`).
+  ``enough`` when that is given, going on from ``resume`` (:class:`phongfx.certify.branch.Resume`)
+  when given (:func:`phongfx.certify.branch.bound_boxes`).
 
 Adding a unit's bounding method is one module and one line in :data:`BOUNDING`.  None is
 registered for ``euler`` and ``gouraud`` (Hast, Barrera & Bengtsson: the diffuse ``N·L`` alone,

@@ -21,8 +21,9 @@ over more boxes is as sound, and the smaller of a region's bounds is kept) nor f
 to reach it within the whole budget at its pace per box since its last run, as a width search's
 early stop does, so that the final certificate of a design the search passed passes too; then
 the worst region while the budget lasts, up to :data:`SPEND` times the budget in all (each
-refinement starts its branch and bound over); once a region stays above the requirement the
-design fails whatever the others give, and the worst region gets one more budget, for the
+refinement goes on from where the region's last stopped, :class:`~.branch.Resume`, and is counted
+as the whole branch and bound it stands for, so the result is that of starting over); once a
+region stays above the requirement the design fails whatever the others give, and the worst region gets one more budget, for the
 bound reported.  The region that starts highest is most often the one that stays above: taken
 first, it ends a failing width point's certificate before the others are refined.
 """
@@ -30,6 +31,8 @@ first, it ends a failing width point's certificate before the others are refined
 from dataclasses import replace
 
 import numpy as np
+
+from .branch import Resume
 
 __all__ = ["FIRST_BOXES", "SPEND", "by_region"]
 
@@ -77,10 +80,12 @@ def _regions(how, shader, spec, domain, max_boxes, enough, target):
     stays above ``target``, one more budget for the worst)."""
     count = len(domain.regions)
     found, spent = [], [0]
+    resumes = [Resume() for _ in range(count)]
     below = enough if enough is not None else target
 
     def run(index, budget, stop):
-        bound, parts = how.bound(shader, spec, domain.region(index), max_boxes=budget, enough=stop)
+        bound, parts = how.bound(shader, spec, domain.region(index), max_boxes=budget, enough=stop,
+                                 resume=resumes[index])
         bound = bound if np.isfinite(bound) else np.inf
         boxes = parts.get("boxes", budget)
         spent[0] += boxes

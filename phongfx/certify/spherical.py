@@ -125,7 +125,7 @@ class Spherical:
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
         return directional_why_not(domain) or _span_why_not(domain)
 
-    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
+    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None, resume=None):
         """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`)."""
         basis = frame(VIEWER)
         lights = [np.asarray(vector, dtype=np.float64) for _, vector, _ in domain.lights]
@@ -166,7 +166,7 @@ class Spherical:
             return rounding, approximation, set(), gate
 
         boxes = cover(domain.view_cos_min, 1.0, cases(domain))
-        bound, parts = bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes)
+        bound, parts = bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume)
         parts.update(slerp_gap_rad=eps, max_span_pixels=pixels)
         return bound, parts
 

@@ -370,7 +370,7 @@ class TableUnit:
         pick = order[better]
         rounding[pick], approximation[pick], gate[pick] = listed[better], 0.0, 0.0
 
-    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None):
+    def bound(self, shader, spec, domain, *, max_boxes=300_000, enough=None, resume=None):
         """``(bound_levels, parts)`` over ``domain`` (:func:`~phongfx.certify.branch.bound_boxes`);
         point lights and a local viewer as :mod:`.cones` and :mod:`.local_vectors` bound them."""
         cones = directions(domain)
@@ -386,7 +386,7 @@ class TableUnit:
         def errors(boxes, floor):
             return self.errors(shader, against, boxes, cones, floor, domain)
 
-        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes,
+        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume,
                            patience=CELL_PATIENCE if boxes is not None and boxes.cells is not None else 4)
 
 

@@ -92,3 +92,31 @@ def test_the_regions_certify_lyons_halfway_unit_where_the_whole_domain_cannot():
     measured = max(_measured(SPEC, shader, params, None, "halfway"),
                    _measured(SPEC, shader, params, [d.sample(100_000, 8)], "halfway"))
     assert measured <= final.bound_levels
+
+
+
+def test_a_branch_and_bound_resumed_on_a_larger_budget_ends_where_a_fresh_one_does(monkeypatch):
+    """A region refined on four times its budget goes on from where it stopped
+    (:class:`~phongfx.certify.branch.Resume`): the same bound, worst box and box count as a
+    fresh branch and bound on that budget, for the boxes of the second run only."""
+    from phongfx.certify import figures
+    from phongfx.certify.branch import Resume
+    from phongfx.certify.methods import bounding
+
+    bounded, errors = [], figures.box_errors
+
+    def counted(shader, against, boxes, *args):
+        bounded.append(len(boxes))
+        return errors(shader, against, boxes, *args)
+
+    monkeypatch.setattr(figures, "box_errors", counted)
+    region = domain(SPEC).region(19)  # sphere 4, n = 256: the worst region, refined the longest
+    shader, how = shader_config("fig7", LYON, SPEC), bounding("fig7")
+    fresh = how.bound(shader, SPEC, region, max_boxes=8_000)
+    resume = Resume()
+    first = how.bound(shader, SPEC, region, max_boxes=2_000, resume=resume)
+    del bounded[:]
+    resumed = how.bound(shader, SPEC, region, max_boxes=8_000, resume=resume)
+    assert first[1]["boxes"] < fresh[1]["boxes"] and resumed[0] < first[0]
+    assert resumed == fresh
+    assert sum(bounded) == fresh[1]["boxes"] - first[1]["boxes"]
