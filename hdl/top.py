@@ -284,4 +284,4 @@ def top_verilog(block_component, name, *, overflow=False, timing=None, contract=
     top = Top(block_component, name, overflow=overflow)
     noun = "pixel" if isinstance(block_component.config, ShaderConfig) else "vector"
     return (header(top.ports, name, top.latency, top.interval, timing, noun, contract)
-            + verilog(top, f"{name}_top", time_zero=True, lint=True))
+            + verilog(top, f"{name}_top", time_zero=True, lint=True, assigns=True))
