@@ -16,16 +16,16 @@ region), at two to six times the time; on the torus's patches, whose span angles
 
 The regions share the box budget: every region is first bounded on an eighth of an even share,
 then, the highest first, again on four times its last budget while it is above the requirement
-and not settled (a bound
-over more boxes is as sound, and the smaller of a region's bounds is kept) nor falling too slowly
-to reach it within the whole budget at its pace per box since its last run, as a width search's
-early stop does, so that the final certificate of a design the search passed passes too; then
-the worst region while the budget lasts, up to :data:`SPEND` times the budget in all (each
-refinement goes on from where the region's last stopped, :class:`~.branch.Resume`, and is counted
-as the whole branch and bound it stands for, so the result is that of starting over); once a
-region stays above the requirement the design fails whatever the others give, and the worst region gets one more budget, for the
-bound reported.  The region that starts highest is most often the one that stays above: taken
-first, it ends a failing width point's certificate before the others are refined.
+and not settled (a bound over more boxes is as sound, and the smaller of a region's bounds is
+kept) nor falling too slowly to reach it within the whole budget at its pace per box since its
+last run, as a width search's early stop does, so that the final certificate of a design the
+search passed passes too; then the worst region while the budget lasts, up to :data:`SPEND`
+times the budget in all (each refinement goes on from where the region's last stopped,
+:class:`~.branch.Resume`, and is counted as the whole branch and bound it stands for, so the
+result is that of starting over); once a region stays above the requirement the design fails
+whatever the others give, and the worst region gets one more budget, for the bound reported. The
+region that starts highest is most often the one that stays above: taken first, it ends a
+failing width point's certificate before the others are refined.
 """
 
 from dataclasses import replace
