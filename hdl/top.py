@@ -45,10 +45,10 @@ CONTROL_PORTS = (
 #: What the top does from power-up without a reset pulse, as measured (``tests/hdl/test_top.py``
 #: runs the exported testbench without its first reset under Icarus Verilog 11 ``-g2012``).
 POWER_UP = ("Power-up without a reset pulse: every register starts at its reset value (Verilog "
-            "initializers) and every always @* block is woken at time 0 (an initial non-blocking "
-            "assignment; Yosys' usual trigger, a declaration initializer, is no event under "
-            "SystemVerilog's rules, and Icarus -g2012 then gave out_valid = X for the first cycles), "
-            "so out_valid is 0 and in_ready 1 from time 0 under Icarus -g2012 and Verilator.  "
+            "initializers) and the logic between them is continuous assignments, evaluated at time 0 "
+            "(no always @* block, which under Icarus -g2012 would wait for an event and gave out_valid "
+            "= X for the first cycles), so out_valid is 0 and in_ready 1 from time 0 under Icarus "
+            "-g2012 and Verilator.  "
             "Hardware without register initial values (an ASIC) needs an rst pulse first.")
 
 
@@ -284,4 +284,4 @@ def top_verilog(block_component, name, *, overflow=False, timing=None, contract=
     top = Top(block_component, name, overflow=overflow)
     noun = "pixel" if isinstance(block_component.config, ShaderConfig) else "vector"
     return (header(top.ports, name, top.latency, top.interval, timing, noun, contract)
-            + verilog(top, f"{name}_top", time_zero=True, lint=True, assigns=True))
+            + verilog(top, f"{name}_top", lint=True, assigns=True))

@@ -7,8 +7,10 @@ import dataclasses
 import numpy as np
 import pytest
 
-from phongfx.certify import certify
+from phongfx.certify import certify, figures
 from phongfx.certify.bound import shader_config
+from phongfx.certify.branch import Resume
+from phongfx.certify.methods import bounding
 from phongfx.explore.compile.compiler import SceneEval
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene
@@ -94,15 +96,10 @@ def test_the_regions_certify_lyons_halfway_unit_where_the_whole_domain_cannot():
     assert measured <= final.bound_levels
 
 
-
 def test_a_branch_and_bound_resumed_on_a_larger_budget_ends_where_a_fresh_one_does(monkeypatch):
     """A region refined on four times its budget goes on from where it stopped
     (:class:`~phongfx.certify.branch.Resume`): the same bound, worst box and box count as a
     fresh branch and bound on that budget, for the boxes of the second run only."""
-    from phongfx.certify import figures
-    from phongfx.certify.branch import Resume
-    from phongfx.certify.methods import bounding
-
     bounded, errors = [], figures.box_errors
 
     def counted(shader, against, boxes, *args):

@@ -186,7 +186,8 @@ def test_a_real_compile_gives_the_stored_design_and_passes_its_testbench_vectors
     from phongfx.hdl.emit import verilog
     from phongfx.hdl.top import Top
     shipped = (compiled / manifest["top"]["file"]).read_text()
-    assert shipped.endswith(verilog(Top(core.block.component(), core.name), f"{core.name}_top", time_zero=True))
+    assert shipped.endswith(verilog(Top(core.block.component(), core.name), f"{core.name}_top", lint=True,
+                                             assigns=True))
     bench = compiled / "testbench"
     words = [int(line, 16) for line in (bench / f"{core.name}_in.memh").read_text().split()]
     expected = [int(line, 16) for line in (bench / f"{core.name}_expected.memh").read_text().split()]

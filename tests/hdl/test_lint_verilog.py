@@ -170,7 +170,7 @@ def equivalent(tmp_path, before, after, top, induct=True):
 @pytest.mark.parametrize("name", each_block(PROVED))
 def test_explicit_widths_compute_the_same(tmp_path, name):
     top = Top(get_block(name).component(), name)
-    before = verilog(top, f"{name}_top", time_zero=True)
+    before = verilog(top, f"{name}_top")
     after = explicit_widths(before)
     assert after != before
     ok, log = equivalent(tmp_path, before, after, f"{name}_top")
@@ -189,11 +189,11 @@ def test_the_shipped_text_with_multiplexers_computes_the_same(tmp_path, name):
     """The shipped top's processes as multiplexers, without its unnamed pass-through wires
     (``assigns=True``, what Icarus runs three times as fast), against Amaranth's own text."""
     top = Top(get_block(name).component(), name)
-    before = verilog(top, f"{name}_top", time_zero=True)
-    after = verilog(top, f"{name}_top", time_zero=True, lint=True, assigns=True)
+    before = verilog(top, f"{name}_top")
+    after = verilog(top, f"{name}_top", lint=True, assigns=True)
     assert "always @*" in before and "always @*" not in after and "always @(posedge clk)" in after
     assert _named_wires(before) <= _named_wires(after)  # the per-field views stay, for waveforms
-    assert len(after.splitlines()) < len(verilog(top, f"{name}_top", time_zero=True, lint=True).splitlines())
+    assert len(after.splitlines()) < len(verilog(top, f"{name}_top", lint=True).splitlines())
     ok, log = equivalent(tmp_path, before, after, f"{name}_top")
     assert ok, log
 
@@ -201,7 +201,7 @@ def test_the_shipped_text_with_multiplexers_computes_the_same(tmp_path, name):
 @pytest.mark.needs_yosys
 def test_the_equivalence_check_can_fail(tmp_path):
     top = Top(get_block("lirp").component(), "lirp")
-    before = verilog(top, "lirp_top", time_zero=True)
+    before = verilog(top, "lirp_top")
     after = explicit_widths(before)
     # one sign extension made a zero extension: no longer the same design
     wrong, count = re.subn(r"\$signed\(\{ \{(\d+)\{[^{}]+\}\}, ", r"$signed({ {\1{1'b0}}, ", after, count=1)

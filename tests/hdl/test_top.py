@@ -219,9 +219,10 @@ def test_defined_from_power_up_under_icarus(tmp_path, name):
 
 
 @pytest.mark.needs_iverilog
-def test_without_the_time_zero_wake_icarus_starts_at_x(tmp_path):
-    # Yosys' own trigger (a declaration initializer) is no event under -g2012: out_valid is X
-    # until the valid pipeline has been refilled; this is why top_verilog wakes the blocks
+def test_amaranth_s_own_text_starts_at_x_under_icarus(tmp_path):
+    # its always @* blocks' only trigger (a declaration initializer) is no event under -g2012:
+    # out_valid is X until the valid pipeline has been refilled; the shipped top's continuous
+    # assignments (test_defined_from_power_up_under_icarus) are evaluated at time 0
     block = get_block("lirp")
     ok, text = _power_up(tmp_path, "lirp", verilog(Top(block.component(), "lirp"), "lirp_top"))
     assert not ok and "FAIL cycle 2: out_valid or in_ready is X" in text, text[-3000:]
