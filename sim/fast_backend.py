@@ -10,9 +10,7 @@ mismatching cycles, and the first ``max_report`` of them with their cycle and wo
 
 Words are 32-bit, least significant first, as Verilator's ``VlWide`` stores a
 wide port, so payloads of any width (Figure 7's input is 204 bits) need no
-special case: the simulated top, :func:`wrapper`, pads ``{i.payload, i.valid}``
-and ``{o.payload, o.valid}`` to at least three words, which makes both ports
-``VlWide`` whatever the block.
+special case: the simulated top is :mod:`phongfx.sim.fast_top`'s.
 
 Back-pressure and reset (``stalls``, ``reset_at``: the stream mode of
 :mod:`phongfx.sim.harness`) cannot be a precomputed per-cycle stream, since when a vector
@@ -42,31 +40,26 @@ import numpy as np
 from phongfx.hdl.block import checked_outputs
 from phongfx.hdl.emit import payload_widths
 
+from .fast_top import is_stream, words_of, wrapper
 from .build_cache import BUILD_ARGS, cache_root, cached_build, keep_runtime, seed_runtime
 from .result import Mismatch, Result, checked_expected, payload_mismatch
 from .stream import handshake_component, plan_stream, restart_points, stream_mismatch, stream_mode
 from .vectors import columns, payload_fields, row_of, schedule
 from .verilator_backend import tool_environment
 
-__all__ = ["MAIN", "words_of", "pack_words", "wrapper", "is_stream", "build", "stream", "check",
+__all__ = ["MAIN", "pack_words", "build", "checked_build", "stream", "check",
            "check_timed", "run"]
 
 MAIN = Path(__file__).with_name("fast_main.cpp")
 EXECUTABLE = "phongfx_sim"
 _MAGIC = 0x3274736166786670  # "pfxfast2", as in fast_main.cpp
 _HEADER = 16  # uint64 words
-_MIN_WORDS = 3  # > 64 bits: every port is a VlWide
 _VERILATOR_ARGS = ["--cc", "--exe", "--prefix", "Vtop", "-O3", "--x-assign", "fast",
                    "-o", EXECUTABLE]
 # The design's C++ at -O2 rather than verilated.mk's -Os: slower to build, faster to run; -O0
 # for a frame's check (a shader: 7.8 s against 1.0 s to build, 11084 vectors in 0.02 s against
 # 0.07 s).  The run-time objects are built with OPT_GLOBAL: the same for both.
 _MAKE_ARGS = {True: ["OPT_FAST=-O2"], False: ["OPT_FAST=-O0"]}
-
-
-def words_of(bits):
-    """32-bit words of a port ``bits`` wide (at least :data:`_MIN_WORDS`)."""
-    return max(_MIN_WORDS, (bits + 31) // 32)
 
 
 def pack_words(ports, raw, valid=True):
@@ -107,45 +100,6 @@ def pack_words(ports, raw, valid=True):
 
 def _to_int(words):
     return int.from_bytes(np.ascontiguousarray(words, dtype="<u4").tobytes(), "little")
-
-
-def wrapper(module, in_width, out_width, stream=False):
-    """Verilog of the simulation top ``<module>_fast``: word ports around block ``module``.
-
-    ``i_word`` is ``{pad, i.payload, i.valid}`` and ``o_word`` ``{0, o.payload, o.valid}``,
-    each :func:`words_of` 32-bit words, combinational both ways.  ``ctl`` is ``{rst, o.ready}``
-    and ``i_ready`` the design's ``i.ready`` for a ``stream`` design (a
-    :class:`~phongfx.hdl.handshake.Handshake`); a plain block ignores ``ctl``, its reset
-    tied low so that Verilator folds it away, and ``i_ready`` is 1.
-    """
-    ni, no = words_of(in_width + 1), words_of(out_width + 1)
-    pad = 32 * no - out_width - 1
-    tie = f"  assign o_word[{32 * no - 1}:{out_width + 1}] = {pad}'d0;\n" if pad else ""
-    if stream:
-        ports = ".clk(clk), .rst(ctl[1]),\n    .i__valid(i_word[0]), .i__ready(i_ready), "
-        out_ready = ", .o__ready(ctl[0])"
-    else:
-        ports = ".clk(clk), .rst(1'b0),\n    .i__valid(i_word[0]), "
-        out_ready = ""
-        tie += "  assign i_ready = 1'b1;\n"
-    return f"""
-module {module}_fast(clk, ctl, i_word, o_word, i_ready);
-  input clk;
-  input [1:0] ctl;
-  input [{32 * ni - 1}:0] i_word;
-  output [{32 * no - 1}:0] o_word;
-  output i_ready;
-  {module} dut (
-    {ports}.i__payload(i_word[{in_width}:1]),
-    .o__valid(o_word[0]){out_ready}, .o__payload(o_word[{out_width}:1])
-  );
-{tie}endmodule
-"""
-
-
-def is_stream(component):
-    """Whether ``component``'s ``i`` has a ``ready`` (a Handshake), which the top must drive."""
-    return "ready" in component.i.signature.members
 
 
 def build(component, *, build_dir=None, design=None, trace=False, optimize=True):
@@ -192,6 +146,15 @@ def build(component, *, build_dir=None, design=None, trace=False, optimize=True)
 
     return cached_build(component, module, top, top_text, compile_, root=root, waves=trace,
                         executable=EXECUTABLE, design=design)
+
+
+def checked_build(block, streaming, *, handshake=None, build_dir=None, design=None, vcd=None, optimize=True):
+    """``(latency, interval, Build)``: the simulator :func:`check_timed` runs ``block`` on (inside
+    ``handshake`` when ``streaming``; :func:`build`'s arguments), built or found in the cache, so
+    that a caller may build it ahead of the check (the compiler does, beside its witness search)."""
+    component = handshake_component(block, handshake) if streaming else block.component()
+    return component.latency, component.interval, build(component, build_dir=build_dir, design=design,
+                                                        trace=bool(vcd), optimize=optimize)
 
 
 def _execute(compiled, header, arrays, vcd=None):
@@ -275,9 +238,8 @@ def check_timed(block, inputs=None, *, expected=None, bubbles=0.25, seed=0, coun
     times["golden"] = time.perf_counter() - start
 
     start = time.perf_counter()
-    component = handshake_component(block, handshake) if streaming else block.component()
-    latency, interval = component.latency, component.interval
-    compiled = build(component, build_dir=build_dir, design=design, trace=bool(vcd), optimize=optimize)
+    latency, interval, compiled = checked_build(block, streaming, handshake=handshake, build_dir=build_dir,
+                                                design=design, vcd=vcd, optimize=optimize)
     times["build"] = time.perf_counter() - start
     if streaming:
         return _check_stream(block, inputs, expected, compiled, (latency, interval), times, bubbles=bubbles, seed=seed,

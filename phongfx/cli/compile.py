@@ -6,6 +6,7 @@ Phong baseline, the shipped top, the testbench and the RTL check.
 """
 
 import sys
+from functools import partial
 
 from phongfx.core.cache import folder
 from phongfx.core.files import check_folder
@@ -205,7 +206,7 @@ def cmd_compile(args):
 
     from phongfx.certify.remembered import remembering
     from phongfx.explore.compile.compiler import check_methods, compile_scene
-    from phongfx.explore.compile.emit import emit
+    from phongfx.explore.compile.emit import emit, prepare_check
     from phongfx.explore.compile.architecture import Speed
     from phongfx.explore.compile.workers import Pending
     from phongfx.scene.file import load_scene, with_requirement, with_throughput
@@ -238,7 +239,8 @@ def cmd_compile(args):
                                          folder("compile") / "certificates"),
                                      certified=not args.sampled,
                                      clock=args.clock,
-                                     scheduler=args.scheduler, workers=args.workers)
+                                     scheduler=args.scheduler, workers=args.workers,
+                                     prepare=None if args.no_check else partial(prepare_check, vcd=args.vcd))
             if warming is not None:
                 warming.result()
         finally:  # interrupted, or the compile failed: the build need not finish

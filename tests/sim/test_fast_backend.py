@@ -12,7 +12,7 @@ import pytest
 
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
-from phongfx.sim import build_cache, fast_backend
+from phongfx.sim import build_cache, fast_backend, fast_top
 from phongfx.sim.harness import check, pack, run_backend, schedule
 
 pytestmark = pytest.mark.needs_verilator
@@ -38,7 +38,7 @@ def test_pack_words_equals_harness_pack_shifted():
     words = fast_backend.pack_words(PORTS, raw)
     as_ints = [int.from_bytes(row.astype("<u4").tobytes(), "little") for row in words]
     assert as_ints == [p << 1 | 1 for p in pack(PORTS, raw)]
-    assert words.shape == (50, fast_backend.words_of(1 + 11 + 3 * 8 + 64 + 63))
+    assert words.shape == (50, fast_top.words_of(1 + 11 + 3 * 8 + 64 + 63))
 
 
 @pytest.mark.parametrize("name", ["lirp", "shape", "euler"])

@@ -28,7 +28,7 @@ from phongfx.core.registry import get_block
 from . import run as runs
 
 __all__ = ["DEFAULT", "CLOCK_MAX", "Speed", "candidates", "timing", "price", "pick", "proposals", "describe",
-           "eligible", "rank_key", "refusal", "config_of", "timing_of"]
+           "eligible", "rank_key", "refusal", "config_of", "design_block", "timing_of"]
 
 #: The architecture compiled when no speed is asked: one unit per light side by side,
 #: unpipelined, the light-independent inputs taken once.
@@ -247,6 +247,12 @@ def config_of(result, analysis):
     architecture its cost chose (:data:`DEFAULT` when it has none)."""
     architecture = (result.get("cost") or {}).get("architecture")
     return runs.build(result["method"], result["params"], analysis, architecture)
+
+
+def design_block(result, analysis):
+    """The registered block of a search result at :func:`config_of`'s config: the design the
+    compiler ships, checks and proves."""
+    return get_block(runs.block_name(result["method"]), config=config_of(result, analysis))
 
 
 #: The keys of a cost dict that say how fast the design runs (the manifest's ``"timing"``).

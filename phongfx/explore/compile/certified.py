@@ -23,9 +23,8 @@ __all__ = ["CertifiedTest", "uncertifiable", "certified_search", "begin_full_cer
 
 from phongfx.core.words import levels
 
-from .choice import ranked
+from .choice import begin_beside_witness, for_chosen
 from .search import measured_passes, search_widths, width_params
-from .workers import Pending
 
 
 def uncertifiable(certificate):
@@ -87,11 +86,11 @@ def certified_search(scene, method, domain, certifier, progress=None):
 
 def full_certificate(out, certifier, pending=None):
     """The chosen design's full certificate (refined to the end); an internal error when it is
-    not certified, since its early one was.  ``pending``: ``(method, params, Pending)``, the
-    full certificate of a design begun before the choice (:func:`begin_full_certificate`),
-    taken when it is the chosen design's (the caller cancels it when not)."""
+    not certified, since its early one was.  ``pending``: the full certificate of a design begun
+    before the choice (:func:`begin_full_certificate`), taken when it is the chosen design's
+    (the caller cancels it when not)."""
     best = out.best
-    if pending is not None and pending[:2] == (out.chosen, best["params"]):
+    if for_chosen(out, pending):
         certificate = pending[2].result()
     else:
         certificate = certifier(out.chosen, best["params"], out.spec, out.domain, analysis=out.analysis)
@@ -103,18 +102,11 @@ def full_certificate(out, certifier, pending=None):
 
 
 def begin_full_certificate(out, certifier, fork):
-    """``(method, params, Pending)``: the full certificate of the cheapest ranked design
-    (:func:`~phongfx.explore.compile.choice.ranked`), begun in a forked process (``fork``) while
-    its witness is searched: a certified design's witness cannot miss, so it is most often the
-    one chosen; None when nothing is ranked."""
-    first = next(iter(ranked(out.results)), None)
-    if first is None:
-        return None
-    method, params = first["method"], dict(first["params"])
-
-    def bound(_):
-        return certifier(method, params, out.spec, out.domain, analysis=out.analysis)
-    return method, params, Pending(bound, None, fork)
+    """The full certificate of the cheapest ranked design, begun in a forked process (``fork``)
+    while its witness is searched (:func:`~phongfx.explore.compile.choice.begin_beside_witness`)."""
+    def bound(first):
+        return certifier(first["method"], dict(first["params"]), out.spec, out.domain, analysis=out.analysis)
+    return begin_beside_witness(out, bound, fork)
 
 
 def refusal_lines(out):

@@ -7,16 +7,16 @@ width search with hard points (the same search again: measured, or measured and 
 :mod:`phongfx.explore.compile.certified`).
 """
 
-from phongfx.core.registry import get_block
 from phongfx.core.words import levels
 
 from . import run as runs
 from . import witness as witnesses
-from .architecture import config_of, eligible, rank_key
+from .architecture import design_block, eligible, rank_key
 from .costing import TIE_MARGIN, tie
 from .search import search_widths
+from .workers import Pending
 
-__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "ranked", "choose"]
+__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "ranked", "begin_beside_witness", "for_chosen", "choose"]
 
 #: At most this many rounds of hard points (a witness over the requirement) per compile,
 #: and per method.
@@ -31,8 +31,7 @@ def _proven(scene, result, timeout, progress):
     from phongfx.sim.prove import prove
 
     name = result["method"]
-    block = get_block(runs.block_name(name), config=config_of(result, scene.analysis))
-    proof = prove(block, timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
+    proof = prove(design_block(result, scene.analysis), timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
     result["overflow_proof"] = proof.as_dict()
     return not proof.counts.get("counterexample")
 
@@ -43,6 +42,23 @@ def ranked(results):
     that misses its clock after those that meet it; an uncosted one (its synthesis failed) last."""
     feasible = [r for r in results.values() if r["feasible"] and eligible(r["cost"])]
     return sorted(feasible, key=lambda r: rank_key(r["cost"]))
+
+
+def begin_beside_witness(out, work, fork):
+    """``(method, params, Pending)``: ``work(result)`` for the cheapest ranked design
+    (:func:`ranked`), begun in a forked process (``fork``) while its witness is searched: a
+    certified design's witness cannot miss, so it is most often the one chosen and its work is
+    then done when asked for (:func:`for_chosen`); None when nothing is ranked."""
+    first = next(iter(ranked(out.results)), None)
+    if first is None:
+        return None
+    first = {**first, "params": dict(first["params"])}  # as it is now, whenever the work runs
+    return first["method"], dict(first["params"]), Pending(work, first, fork)
+
+
+def for_chosen(out, begun):
+    """Whether ``begun`` (:func:`begin_beside_witness`'s, or None) is the chosen design's work."""
+    return begun is not None and out.best is not None and begun[:2] == (out.chosen, out.best["params"])
 
 
 def _witness(scene, name, params, domain, progress):

@@ -59,7 +59,7 @@ from phongfx.explore.methods import METHODS
 from . import run as runs
 from .architecture import Speed, refusal
 from .certified import begin_full_certificate, certified_search, full_certificate, refusal_lines
-from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, choose
+from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, begin_beside_witness, choose, for_chosen
 from .costing import COST_UNITS, price_designs
 from .infeasible import hint
 from .measure import SceneEval, meets
@@ -133,7 +133,7 @@ def scene_domain(spec, geometries, samples=None, final_samples=None):
 def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, seed=1,
                   progress=None, geometries=None, journal=None, prove=False, prove_timeout=600,
                   samples=None, final_samples=None, certifier=None, certified=False, clock=None,
-                  scheduler=None, workers=None):
+                  scheduler=None, workers=None, prepare=None):
     """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
 
     :param methods: keys of :data:`~phongfx.explore.methods.METHODS` to consider (default
@@ -171,6 +171,10 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
         chosen design's full certificate is :attr:`Compiled.certificate`.  When no method has
         a certified design, nothing is chosen and :attr:`Compiled.refused` says why per method
         (``"why": "certificate"``).
+    :param prepare: ``prepare(result, analysis)``, work the caller will need for the chosen
+        design (``result`` a search result), begun for the likeliest choice in a forked process
+        beside its witness search and waited for when that design is chosen (the command builds
+        its RTL check's simulator: :func:`~phongfx.explore.compile.emit.prepare_check`).
     :returns: a :class:`Compiled`.
     """
     names = check_methods(methods)
@@ -223,9 +227,12 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     def cost(name, params, by_synth):
         return price_designs([(name, params, by_synth and synth)], scene.analysis, speed, **options)[0]
 
-    # the chosen design's full certificate, begun beside its witness on a sample worth forking for
-    pending = (begin_full_certificate(out, certifier, scene.points.count >= MIN_POINTS and count(workers) > 1)
-               if certified and certifier is not None else None)
+    # the chosen design's full certificate and ``prepare``, begun beside its witness on a sample
+    # worth forking for
+    fork = scene.points.count >= MIN_POINTS and count(workers) > 1
+    pending = begin_full_certificate(out, certifier, fork) if certified and certifier is not None else None
+    prepared = (begin_beside_witness(out, lambda result: prepare(result, scene.analysis), fork)
+                if prepare is not None else None)
     try:
         choose(out, scene, cost, prove, prove_timeout, progress, search)
         if certified and out.rounds:  # a witness over the requirement on a design its certificate bounds
@@ -238,9 +245,12 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
                 progress(f"certifying {out.chosen}")
             out.certificate = (full_certificate(out, certifier, pending) if certified else
                                certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis))
+        if for_chosen(out, prepared):
+            prepared[2].result()
     finally:  # not taken (another design chosen, or none), or interrupted
-        if pending is not None:
-            pending[2].cancel()
+        for begun in (pending, prepared):
+            if begun is not None:
+                begun[2].cancel()
     out.refused = refusal(out)
     if certified and out.chosen is None and out.refused is None:
         out.refused = {"why": "certificate", "text": refusal_lines(out)}

@@ -35,7 +35,6 @@ import numpy as np
 from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
 from phongfx.core.files import atomic_write, staged_folder
 from phongfx.core.format import Format
-from phongfx.core.registry import get_block
 from phongfx.core.words import levels, plural
 from phongfx.deliver.constraints import clock_of
 from phongfx.deliver.contract import contract_lines, error_paragraph, input_contract
@@ -44,9 +43,9 @@ from phongfx.deliver.manifest import MANIFEST_VERSION
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
-from .architecture import config_of, timing_of
+from .architecture import design_block, timing_of
 
-__all__ = ["formats", "submodules", "scene_path", "manifest", "emit"]
+__all__ = ["CHECK_STALLS", "CHECK_OPTIMIZE", "formats", "submodules", "scene_path", "manifest", "prepare_check", "emit"]
 
 #: The sub-configs of each Lyon datapath that its hardware uses (the others are idle defaults).
 def formats(config, prefix=""):
@@ -162,8 +161,8 @@ def manifest(compiled, module=None, instances=None, check=None, out_dir="."):
            "conventional_baseline": _baseline(compiled, "conventional"),
            "blinn_baseline": _baseline(compiled, "blinn")}
     if best is not None:
-        config = config_of(best, compiled.analysis)
-        block = get_block(runs.block_name(best["method"]), config=config)
+        block = design_block(best, compiled.analysis)
+        config = block.config
         out.update({"block": block.name, "module": module, "widths": best["params"],
                     "architecture": best["cost"].get("architecture"), "timing": timing_of(best["cost"]),
                     "fit": best["cost"].get("fit"),
@@ -200,6 +199,24 @@ def _identifier(text):
 
 #: The RTL check's share of cycles with ``out_ready`` low (the harness's stream mode).
 CHECK_STALLS = 0.2
+#: The RTL check's simulator is built unoptimized: for one frame a build unoptimized is seconds
+#: sooner than the run it would speed up.
+CHECK_OPTIMIZE = False
+
+
+def prepare_check(result, analysis, vcd=None):
+    """Build the RTL check's simulator of ``result`` (a search result) into the build cache as
+    :func:`emit`'s check builds it, so that the check finds it built (the ``prepare`` of
+    :func:`~phongfx.explore.compile.compiler.compile_scene`, beside the witness search); a
+    failure is left for the check to report."""
+    from phongfx.sim.fast_backend import checked_build
+    from phongfx.sim.stream import stream_mode
+
+    try:
+        checked_build(design_block(result, analysis), stream_mode(CHECK_STALLS, None), vcd=vcd,
+                      optimize=CHECK_OPTIMIZE)
+    except Exception:  # no Verilator, or its build fails: the check says so itself
+        pass
 
 
 def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=None):
@@ -234,8 +251,8 @@ def _write(compiled, out_dir, check, progress, vcd, final):
                      lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
         return data
     method, scene = best["method"], compiled.scene
-    config = config_of(best, compiled.analysis)
-    block = get_block(runs.block_name(method), config=config)
+    block = design_block(best, compiled.analysis)
+    config = block.config
     module = _identifier(f"{compiled.spec.name}_{method}")
     timing = timing_of(best["cost"])
     header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
@@ -271,9 +288,8 @@ def _write(compiled, out_dir, check, progress, vcd, final):
             from phongfx.sim.harness import check as run_check
             start = time.perf_counter()
             count = len(next(iter(raw.values())))
-            # one frame: a build unoptimized is seconds sooner than the run it would speed up
             r = run_check(block, raw, expected=out, backend="verilator-fast", stalls=CHECK_STALLS,
-                          reset_at=count // 2, seed=1, optimize=False, **({"vcd": vcd} if vcd else {}))
+                          reset_at=count // 2, seed=1, optimize=CHECK_OPTIMIZE, **({"vcd": vcd} if vcd else {}))
             result = {"frame": g.frame, "backend": r.backend, "pixels": len(g), "vectors": r.vectors,
                       "copies": runs.copies(method, compiled.analysis), "cycles": r.cycles,
                       "mismatches": r.mismatch_count, "ok": r.ok, "simulate_seconds": r.seconds,

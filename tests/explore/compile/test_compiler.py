@@ -13,11 +13,12 @@ from phongfx.core.registry import get_block
 from phongfx.deliver.manifest import design_of
 from phongfx.explore.compile.compiler import compile_scene, meets, width_params
 from phongfx.explore.compile.measure import SceneEval
-from phongfx.explore.compile.emit import submodules
+from phongfx.explore.compile.emit import emit, prepare_check, submodules
 from phongfx.explore.compile.run import block_name, build
 from phongfx.explore.compile.run import frame_inputs as run_frame_inputs
 from phongfx.hdl.emit import verilog
 from phongfx.scene.file import load_scene, parse_scene
+from phongfx.sim import fast_backend
 from phongfx.sim.stimulus import codes
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes")
@@ -96,6 +97,32 @@ def test_the_cheapest_feasible_method_is_chosen_and_the_rest_say_why_not():
     feasible = {m: r["cost"]["lut_eq"] for m, r in compiled.results.items() if r["feasible"]}
     assert feasible and compiled.chosen == min(feasible, key=feasible.get)
     assert compiled.best["max"] <= 1.0
+
+
+@pytest.mark.needs_verilator
+def test_the_rtl_check_runs_on_the_simulator_prepared_beside_the_witness(tmp_path, monkeypatch):
+    # compile_scene's prepare runs for the likeliest choice when it is chosen, and not for a
+    # design whose witness missed
+    prepared = []
+
+    def prepare(result, analysis):
+        prepared.append((result["method"], result["params"]))
+    missed = compile_scene(_torus(), methods=["fig7"], prepare=prepare)
+    assert missed.rounds and missed.rounds[0]["params"] != missed.best["params"] and prepared == []
+    compiled = compile_scene(_torus(), methods=["conventional"], prepare=prepare)
+    assert not compiled.rounds and prepared == [(compiled.chosen, compiled.best["params"])]
+    # prepare_check builds what emit's RTL check then finds in the cache: the same build
+    builds, real = [], fast_backend.checked_build
+
+    def spy(*args, **options):
+        found = real(*args, **options)
+        builds.append(found[2])
+        return found
+    monkeypatch.setattr(fast_backend, "checked_build", spy)
+    prepare_check(compiled.best, compiled.analysis)
+    data = emit(compiled, tmp_path / "out")
+    assert len(builds) == 2 and builds[0].directory == builds[1].directory and not builds[1].built
+    assert data["rtl_check"]["mismatches"] == 0
 
 
 def test_widths_are_locally_minimal_measured_afresh():
