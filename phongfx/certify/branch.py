@@ -13,6 +13,11 @@ where the new boxes' bounds stop mattering this round: a box under it is not spl
 largest stays above ``floor + tolerance``, so a method may spend its costlier, tighter bound
 only on the boxes above it (:mod:`.table_units` lists codes there) and give any sound bound below.
 
+A method whose bound of a box depends on that box alone (``separable``) has each round's boxes
+bounded in two halves, one by a :class:`~phongfx.explore.compile.workers.Twin` of this process,
+while a core is idle (:func:`~phongfx.explore.compile.workers.spare_core`: the last width search
+running alone): the same bounds, sooner.
+
 A :class:`Resume` keeps where a branch and bound stopped, so that the same search given a larger
 budget goes on from there instead of halving the same boxes again: its rounds do not depend on
 the budget (only its stops do), so it ends where a fresh one with that budget would.
@@ -22,9 +27,14 @@ import time
 
 import numpy as np
 
+from phongfx.explore.compile.workers import Twin, spare_core
+
 from .sphere import Boxes, cover
 
-__all__ = ["Resume", "bound_boxes", "cases", "first_boxes"]
+__all__ = ["TWIN_BOXES", "Resume", "bound_boxes", "cases", "first_boxes"]
+
+#: Boxes from which a round is worth halving between this process and its twin.
+TWIN_BOXES = 4096
 
 
 def cases(domain):
@@ -48,7 +58,7 @@ class Resume:
 
 
 def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60.0, batch=2048,
-                max_batch=65536, enough=None, boxes=None, patience=4, resume=None):
+                max_batch=65536, enough=None, boxes=None, patience=4, resume=None, separable=False):
     """Branch and bound (module docstring): ``(bound, parts)``, ``bound`` inf when some box
     cannot be bounded (``parts["faults"]`` then names the quantizes that may overflow).
 
@@ -62,7 +72,36 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
     pace per box of the last ``patience - 1`` rounds that split every box near it, would still not be
     below ``enough`` when the budget is spent (``parts["abandoned"]``): the bounds of a branch and
     bound fall ever more slowly, so the pace so far is the most the rest could give, and a width
-    search's failing designs, the most of its certificates, cost a fraction of the budget."""
+    search's failing designs, the most of its certificates, cost a fraction of the budget.
+    ``separable``: each box's bound depends on that box alone, so that a round's boxes may be
+    bounded in halves (module docstring)."""
+    twin = []
+    try:
+        return _bound_boxes(_halves(errors, twin) if separable else errors, domain, tolerance, max_boxes,
+                            seconds, batch, max_batch, enough, boxes, patience, resume)
+    finally:
+        for copy in twin:
+            copy.close()
+
+
+def _halves(errors, twin):
+    """``errors`` with a round of :data:`TWIN_BOXES` boxes or more halved, the second half bounded
+    by a :class:`~phongfx.explore.compile.workers.Twin` (kept in ``twin``, begun when first
+    needed) while a core is idle."""
+    def halved(boxes, floor):
+        if len(boxes) < TWIN_BOXES or not spare_core():
+            return errors(boxes, floor)
+        if not twin:
+            twin.append(Twin(lambda item: errors(*item)))
+        first = np.arange(len(boxes)) < len(boxes) // 2
+        twin[0].send((boxes.take(~first), floor))
+        mine, theirs = errors(boxes.take(first), floor), twin[0].result()
+        return (np.concatenate([mine[0], theirs[0]]), np.concatenate([mine[1], theirs[1]]), mine[2] | theirs[2],
+                np.concatenate([mine[3], theirs[3]]))
+    return halved
+
+
+def _bound_boxes(errors, domain, tolerance, max_boxes, seconds, batch, max_batch, enough, boxes, patience, resume):
     start, faults, history, spent, abandoned = time.perf_counter(), set(), [], [], False
 
     def evaluate(boxes, floor=-np.inf):

@@ -72,7 +72,8 @@ class LyonDatapaths:
         def errors(boxes, floor):  # one bound for every box: the floor saves nothing
             return box_errors(shader, against, boxes, cones.basis, None, domain.min_normal_length, cones)
 
-        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume)
+        return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume,
+                           separable=True)
 
 
 def unit_directions_why_not(domain):

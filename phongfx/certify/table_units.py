@@ -387,7 +387,8 @@ class TableUnit:
             return self.errors(shader, against, boxes, cones, floor, domain)
 
         return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume,
-                           patience=CELL_PATIENCE if boxes is not None and boxes.cells is not None else 4)
+                           patience=CELL_PATIENCE if boxes is not None and boxes.cells is not None else 4,
+                           separable=cones.local)
 
 
 def _unit(v):

@@ -14,6 +14,9 @@ samples) is not worth a fork: the callers go parallel only from :data:`MIN_POINT
 
 :class:`Pending` is one piece of work begun in a forked process now and waited for later,
 while this process does another (the chosen design's full certificate during its witness).
+:class:`Twin` is a copy of a worker that shares its work item by item while a core is idle
+(:func:`spare_core`): the last width search running alone bounds half of each round's boxes
+there (:func:`phongfx.certify.branch.bound_boxes`).
 """
 
 import multiprocessing
@@ -21,7 +24,7 @@ import multiprocessing.connection
 import os
 import signal
 
-__all__ = ["GRACE", "MIN_POINTS", "count", "fork_imap", "fork_map", "Pending"]
+__all__ = ["GRACE", "MIN_POINTS", "count", "spare_core", "fork_imap", "fork_map", "Pending", "Twin"]
 
 #: Domain points from which a measurement or a search is worth worker processes.
 MIN_POINTS = 1 << 17
@@ -43,6 +46,14 @@ def count(workers=None):
 
 
 _IN_JOB = False  # a worker is running an item (not waiting for one)
+_RUNNING = None  # in a worker of fork_imap: how many of its workers are running an item
+
+
+def spare_core():
+    """Whether this process may take one more core now: it is a worker of :func:`fork_imap`
+    and fewer of its workers are running an item than this process has cores (the others have
+    ended: the last ones run alone).  False anywhere else."""
+    return _RUNNING is not None and _RUNNING.value < count()
 
 #: Seconds a worker is given to end after SIGTERM before it is killed.
 GRACE = 5
@@ -51,12 +62,20 @@ GRACE = 5
 def _call(item):
     global _IN_JOB
     _IN_JOB = True
+    _count(1)
     try:
         return _JOB(item)
     except KeyboardInterrupt:  # cleaned up on its way here: the worker ends quietly
         raise SystemExit(130) from None
     finally:
         _IN_JOB = False
+        _count(-1)
+
+
+def _count(step):
+    if _RUNNING is not None:
+        with _RUNNING.get_lock():
+            _RUNNING.value += step
 
 
 def _interrupted(signum, frame):
@@ -160,15 +179,19 @@ def fork_imap(function, items, workers=None):
     if context is None:
         yield from (function(item) for item in items)
         return
-    processes, links, finished = [], [], False
+    global _RUNNING
+    processes, links, finished, before = [], [], False, _RUNNING
     try:
+        _RUNNING = context.Value("i", 0)  # inherited by the workers: spare_core() there
         for _ in range(workers):
             process, link = _start(context, function)
             processes.append(process)
             links.append(link)
+        _RUNNING = before
         yield from _ordered(items, processes, links)
         finished = True
     finally:
+        _RUNNING = before
         _stop(processes, links, finished)
 
 
@@ -243,3 +266,54 @@ class Pending:
 def fork_map(function, items, workers=None):
     """``[function(item) for item in items]`` by :func:`fork_imap`."""
     return list(fork_imap(function, items, workers))
+
+
+class Twin:
+    """A copy of this process, forked now, that computes ``function(item)`` for each item
+    :meth:`send` gives it while this process computes something else; :meth:`result` waits
+    for it (an exception there is raised here), :meth:`close` ends the copy.  ``os.fork``, not a
+    ``multiprocessing`` child, since a worker (daemonic) may not have those; the copy ends when
+    it reads the end of its pipe, or is interrupted, and never returns into this process's
+    code."""
+
+    def __init__(self, function):
+        self.link, there = multiprocessing.Pipe()
+        self.pid = os.fork()
+        if self.pid == 0:  # the copy
+            self.link.close()
+            status = 0
+            try:
+                while True:
+                    item = there.recv()
+                    try:
+                        outcome = (True, function(item))
+                    except Exception as error:
+                        outcome = (False, error)
+                    there.send(outcome)
+            except EOFError:  # this process is done with it, or gone
+                pass
+            except BaseException:  # interrupted, or its pipe broken
+                status = 1
+            finally:
+                os._exit(status)
+        there.close()
+
+    def send(self, item):
+        self.link.send(item)
+
+    def result(self):
+        try:
+            ok, value = self.link.recv()
+        except EOFError:
+            raise RuntimeError(f"a twin of a compile worker (pid {self.pid}) ended without its result") from None
+        if not ok:
+            raise value
+        return value
+
+    def close(self):
+        self.link.close()
+        try:
+            os.kill(self.pid, signal.SIGKILL)  # idle, or its item is no longer wanted
+        except ProcessLookupError:
+            pass
+        os.waitpid(self.pid, 0)

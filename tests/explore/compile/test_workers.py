@@ -77,6 +77,59 @@ def test_a_pending_piece_of_work_runs_beside_this_process_and_gives_its_result()
     assert not multiprocessing.active_children()
 
 
+_BEGUN = _CHECKED = None  # barriers of the spare-core test, inherited by its workers
+
+
+def _spare(wait):
+    """Whether a core is spare once every item has begun, or (``wait``) once the others end."""
+    import time
+
+    _BEGUN.wait(10)
+    if not wait:
+        spare = workers.spare_core()
+        _CHECKED.wait(10)  # no item ends before every one has looked
+        return spare
+    _CHECKED.wait(10)
+    deadline = time.monotonic() + 10
+    while not workers.spare_core() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return workers.spare_core()
+
+
+def test_a_core_is_spare_in_a_worker_once_fewer_items_run_than_cores(monkeypatch):
+    global _BEGUN, _CHECKED
+    monkeypatch.setattr(workers, "count", lambda workers=None: 2 if workers is None else workers)
+    assert not workers.spare_core()  # not a worker
+    # two cores: none spare while three items run; one once the item beside it has ended
+    _BEGUN, _CHECKED = multiprocessing.Barrier(3), multiprocessing.Barrier(3)
+    assert fork_map(_spare, [False] * 3, 3) == [False] * 3
+    _BEGUN, _CHECKED = multiprocessing.Barrier(2), multiprocessing.Barrier(2)
+    assert fork_map(_spare, [False, True], 2) == [False, True]
+
+
+def _twin_pids(items):
+    twin = workers.Twin(lambda x: (os.getpid(), x * x))
+    try:
+        twin.send(items[0])
+        mine = (os.getpid(), items[1] * items[1])
+        theirs = twin.result()
+        twin.send("not a number")
+        with pytest.raises(TypeError):
+            twin.result()
+        return mine, theirs
+    finally:
+        twin.close()
+
+
+def test_a_twin_computes_beside_its_worker_and_raises_its_errors_there():
+    (me, mine), (twin, theirs) = _twin_pids((3, 4))
+    assert (mine, theirs) == (16, 9) and me == os.getpid() != twin
+    # a worker (daemonic: no multiprocessing children) has a twin of its own
+    (worker, _), (its_twin, _) = fork_map(_twin_pids, [(1, 2), (5, 6)], 2)[0]
+    assert len({worker, its_twin, os.getpid()}) == 3
+    assert not multiprocessing.active_children()
+
+
 def _half_built(seconds):
     import time
 
