@@ -40,8 +40,8 @@ $(DEBIAN_STAMP): $(STAMP) Makefile
 	fi
 	touch $@
 
-# the render runs beside the compile, whose width search of Lyon's spheres leaves a core idle
-# most of its time (in turn they took 28 s + 59 s from an empty cache); its output follows the compile's
+# the render runs beside the compile, sooner than in turn on 2 cores (in turn they took 28 s + 59 s
+# from an empty cache on 2026-12-06, side by side 66 s); its output follows the compile's
 sim: $(STAMP)
 	@mkdir -p build/sim
 	@echo "$(VENV)/bin/phongfx render --backend $(BACKEND) --out build/sim > build/sim/render.log &"
