@@ -75,81 +75,84 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
     search's failing designs, the most of its certificates, cost a fraction of the budget.
     ``separable``: each box's bound depends on that box alone, so that a round's boxes may be
     bounded in halves (module docstring)."""
-    twin = []
-    try:
-        return _bound_boxes(_halves(errors, twin) if separable else errors, domain, tolerance, max_boxes,
-                            seconds, batch, max_batch, enough, boxes, patience, resume)
-    finally:
-        for copy in twin:
-            copy.close()
+    with _Halves(errors, separable) as errors:
+        start, faults, history, spent, abandoned = time.perf_counter(), set(), [], [], False
+
+        def evaluate(boxes, floor=-np.inf):
+            rounding, approximation, found, gate = errors(boxes, floor)
+            faults.update(found)
+            total = np.max(rounding + approximation, axis=-1) + 0.5
+            return boxes, np.nan_to_num(total, nan=np.inf), rounding, approximation, gate
+
+        if resume is not None and resume.stop is not None:
+            pool, evaluated, history, spent, found = resume.stop
+            history, spent = list(history), list(spent)
+            faults.update(found)
+        else:
+            pool = evaluate(first_boxes(domain) if boxes is None else boxes)
+            evaluated = len(pool[0])
+        while True:
+            boxes, total = pool[0], pool[1]
+            top = float(total.max())
+            near = total >= top - tolerance
+            whole = np.count_nonzero(near) <= max_batch
+            history.append((top, whole))
+            settled = (len(history) > patience and all(w for _, w in history[-patience:])
+                       and history[-patience - 1][0] - top <= 0.002 * max(top, 1.0))
+            met = enough is not None and top < enough
+            spent.append(evaluated)
+            if (enough is not None and not met and len(history) > patience - 1
+                    and all(w for _, w in history[-patience:])):
+                pace = (history[-patience][0] - top) / max(evaluated - spent[-patience], 1)
+                abandoned = top - pace * (max_boxes - evaluated) >= enough
+            if met or settled or abandoned or time.perf_counter() - start > seconds or evaluated > max_boxes:
+                break
+            count = min(max(np.count_nonzero(near), batch), max_batch, len(total))
+            pick = np.zeros(len(total), dtype=bool)
+            pick[np.argpartition(-total, count - 1)[:count]] = True
+            # a child under the top's near band is not split next round, nor is its bound reported
+            children = _inherit(evaluate(boxes.take(pick).split(), top - tolerance - 0.5),
+                                [part[pick] for part in pool[1:]])
+            evaluated += len(children[0])
+            rest = [boxes.take(~pick)] + [part[~pick] for part in pool[1:]]
+            pool = (Boxes.concat(rest[0], children[0]),) + tuple(np.concatenate([a, b])
+                                                                 for a, b in zip(rest[1:], children[1:]))
+        if resume is not None:  # before the last round's record: going on, the stops are asked again
+            resume.stop = (pool, evaluated, history[:-1], spent[:-1], set(faults))
+        bound, parts = _worst(*pool, domain)
+        parts.update(boxes=int(evaluated), rounds=len(history))
+        if abandoned:
+            parts["abandoned"] = True
+        if faults:
+            parts["faults"] = sorted(faults)
+        return bound, parts
 
 
-def _halves(errors, twin):
-    """``errors`` with a round of :data:`TWIN_BOXES` boxes or more halved, the second half bounded
-    by a :class:`~phongfx.explore.compile.workers.Twin` (kept in ``twin``, begun when first
-    needed) while a core is idle."""
-    def halved(boxes, floor):
+class _Halves:
+    """``errors`` with a round of :data:`TWIN_BOXES` boxes or more bounded in halves, the second
+    by a :class:`~phongfx.explore.compile.workers.Twin` (begun when first needed, ended on leaving
+    the ``with``) while a core is idle; ``errors`` itself unless ``separable``."""
+
+    def __init__(self, errors, separable):
+        self.errors, self.separable, self.twin = errors, separable, None
+
+    def __enter__(self):
+        return self if self.separable else self.errors
+
+    def __exit__(self, *_):
+        if self.twin is not None:
+            self.twin.close()
+
+    def __call__(self, boxes, floor):
         if len(boxes) < TWIN_BOXES or not spare_core():
-            return errors(boxes, floor)
-        if not twin:
-            twin.append(Twin(lambda item: errors(*item)))
+            return self.errors(boxes, floor)
+        if self.twin is None:
+            self.twin = Twin(lambda item: self.errors(*item))
         first = np.arange(len(boxes)) < len(boxes) // 2
-        twin[0].send((boxes.take(~first), floor))
-        mine, theirs = errors(boxes.take(first), floor), twin[0].result()
+        self.twin.send((boxes.take(~first), floor))
+        mine, theirs = self.errors(boxes.take(first), floor), self.twin.result()
         return (np.concatenate([mine[0], theirs[0]]), np.concatenate([mine[1], theirs[1]]), mine[2] | theirs[2],
                 np.concatenate([mine[3], theirs[3]]))
-    return halved
-
-
-def _bound_boxes(errors, domain, tolerance, max_boxes, seconds, batch, max_batch, enough, boxes, patience, resume):
-    start, faults, history, spent, abandoned = time.perf_counter(), set(), [], [], False
-
-    def evaluate(boxes, floor=-np.inf):
-        rounding, approximation, found, gate = errors(boxes, floor)
-        faults.update(found)
-        total = np.max(rounding + approximation, axis=-1) + 0.5
-        return boxes, np.nan_to_num(total, nan=np.inf), rounding, approximation, gate
-
-    if resume is not None and resume.stop is not None:
-        pool, evaluated, history, spent, found = resume.stop
-        history, spent = list(history), list(spent)
-        faults.update(found)
-    else:
-        pool = evaluate(first_boxes(domain) if boxes is None else boxes)
-        evaluated = len(pool[0])
-    while True:
-        boxes, total = pool[0], pool[1]
-        top = float(total.max())
-        near = total >= top - tolerance
-        whole = np.count_nonzero(near) <= max_batch
-        history.append((top, whole))
-        settled = (len(history) > patience and all(w for _, w in history[-patience:])
-                   and history[-patience - 1][0] - top <= 0.002 * max(top, 1.0))
-        met = enough is not None and top < enough
-        spent.append(evaluated)
-        if enough is not None and not met and len(history) > patience - 1 and all(w for _, w in history[-patience:]):
-            pace = (history[-patience][0] - top) / max(evaluated - spent[-patience], 1)
-            abandoned = top - pace * (max_boxes - evaluated) >= enough
-        if met or settled or abandoned or time.perf_counter() - start > seconds or evaluated > max_boxes:
-            break
-        count = min(max(np.count_nonzero(near), batch), max_batch, len(total))
-        pick = np.zeros(len(total), dtype=bool)
-        pick[np.argpartition(-total, count - 1)[:count]] = True
-        # a child under the top's near band is not split next round, nor is its bound reported
-        children = _inherit(evaluate(boxes.take(pick).split(), top - tolerance - 0.5),
-                            [part[pick] for part in pool[1:]])
-        evaluated += len(children[0])
-        rest = [boxes.take(~pick)] + [part[~pick] for part in pool[1:]]
-        pool = (Boxes.concat(rest[0], children[0]),) + tuple(np.concatenate([a, b]) for a, b in zip(rest[1:], children[1:]))
-    if resume is not None:  # before the last round's record: going on, the stops are asked again
-        resume.stop = (pool, evaluated, history[:-1], spent[:-1], set(faults))
-    bound, parts = _worst(*pool, domain)
-    parts.update(boxes=int(evaluated), rounds=len(history))
-    if abandoned:
-        parts["abandoned"] = True
-    if faults:
-        parts["faults"] = sorted(faults)
-    return bound, parts
 
 
 def _inherit(children, parents):

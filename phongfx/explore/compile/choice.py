@@ -31,7 +31,8 @@ def _proven(scene, result, timeout, progress):
     from phongfx.sim.prove import prove
 
     name = result["method"]
-    proof = prove(design_block(result, scene.analysis), timeout=timeout, progress=progress and (lambda text: progress(f"prove {name}: {text}")))
+    proof = prove(design_block(result, scene.analysis), timeout=timeout,
+                  progress=progress and (lambda text: progress(f"prove {name}: {text}")))
     result["overflow_proof"] = proof.as_dict()
     return not proof.counts.get("counterexample")
 
