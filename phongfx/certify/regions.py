@@ -26,20 +26,47 @@ result is that of starting over); once a region stays above the requirement the 
 whatever the others give, and the worst region gets one more budget, for the bound reported. The
 region that starts highest is most often the one that stays above: taken first, it ends a
 failing width point's certificate before the others are refined.
+
+A region whose limits are the whole domain's (:func:`like_whole`: on the torus, the patch whose
+normals reach every N·V of the whole) is bounded as the whole is, on no larger budget, so its
+bound is never below the whole's: when the whole misses the requirement, so does the largest
+over the regions, and they are not bounded at all (``parts["like_whole"]`` names that region).
+The result is the same; a failing width point's certificate there spent more than half its time
+in its regions.
 """
 
-from dataclasses import replace
+import math
+from dataclasses import fields, replace
 
 import numpy as np
 
 from .branch import Resume
 
-__all__ = ["FIRST_BOXES", "SPEND", "by_region"]
+__all__ = ["FIRST_BOXES", "SPEND", "UNREAD", "by_region", "like_whole"]
 
 #: the least first budget of a region, boxes
 FIRST_BOXES = 1000
 #: how many times ``max_boxes`` the regions may spend together
 SPEND = 3
+#: the fields of a :class:`~phongfx.scene.domain.Domain` no bounding method reads (the sampler's
+#: own, and the regions' names)
+UNREAD = ("surface", "ends_cos", "regions", "region_name")
+
+
+def like_whole(domain, region):
+    """Whether the domain ``region`` has the limits of ``domain`` (the whole, its regions aside)
+    in every field a bounding method reads, floats to 1e-9: the same domain to every bound."""
+    return all(_close(getattr(domain, f.name), getattr(region, f.name)) for f in fields(domain)
+               if f.name not in UNREAD)
+
+
+def _close(a, b):
+    if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
+        return len(a) == len(b) and all(_close(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) or isinstance(b, float):
+        return (isinstance(a, (int, float)) and isinstance(b, (int, float))
+                and math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12))
+    return bool(np.all(a == b)) if isinstance(a, np.ndarray) or isinstance(b, np.ndarray) else a == b
 
 
 def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None):
@@ -56,6 +83,9 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
                              max_boxes=max_boxes, enough=enough)
     if not regions or target is None or bound < target or not np.isfinite(bound):
         return bound, parts
+    same = next((r.name for i, r in enumerate(regions) if like_whole(domain, domain.region(i))), None)
+    if same is not None:  # the regions cannot beat the whole (module docstring)
+        return bound, dict(parts, like_whole=same)
     found, failed, spent = _regions(how, shader, spec, domain, max_boxes, enough, target)
     names = [r.name for r in domain.regions]
     worst = int(np.argmax([b for b, *_ in found])) if failed is None else failed

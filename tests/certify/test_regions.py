@@ -117,3 +117,32 @@ def test_a_branch_and_bound_resumed_on_a_larger_budget_ends_where_a_fresh_one_do
     assert first[1]["boxes"] < fresh[1]["boxes"] and resumed[0] < first[0]
     assert resumed == fresh
     assert sum(bounded) == fresh[1]["boxes"] - first[1]["boxes"]
+
+
+def test_regions_with_the_whole_domain_s_limits_are_not_bounded_and_change_no_result(monkeypatch):
+    """On the torus one patch reaches every N·V of the whole: no region can then beat the whole
+    domain's bound, so a failing width point's certificate bounds the whole alone; bounding the
+    regions anyway gives the same bound and verdict."""
+    from phongfx.certify import regions
+
+    spec = load_scene("scenes/torus.toml")
+    whole = domain(spec)
+    assert [i for i in range(len(whole.regions)) if regions.like_whole(whole, whole.region(i))] == [1]
+    lyon = domain(SPEC)  # Lyon's rings of θ: each its own N·V, span angle and n
+    assert not any(regions.like_whole(lyon, lyon.region(i)) for i in range(len(lyon.regions)))
+    params = {"vec_frac": 12, "x2_frac": 20, "shape_t_frac": 24, "coef": 16, "order": 2, "k": 4}
+    calls, bound = [], figures.LyonDatapaths.bound
+
+    def counted(self, *args, **options):
+        calls.append(args[2].region_name)
+        return bound(self, *args, **options)
+
+    monkeypatch.setattr(figures.LyonDatapaths, "bound", counted)
+    skipped = certify("fig7", params, spec, whole, early=True)
+    assert calls == [""] and skipped.parts["like_whole"] == whole.regions[1].name
+    del calls[:]
+    monkeypatch.setattr(regions, "like_whole", lambda *_: False)
+    bounded = certify("fig7", params, spec, whole, early=True)
+    assert len(calls) > len(whole.regions) and "regions" in bounded.parts
+    assert not skipped.certified and (skipped.certified, skipped.bound_levels) == (bounded.certified,
+                                                                                   bounded.bound_levels)
