@@ -12,6 +12,7 @@ import numpy as np
 from .branch import bound_boxes, cases
 from .cones import cone_why_not, directions
 from .outputs import box_errors
+from .regions import limits
 from .sphere import cover
 
 __all__ = ["LyonDatapaths", "LYON_DATAPATHS", "directional_why_not", "unit_directions_why_not"]
@@ -37,6 +38,8 @@ class LyonDatapaths:
 
     #: what the certificate names as its method
     name = "interval"
+    #: what of a domain its bound reads: every limit (:func:`~phongfx.certify.regions.limits`)
+    limits = staticmethod(limits)
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""

@@ -9,7 +9,10 @@ A bounding method is an object with
   upper bound on ``|out - (2^bits - 1)·I_ref|`` over the domain in display levels (inf when some
   quantize may overflow, ``parts["faults"]`` naming them), refined until it falls below
   ``enough`` when that is given, going on from ``resume`` (:class:`phongfx.certify.branch.Resume`)
-  when given (:func:`phongfx.certify.branch.bound_boxes`).
+  when given (:func:`phongfx.certify.branch.bound_boxes`);
+* ``limits(domain)``: what of the domain its bound reads (:func:`phongfx.certify.regions.limits`,
+  or less): regions it reads as the whole domain are not bounded apart
+  (:func:`~phongfx.certify.regions.like_whole`).
 
 Adding a unit's bounding method is one module and one line in :data:`BOUNDING`.  None is
 registered for ``euler`` and ``gouraud`` (Hast, Barrera & Bengtsson: the diffuse ``N·L`` alone,

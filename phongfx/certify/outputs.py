@@ -32,7 +32,7 @@ from .cones import at_infinity
 from .datapath import unit_terms
 from .sphere import projection
 
-__all__ = ["coefficient_tables", "fewest_coefficient_bits", "light_rounding", "box_errors"]
+__all__ = ["coefficient_tables", "fewest_coefficient_bits", "light_rounding", "box_errors", "blend_errors"]
 
 
 def coefficient_tables(blend):
@@ -147,3 +147,25 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length, cones=N
         bent = s[1] * slack * (q[1] > -margin)  # |N·L' - N·L| where some L lights the box
         approximation += de[m, i] * (diffuse_shift(s, q) + bent)[:, None] + se[m, i] * shift[:, None]
     return rounding, approximation, faults, gate
+
+
+def blend_errors(blend, material, terms, levels):
+    """``(rounding, approximation, gate)`` (B, 3), (B, 3), (B,) at the outputs of a table unit
+    (:mod:`.table_units`: as this module states them, with ``s = 1``) from per light ``(e_d, d_hi, e_s, ideal_hi,
+    hw_hi, approximation, q)``: ``q`` the range of the exact ``N̂·L``."""
+    (ac, dc, sc), (ae, de, se) = coefficient_tables(blend)
+    m = material
+    rounding = np.abs(ac - ae)[m].copy()
+    approximation = np.zeros_like(rounding)
+    gate = np.zeros(len(m))
+    for i, (e_d, d_hi, e_s, ideal_hi, hw_hi, approx, q) in enumerate(terms):
+        d, s = dc[m, i], sc[m, i]
+        rounding += d * e_d[:, None] + np.abs(d - de[m, i]) * (d_hi + e_d)[:, None]
+        both = s * e_s[:, None] + np.abs(s - se[m, i]) * ideal_hi[:, None]
+        # the hardware's lit (diff > 0) is the reference's outside the terminator band
+        agree = (e_d < 1.0 / levels) | (q[0] > e_d) | (q[1] < -e_d)
+        mismatch = np.maximum(s * hw_hi[:, None], se[m, i] * (ideal_hi + approx)[:, None])
+        rounding += np.where(agree[:, None], both, np.maximum(both, mismatch))
+        gate = np.where(agree, gate, np.maximum(gate, e_d))
+        approximation += se[m, i] * approx[:, None]
+    return rounding, approximation, gate

@@ -27,9 +27,10 @@ whatever the others give, and the worst region gets one more budget, for the bou
 region that starts highest is most often the one that stays above: taken first, it ends a
 failing width point's certificate before the others are refined.
 
-A region whose limits are the whole domain's (:func:`like_whole`: on the torus, the patch whose
-normals reach every N·V of the whole) is bounded as the whole is, on no larger budget, so its
-bound is never below the whole's: when the whole misses the requirement, so does the largest
+A region whose limits are the whole domain's as the bounding method reads them (:func:`like_whole`:
+on the torus, the patch whose normals reach every N·V of the whole; for the table units about a
+local viewer's cone, whose cover is the cone's whatever a region's N·V) is bounded as the whole
+is, on no larger budget, so its bound is never below the whole's: when the whole misses the requirement, so does the largest
 over the regions, and they are not bounded at all (``parts["like_whole"]`` names that region).
 The result is the same; a failing width point's certificate there spent more than half its time
 in its regions.
@@ -42,7 +43,7 @@ import numpy as np
 
 from .branch import Resume
 
-__all__ = ["FIRST_BOXES", "SPEND", "UNREAD", "by_region", "like_whole"]
+__all__ = ["FIRST_BOXES", "SPEND", "UNREAD", "by_region", "limits", "like_whole"]
 
 #: the least first budget of a region, boxes
 FIRST_BOXES = 1000
@@ -53,14 +54,22 @@ SPEND = 3
 UNREAD = ("surface", "ends_cos", "regions", "region_name")
 
 
-def like_whole(domain, region):
-    """Whether the domain ``region`` has the limits of ``domain`` (the whole, its regions aside)
-    in every field a bounding method reads, floats to 1e-9: the same domain to every bound."""
-    return all(_close(getattr(domain, f.name), getattr(region, f.name)) for f in fields(domain)
-               if f.name not in UNREAD)
+def limits(domain, unread=()):
+    """``{field: value}`` of ``domain`` a bounding method reads: every field but :data:`UNREAD`
+    and ``unread`` (a method's ``limits(domain)``, which may add what it derives from them)."""
+    return {f.name: getattr(domain, f.name) for f in fields(domain) if f.name not in UNREAD + tuple(unread)}
+
+
+def like_whole(how, domain, region):
+    """Whether the bounding method ``how`` reads the same limits of the domain ``region`` as of
+    ``domain`` (the whole, its regions aside; ``how.limits``), floats to 1e-9: the same domain
+    to its bound."""
+    return _close(how.limits(domain), how.limits(region))
 
 
 def _close(a, b):
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_close(a[k], b[k]) for k in a)
     if isinstance(a, (tuple, list)) and isinstance(b, (tuple, list)):
         return len(a) == len(b) and all(_close(x, y) for x, y in zip(a, b))
     if isinstance(a, float) or isinstance(b, float):
@@ -83,7 +92,7 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
                              max_boxes=max_boxes, enough=enough)
     if not regions or target is None or bound < target or not np.isfinite(bound):
         return bound, parts
-    same = next((r.name for i, r in enumerate(regions) if like_whole(domain, domain.region(i))), None)
+    same = next((r.name for i, r in enumerate(regions) if like_whole(how, domain, domain.region(i))), None)
     if same is not None:  # the regions cannot beat the whole (module docstring)
         return bound, dict(parts, like_whole=same)
     found, failed, spent = _regions(how, shader, spec, domain, max_boxes, enough, target)

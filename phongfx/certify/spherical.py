@@ -46,6 +46,7 @@ from .figures import directional_why_not
 from .interval import rounding_error
 from .lobe import cell_errors, diffuse_rom, lobe_range, psi_max, read_range, read_table, rom_table, wrap_error
 from .outputs import coefficient_tables, light_rounding
+from .regions import limits
 from .span import max_pixels, slerp_gap, widen
 from .sphere import cover, frame, projection
 
@@ -120,6 +121,8 @@ class Spherical:
 
     #: what the certificate names as its method
     name = "interval"
+    #: what of a domain its bound reads: every limit (:func:`~phongfx.certify.regions.limits`)
+    limits = staticmethod(limits)
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""

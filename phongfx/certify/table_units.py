@@ -53,11 +53,12 @@ from .interval import Interval, rounding_error
 from .local_vectors import EXACT, geometry_error, local_vector
 from .normalizer import (SYMBOLS, clamp, cosine, cosine_range, direction, inverse_length,
                          length_cases, normal_codes, product_of, rounded, squared_length)
-from .outputs import coefficient_tables
+from .outputs import blend_errors
+from .regions import limits
 from .sphere import cover, product
 from .tables import power_bound
 
-__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "CELL_WEIGHT", "CELL_PATIENCE", "TableUnit", "Ranges", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms", "blend_errors"]
+__all__ = ["CODES_PER_BOX", "CODES_PER_CALL", "CELL_WEIGHT", "CELL_PATIENCE", "TableUnit", "Ranges", "CONVENTIONAL_BOUND", "BLINN_BOUND", "light_terms"]
 
 
 #: A box holding at most this many normal codes is bounded code by code (:mod:`.codes`) ...
@@ -230,28 +231,6 @@ def light_terms(unit, boxes, basis, vectors, ranges, specular, n_hw):
     return e_d, d_hi, e_s, ideal_hi, hw_hi, faults
 
 
-def blend_errors(blend, material, terms, levels):
-    """``(rounding, approximation, gate)`` (B, 3), (B, 3), (B,) at the outputs (as
-    :mod:`.outputs` states it, with ``s = 1``) from per light ``(e_d, d_hi, e_s, ideal_hi,
-    hw_hi, approximation, q)``: ``q`` the range of the exact ``N̂·L``."""
-    (ac, dc, sc), (ae, de, se) = coefficient_tables(blend)
-    m = material
-    rounding = np.abs(ac - ae)[m].copy()
-    approximation = np.zeros_like(rounding)
-    gate = np.zeros(len(m))
-    for i, (e_d, d_hi, e_s, ideal_hi, hw_hi, approx, q) in enumerate(terms):
-        d, s = dc[m, i], sc[m, i]
-        rounding += d * e_d[:, None] + np.abs(d - de[m, i]) * (d_hi + e_d)[:, None]
-        both = s * e_s[:, None] + np.abs(s - se[m, i]) * ideal_hi[:, None]
-        # the hardware's lit (diff > 0) is the reference's outside the terminator band
-        agree = (e_d < 1.0 / levels) | (q[0] > e_d) | (q[1] < -e_d)
-        mismatch = np.maximum(s * hw_hi[:, None], se[m, i] * (ideal_hi + approx)[:, None])
-        rounding += np.where(agree[:, None], both, np.maximum(both, mismatch))
-        gate = np.where(agree, gate, np.maximum(gate, e_d))
-        approximation += se[m, i] * approx[:, None]
-    return rounding, approximation, gate
-
-
 def _phong_distance(boxes, basis, light, half, n_hw, n):
     """Per box a bound on ``|max(N̂·H, 0)^n' - max(R·V, 0)^n|`` (module docstring)."""
     w, c = cosine_range(boxes, basis, half), cosine_range(boxes, basis, light, reflected=True)
@@ -295,6 +274,14 @@ class TableUnit:
             if getattr(unit, "local_viewer", False) != (domain.camera[0] == "point"):
                 return f"the camera is {domain.camera[0]} but the unit's local_viewer is {unit.local_viewer}"
         return None
+
+    def limits(self, domain):
+        """What of ``domain`` :meth:`bound` reads: about a local viewer's cone the N·V limits only
+        through the cover of the cone's normals (:attr:`~.cones.Directions.cover_cos_min`)."""
+        cones = directions(domain)
+        if cones.view.half:
+            return limits(domain, ("view_cos_min", "view_cos_max")), cones.cover_cos_min
+        return limits(domain)
 
     def errors(self, shader, against, boxes, cones, floor=-np.inf, domain=None):
         """``errors(boxes, floor)`` of :func:`~phongfx.certify.branch.bound_boxes`; ``cones`` the

@@ -126,10 +126,16 @@ def test_regions_with_the_whole_domain_s_limits_are_not_bounded_and_change_no_re
     from phongfx.certify import regions
 
     spec = load_scene("scenes/torus.toml")
-    whole = domain(spec)
-    assert [i for i in range(len(whole.regions)) if regions.like_whole(whole, whole.region(i))] == [1]
+    whole, how = domain(spec), bounding("fig7")
+    assert [i for i in range(len(whole.regions)) if regions.like_whole(how, whole, whole.region(i))] == [1]
     lyon = domain(SPEC)  # Lyon's rings of θ: each its own N·V, span angle and n
-    assert not any(regions.like_whole(lyon, lyon.region(i)) for i in range(len(lyon.regions)))
+    assert not any(regions.like_whole(how, lyon, lyon.region(i)) for i in range(len(lyon.regions)))
+    # about a local viewer's cone the table units cover the cone's normals whatever a patch's N·V:
+    # the local mesh's patches with the whole's span angle are the whole to them, not to Figure 7
+    mesh = domain(load_scene("scenes/local-mesh.toml"))
+    assert [i for i in range(len(mesh.regions)) if regions.like_whole(bounding("conventional"), mesh,
+                                                                       mesh.region(i))] == [0, 2]
+    assert not any(regions.like_whole(how, mesh, mesh.region(i)) for i in range(len(mesh.regions)))
     params = {"vec_frac": 12, "x2_frac": 20, "shape_t_frac": 24, "coef": 16, "order": 2, "k": 4}
     calls, bound = [], figures.LyonDatapaths.bound
 
