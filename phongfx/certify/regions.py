@@ -27,13 +27,13 @@ whatever the others give, and the worst region gets one more budget, for the bou
 region that starts highest is most often the one that stays above: taken first, it ends a
 failing width point's certificate before the others are refined.
 
-A region whose limits are the whole domain's as the bounding method reads them (:func:`like_whole`:
-on the torus, the patch whose normals reach every N·V of the whole; for the table units about a
-local viewer's cone, whose cover is the cone's whatever a region's N·V) is bounded as the whole
-is, on no larger budget, so its bound is never below the whole's: when the whole misses the requirement, so does the largest
-over the regions, and they are not bounded at all (``parts["like_whole"]`` names that region).
-The result is the same; a failing width point's certificate there spent more than half its time
-in its regions.
+A region whose limits are the whole domain's as the bounding method reads them
+(:func:`like_whole`: on the torus, the patch whose normals reach every N·V of the whole; for the
+table units about a local viewer's cone, whose cover is the cone's whatever a region's N·V) is
+bounded as the whole is, on no larger budget, so its bound is never below the whole's: when the
+whole misses the requirement, so does the largest over the regions, and they are not bounded at
+all (``parts["like_whole"]`` names that region).  The result is the same; a failing width
+point's certificate there spent more than half its time in its regions.
 """
 
 import math
