@@ -151,8 +151,8 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length, cones=N
 
 def blend_errors(blend, material, terms, levels):
     """``(rounding, approximation, gate)`` (B, 3), (B, 3), (B,) at the outputs of a table unit
-    (:mod:`.table_units`: as this module states them, with ``s = 1``) from per light ``(e_d, d_hi, e_s, ideal_hi,
-    hw_hi, approximation, q)``: ``q`` the range of the exact ``N̂·L``."""
+    (:mod:`.table_units`; as this module states them, with ``s = 1``) from per light ``(e_d,
+    d_hi, e_s, ideal_hi, hw_hi, approximation, q)``: ``q`` the range of the exact ``N̂·L``."""
     (ac, dc, sc), (ae, de, se) = coefficient_tables(blend)
     m = material
     rounding = np.abs(ac - ae)[m].copy()

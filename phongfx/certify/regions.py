@@ -60,11 +60,11 @@ def limits(domain, unread=()):
     return {f.name: getattr(domain, f.name) for f in fields(domain) if f.name not in UNREAD + tuple(unread)}
 
 
-def like_whole(how, domain, region):
-    """Whether the bounding method ``how`` reads the same limits of the domain ``region`` as of
-    ``domain`` (the whole, its regions aside; ``how.limits``), floats to 1e-9: the same domain
-    to its bound."""
-    return _close(how.limits(domain), how.limits(region))
+def like_whole(how, domain):
+    """The indices of ``domain``'s regions of which the bounding method ``how`` reads the same
+    limits as of the whole domain (``how.limits``), floats to 1e-9: the whole to its bound."""
+    whole = how.limits(domain)
+    return [i for i in range(len(domain.regions)) if _close(how.limits(domain.region(i)), whole)]
 
 
 def _close(a, b):
@@ -92,9 +92,9 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
                              max_boxes=max_boxes, enough=enough)
     if not regions or target is None or bound < target or not np.isfinite(bound):
         return bound, parts
-    same = next((r.name for i, r in enumerate(regions) if like_whole(how, domain, domain.region(i))), None)
-    if same is not None:  # the regions cannot beat the whole (module docstring)
-        return bound, dict(parts, like_whole=same)
+    same = like_whole(how, domain)
+    if same:  # the regions cannot beat the whole (module docstring)
+        return bound, dict(parts, like_whole=regions[same[0]].name)
     found, failed, spent = _regions(how, shader, spec, domain, max_boxes, enough, target)
     names = [r.name for r in domain.regions]
     worst = int(np.argmax([b for b, *_ in found])) if failed is None else failed

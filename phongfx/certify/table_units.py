@@ -375,7 +375,7 @@ class TableUnit:
 
         return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume,
                            patience=CELL_PATIENCE if boxes is not None and boxes.cells is not None else 4,
-                           separable=cones.local)
+                           separable=cones.local)  # errors() lists codes across boxes only when not local
 
 
 def _unit(v):
