@@ -30,7 +30,7 @@ from .handshake import Handshake
 from .overflow import Checked
 
 __all__ = ["BLOCK_PATH", "CONTROL_PORTS", "POWER_UP", "TIMING_KEYS", "lane_suffix", "port_map", "Top", "timing_line",
-           "header", "top_verilog"]
+           "header", "top_verilog", "shipped_verilog"]
 
 #: The ports that carry no payload, in header order: ``(name, direction, meaning)``.
 CONTROL_PORTS = (
@@ -283,5 +283,11 @@ def top_verilog(block_component, name, *, overflow=False, timing=None, contract=
     """
     top = Top(block_component, name, overflow=overflow)
     noun = "pixel" if isinstance(block_component.config, ShaderConfig) else "vector"
-    return (header(top.ports, name, top.latency, top.interval, timing, noun, contract)
-            + verilog(top, f"{name}_top", lint=True, assigns=True))
+    return header(top.ports, name, top.latency, top.interval, timing, noun, contract) + shipped_verilog(top, name)
+
+
+def shipped_verilog(top, name):
+    """The module of the shipped top ``top`` (a :class:`Top`), ``<name>_top``, as
+    :func:`top_verilog` writes it after its header: lint-clean, its processes as multiplexers
+    (:func:`phongfx.hdl.emit.verilog`'s ``lint`` and ``assigns``)."""
+    return verilog(top, f"{name}_top", lint=True, assigns=True)

@@ -183,11 +183,9 @@ def test_a_real_compile_gives_the_stored_design_and_passes_its_testbench_vectors
     assert {k: manifest[k] for k in TWO_LIGHTS} == TWO_LIGHTS  # the fast tier's data is current
     core = load_core(compiled)
     # one design: the shipped Verilog is the top of this core's block, after its header
-    from phongfx.hdl.emit import verilog
-    from phongfx.hdl.top import Top
+    from phongfx.hdl.top import Top, shipped_verilog
     shipped = (compiled / manifest["top"]["file"]).read_text()
-    assert shipped.endswith(verilog(Top(core.block.component(), core.name), f"{core.name}_top", lint=True,
-                                             assigns=True))
+    assert shipped.endswith(shipped_verilog(Top(core.block.component(), core.name), core.name))
     bench = compiled / "testbench"
     words = [int(line, 16) for line in (bench / f"{core.name}_in.memh").read_text().split()]
     expected = [int(line, 16) for line in (bench / f"{core.name}_expected.memh").read_text().split()]
