@@ -60,7 +60,7 @@ def add_arguments(p):
                         "[domain] samples (default 1,000,000)")
     p.add_argument("--final-samples", type=int, metavar="N",
                    help="fresh domain points the chosen design's witness is searched on, instead of the "
-                        "scene's [domain] final_samples (default 10,000,000)")
+                        "scene's [domain] final_samples (default 2,000,000)")
     p.add_argument("--sampled", action="store_true",
                    help="choose by the measured error alone (the frames and a sample of the scene's domain, the "
                         "witness search): faster, and a choice for methods without a bounding method, but the "

@@ -218,7 +218,7 @@ def test_as_dict_and_describe():
     assert out["camera"]["cones"] == [{"axis": [0.0, 0.0, 1.0], "half_angle_deg": pytest.approx(d.view_tilt_deg)}]
     assert domain(_scene("torus")).as_dict()["lights"][0]["cone"] is None
     assert out["pose"] == "motion" and out["materials"] == [{"name": "clay", "n": {"range": [16, 32]}}]
-    assert out["ball"]["radius"] == d.ball[1] and out["samples"] == 1_000_000 and out["final_samples"] == 10_000_000
+    assert out["ball"]["radius"] == d.ball[1] and out["samples"] == 1_000_000 and out["final_samples"] == 2_000_000
     assert out["description"] == d.describe()
     assert d.describe().startswith("Poses: the continuous rotation about (0, 1, 0) over [0°, 30°]")
     assert "still" in domain(_scene("lyon-balls")).pose

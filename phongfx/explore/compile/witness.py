@@ -39,8 +39,11 @@ from .workers import MIN_POINTS, count, fork_imap
 __all__ = ["STARTS", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore", "climb_rounds", "replay",
            "geometry"]
 
-#: How many of the worst sampled points the local search starts from.
-STARTS = 32
+#: How many of the worst sampled points the local search starts from.  Many starts on a
+#: smaller fresh sample find more than few on a larger one: on the four example scenes' chosen
+#: designs, 128 starts from 2,000,000 points found witnesses within 2 % of, or above, 32 starts
+#: from 10,000,000 (local-mesh 0.776 against 0.742) in a third of the time.
+STARTS = 128
 #: Rounds of the local search, at most.
 ROUNDS = 40
 #: How many of the climbs (the worst where they ended) give hard points beside the witness.
