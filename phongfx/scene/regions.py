@@ -131,19 +131,24 @@ def holds(regions, n0, n1, normal, views, material, n, positions):
     in the region's ball (each (P, 3))."""
     ok = np.zeros(len(n0), dtype=bool)
     angle = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", n0, n1), -1.0, 1.0)))
+    # each viewer's cosines taken once for every region: a region only compares them
+    cosines = [(_dots(normal, v), _dots(n0, v), _dots(n1, v)) for v in views]
+    distances = {}  # a ball's centre -> each position's distance from it
     for r in regions:
         mine = np.zeros(len(n0), dtype=bool)
         for m, (_, values) in enumerate(r.materials):
             if values:
                 mine |= (material == m) & np.isin(n, values)
         mine &= angle <= r.max_span_angle_deg + 1e-9
-        for v in views:
-            mine &= (_dots(normal, v) >= r.view_cos_min - 1e-12) & (_dots(normal, v) <= r.view_cos_max + 1e-12)
-            for end in (n0, n1):
-                mine &= (_dots(end, v) >= r.ends_cos[0] - 1e-12) & (_dots(end, v) <= r.ends_cos[1] + 1e-12)
-        centre = np.asarray(r.ball[0], dtype=np.float64)
-        for x in positions:
-            mine &= np.linalg.norm(x - centre, axis=-1) <= r.ball[1] * (1 + 1e-12)
+        for facing, *ends in cosines:
+            mine &= (facing >= r.view_cos_min - 1e-12) & (facing <= r.view_cos_max + 1e-12)
+            for end in ends:
+                mine &= (end >= r.ends_cos[0] - 1e-12) & (end <= r.ends_cos[1] + 1e-12)
+        if r.ball[0] not in distances:  # regions of one object share its ball's centre
+            centre = np.asarray(r.ball[0], dtype=np.float64)
+            distances[r.ball[0]] = [np.linalg.norm(x - centre, axis=-1) for x in positions]
+        for distance in distances[r.ball[0]]:
+            mine &= distance <= r.ball[1] * (1 + 1e-12)
         ok |= mine
     return ok
 
