@@ -153,9 +153,9 @@ def exit_on_mismatch(count, where=""):
 
 #: Defaults of ``render``'s own options, which are None when not given so that a target
 #: (``mesh``, ``frames``) can tell an option it takes from one it would silently ignore.
-RENDER_DEFAULTS = {"backend": "verilator-fast", "radius": 64, "span": 8, "out": "build/sim"}
+RENDER_DEFAULTS = {"backend": "verilator-fast", "radius": 64, "span": 8, "out": "build/sim", "speed_sample": 0}
 #: ``render``'s options that mean nothing to a target, and what they do apply to.
-_SCENE_ONLY = {"radius": "Lyon's scene", "span": "Lyon's scene", "set": "Lyon's scene",
+_SCENE_ONLY = {**dict.fromkeys(("radius", "span", "set", "speed_sample"), "Lyon's scene"),
                "backend": "Lyon's scene and frames (mesh runs no RTL)"}
 
 
@@ -171,10 +171,10 @@ def _target_option(args, name, own, default):
 def _refuse_scene_options(args, also=()):
     """Refuse ``render --radius/--span/--set`` (and ``also``) before a target that would
     ignore them: an option silently dropped looks like one that worked."""
-    for name in ("radius", "span", "set", *also):
+    for name in ("radius", "span", "set", "speed_sample", *also):
         if getattr(args, name) is not None:
-            raise ValueError(f"render --{name} applies to {_SCENE_ONLY[name]}, not to render {args.target}; "
-                             f"drop it")
+            raise ValueError(f"render --{name.replace('_', '-')} applies to {_SCENE_ONLY[name]}, "
+                             f"not to render {args.target}; drop it")
 
 
 def cmd_render(args):
@@ -196,7 +196,7 @@ def cmd_render(args):
     config = apply_settings(fig7_config(), args.set or [])
     check_folder(args.out)
     summary = run(config, radius=args.radius, span=args.span, backend=args.backend,
-                  out_dir=args.out, quiet=args.quiet)
+                  out_dir=args.out, sample=args.speed_sample, quiet=args.quiet)
     print(f"pixels checked {summary['pixels_checked']}, mismatches {summary['mismatches']}, "
           f"cycles {summary['cycles']}")
     for name, speed in summary["cycles_per_second"].items():

@@ -191,6 +191,9 @@ def build_parser():
     p.add_argument("--out", help="output folder (default build/sim; also mesh's and frames')")
     p.add_argument("--set", action="append", metavar="FIELD=VALUE",
                    help="change a DatapathConfig field (Lyon's scene only)")
+    p.add_argument("--speed-sample", type=int, metavar="N",
+                   help="also run the first N span-mode pixels on each other back end, to time it (default 0: "
+                        "`make bench` times every back end; Lyon's scene only)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(run=commands.cmd_render, target=None)
     targets = p.add_subparsers(dest="target", metavar="{mesh,frames}",

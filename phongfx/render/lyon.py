@@ -153,17 +153,20 @@ def _plots(out_dir, scene, results, own):
 
 
 def run(config=None, *, radius=64, span=8, backend="verilator-fast", out_dir="build/sim",
-        chunk=16384, sample=2000, quiet=False):
+        chunk=16384, sample=0, quiet=False):
     """Shade both modes, check every pixel on ``backend``, write pictures and summary.
 
-    ``sample`` pixels are also run on each other back end, only to measure its speed
-    (0: none).
+    ``sample`` pixels are also run on each other back end, only to measure its speed (0:
+    none, as ``make sim`` runs it: the other back ends' builds cost twice the rest of the
+    render, and ``make bench``'s ``bench.rtl`` times every back end).
     Returns the summary dict; ``summary["mismatches"]`` must be 0.
     """
     from tqdm import tqdm
 
     if backend not in BACKENDS:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
+    if isinstance(sample, bool) or not isinstance(sample, int) or sample < 0:
+        raise ValueError(f"speed sample must be a non-negative integer, not {sample!r}")
     config = config or fig7_config()
     block = get_block("fig7", config=config)
     scenes = {"exact": Scene(radius=radius, span=0), "spans": Scene(radius=radius, span=span)}

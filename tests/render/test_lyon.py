@@ -1,6 +1,7 @@
 import json
 
 import numpy as np
+import pytest
 
 from phongfx.render.lyon import run
 
@@ -34,3 +35,16 @@ def test_a_configured_k_is_compared_with_its_own_float_form(tmp_path):
     assert summary["float_form"] == "lyon-k1"
     assert "specular_vs_lyon-k2" not in exact and "specular_vs_lyon-k1-interpolated" in exact
     assert exact["specular_vs_lyon-k1"]["max"] < 3
+
+
+@pytest.mark.needs_verilator
+def test_a_speed_sample_times_the_other_back_ends_on_its_pixels_only(tmp_path):
+    """Without a sample only the back end asked for is timed (``make sim``); with one, each other
+    back end runs that many span-mode pixels, bit-identical too."""
+    alone = run(radius=6, span=4, backend="verilator-fast", out_dir=str(tmp_path / "a"), quiet=True)
+    assert list(alone["cycles_per_second"]) == ["verilator-fast"]
+    timed = run(radius=6, span=4, backend="verilator-fast", out_dir=str(tmp_path / "b"), sample=5, quiet=True)
+    assert timed["mismatches"] == 0
+    assert set(timed["cycles_per_second"]) == {"verilator-fast", "verilator", "amaranth"}
+    assert timed["cycles_per_second"]["amaranth"]["note"] == ("speed sample: first 5 span-mode pixels, "
+                                                             "also bit-identical")
