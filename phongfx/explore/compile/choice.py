@@ -62,12 +62,12 @@ def for_chosen(out, begun):
     return begun is not None and out.best is not None and begun[:2] == (out.chosen, out.best["params"])
 
 
-def _witness(scene, name, params, domain, progress):
-    """``(witness, hard points)`` of ``name`` at ``params``: first a local search from the
-    width search's own worst domain points, of its own seed (a miss there needs no fresh
-    sample), then the full search (:func:`phongfx.explore.compile.witness.explore`)."""
+def _witness(scene, name, params, domain, progress, quick):
+    """``(witness, hard points)`` of ``name`` at ``params``: with ``quick``, first a local search
+    from the width search's own worst domain points, of its own seed (a miss there needs no
+    fresh sample), then the full search (:func:`phongfx.explore.compile.witness.explore`)."""
     spec, analysis = scene.spec, scene.analysis
-    if runs.per_pixel(name):
+    if quick and runs.per_pixel(name):
         starts = scene.points.worst(name, runs.build(name, params, analysis), params, witnesses.STARTS)
         quick, hard = witnesses.explore(name, params, spec, domain, starts=starts, analysis=analysis,
                                         hard=HARD_POINTS)
@@ -91,7 +91,9 @@ def choose(out, scene, cost, prove, prove_timeout, progress, search=None):
     while queue:
         r = queue[0]
         name = r["method"]
-        found, hard = _witness(scene, name, r["params"], domain, progress)
+        # a certified design's witness cannot miss the requirement its certificate meets: the quick
+        # search, there to spare a fresh sample when it misses, would only cost its time
+        found, hard = _witness(scene, name, r["params"], domain, progress, quick=not out.certified)
         r["witness"] = found
         if found["error_levels"] <= required:
             if prove and not _proven(scene, r, prove_timeout, progress):

@@ -31,7 +31,8 @@ domain sample as hard points (:meth:`~phongfx.explore.compile.measure.SceneEval.
 that method's widths are searched again, and the designs re-ranked, for at most
 :data:`ROUNDS` such rounds (:data:`METHOD_ROUNDS` per method; each recorded in
 :attr:`Compiled.rounds`); a design whose witness still misses is not chosen.  A quick local
-search from the width search's own worst points comes before each fresh sample.
+search from the width search's own worst points comes before each fresh sample (not in a
+certified compile, where the witness cannot miss).
 
 With ``certified`` (``phongfx compile``'s default) a width point must also meet the requirement
 by its certificate, methods without a bounding method are rejected unsearched, and the chosen

@@ -83,3 +83,23 @@ def test_a_certificate_without_a_bound_only_for_an_overflow_does_not_make_a_meth
 def test_certified_needs_a_certifier():
     with pytest.raises(ValueError, match=r"^certified=True needs a certifier \(phongfx\.certify\.certify\)$"):
         compile_scene(_tiny(), methods=["fig7"], certified=True)
+
+
+def test_only_a_sampled_choice_has_a_quick_witness_search_first(monkeypatch):
+    """The local search from the width search's own worst points spares a fresh sample when it
+    misses the requirement; a certified design's witness cannot miss, so there it is not run."""
+    from phongfx.explore.compile import witness
+
+    quick, explore = [], witness.explore
+
+    def counted(*args, starts=None, **options):
+        quick.append(starts is not None)
+        return explore(*args, starts=starts, **options)
+
+    monkeypatch.setattr(witness, "explore", counted)
+    sampled = compile_scene(_tiny(), methods=["fig7"])
+    assert quick[:2] == [True, False]  # each fresh sample after a quick search that did not miss
+    floor = {**sampled.best["params"], "vec_frac": sampled.best["params"]["vec_frac"] + 1}
+    del quick[:]
+    out = compile_scene(_tiny(), methods=["fig7"], certifier=Fake(floor), certified=True)
+    assert out.certified and quick == [False]
