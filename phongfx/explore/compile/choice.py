@@ -69,10 +69,10 @@ def _witness(scene, name, params, domain, progress, quick):
     spec, analysis = scene.spec, scene.analysis
     if quick and runs.per_pixel(name):
         starts = scene.points.worst(name, runs.build(name, params, analysis), params, witnesses.STARTS)
-        quick, hard = witnesses.explore(name, params, spec, domain, starts=starts, analysis=analysis,
+        found, hard = witnesses.explore(name, params, spec, domain, starts=starts, analysis=analysis,
                                         hard=HARD_POINTS)
-        if quick["error_levels"] > spec.requirement.max_error_levels:
-            return quick, hard
+        if found["error_levels"] > spec.requirement.max_error_levels:
+            return found, hard
     return witnesses.explore(name, params, spec, domain, progress=progress, analysis=analysis, hard=HARD_POINTS)
 
 
