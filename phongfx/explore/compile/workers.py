@@ -16,7 +16,8 @@ samples) is not worth a fork: the callers go parallel only from :data:`MIN_POINT
 while this process does another (the chosen design's full certificate during its witness).
 :class:`Twin` is a copy of a worker that shares its work item by item while a core is idle
 (:func:`spare_core`): the last width search running alone bounds half of each round's boxes
-there (:func:`phongfx.certify.branch.bound_boxes`).
+there (:func:`phongfx.certify.branch.bound_boxes`) and measures half of each width point's
+domain sample (:meth:`phongfx.explore.compile.points.DomainPoints.error`).
 """
 
 import multiprocessing

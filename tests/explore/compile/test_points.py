@@ -117,3 +117,38 @@ def test_an_infeasible_method_reports_the_best_point_it_tried(monkeypatch):
     # its widest widths, measured only until they failed, are its best: measured whole to say so
     assert fast == whole and not fast["feasible"] and fast["params"] == fast["widest"]["params"] != \
         fast["default"]["params"]
+
+
+def test_while_a_core_is_idle_a_twin_measures_half_the_chunks_and_nothing_changes(monkeypatch):
+    """The last width search, alone, has a core to spare: the second half of the sample's chunks
+    is measured by a forked twin of the process; the numbers, and where a point that fails on the
+    domain stops, are those of one process."""
+    from phongfx.explore.compile import run as runs
+    from phongfx.explore.compile.workers import Twin
+    from phongfx.scene.sampling import CHUNK
+
+    spec = parse_scene(TORUS.format(error=1.0, against="phong"), name="tiny")
+    scene = SceneEval(spec)
+    domain = scene_domain(spec, scene.geometries, samples=2 * CHUNK + 1000)
+    alone, twinned = DomainPoints(spec, domain), DomainPoints(spec, domain)
+    assert len(alone.chunks) == 3
+    twins = []
+
+    class Counted(Twin):
+        def __init__(self, function):
+            twins.append(function)
+            super().__init__(function)
+
+    monkeypatch.setattr(points_module, "Twin", Counted)
+    conventional = {"vec_frac": 12, "rsqrt_addr": 8, "table_addr": 6, "coef": 4}
+    # measured whole; within a limit; past one in the first chunk (no screen yet: the twin's half
+    # is not waited for); a point the domain fails, measured whole
+    for method, params, limit in (("fig7", PASSING, None), ("fig7", PASSING, (1, 1.4)),
+                                  ("conventional", conventional, (0, 0.3)), ("fig7", {**PASSING, "vec_frac": 8}, None)):
+        config = runs.build(method, params, scene.analysis)
+        monkeypatch.setattr(points_module, "spare_core", lambda: False)
+        one = alone.error(method, config, params, limit)
+        monkeypatch.setattr(points_module, "spare_core", lambda: True)
+        assert twinned.error(method, config, params, limit) == one
+        assert (one is None) == (limit == (0, 0.3))
+    assert len(twins) == 4
