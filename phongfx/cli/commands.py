@@ -155,8 +155,8 @@ def exit_on_mismatch(count, where=""):
 #: (``mesh``, ``frames``) can tell an option it takes from one it would silently ignore.
 RENDER_DEFAULTS = {"backend": "verilator-fast", "radius": 64, "span": 8, "out": "build/sim", "speed_sample": 0}
 #: ``render``'s options that mean nothing to a target, and what they do apply to.
-_SCENE_ONLY = {**dict.fromkeys(("radius", "span", "set", "speed_sample"), "Lyon's scene"),
-               "backend": "Lyon's scene and frames (mesh runs no RTL)"}
+_LYON_ONLY = ("radius", "span", "set", "speed_sample")
+_SCENE_ONLY = {**dict.fromkeys(_LYON_ONLY, "Lyon's scene"), "backend": "Lyon's scene and frames (mesh runs no RTL)"}
 
 
 def _target_option(args, name, own, default):
@@ -171,7 +171,7 @@ def _target_option(args, name, own, default):
 def _refuse_scene_options(args, also=()):
     """Refuse ``render --radius/--span/--set`` (and ``also``) before a target that would
     ignore them: an option silently dropped looks like one that worked."""
-    for name in ("radius", "span", "set", "speed_sample", *also):
+    for name in (*_LYON_ONLY, *also):
         if getattr(args, name) is not None:
             raise ValueError(f"render --{name.replace('_', '-')} applies to {_SCENE_ONLY[name]}, "
                              f"not to render {args.target}; drop it")
