@@ -16,8 +16,9 @@ samples) is not worth a fork: the callers go parallel only from :data:`MIN_POINT
 while this process does another (the chosen design's full certificate during its witness).
 :class:`Twin` is a copy of a worker that shares its work item by item while a core is idle
 (:func:`spare_core`): the last width search running alone bounds half of each round's boxes
-there (:func:`phongfx.certify.branch.bound_boxes`) and measures half of each width point's
-domain sample (:meth:`phongfx.explore.compile.points.DomainPoints.error`).
+there (:func:`phongfx.certify.branch.bound_boxes`), measures half of each width point's
+domain sample (:meth:`phongfx.explore.compile.points.DomainPoints.error`), and prices every
+other of its designs (:func:`fork_imap` inside a worker).
 """
 
 import multiprocessing
@@ -173,12 +174,14 @@ def _stop(processes, links, finished):
 def fork_imap(function, items, workers=None):
     """``function(item)`` of each of ``items``, in order, as each is ready, computed by up to
     :func:`count` ``(workers)`` forked processes (module docstring); an exception in a
-    worker is raised here, and a worker that dies without its result is a RuntimeError."""
+    worker is raised here, and a worker that dies without its result is a RuntimeError.
+    Inside a worker, which has no workers of its own, a :class:`Twin` computes every other
+    item while a core is idle (:func:`spare_core`)."""
     items = list(items)
     workers = min(count(workers), len(items))
     context = _context() if workers > 1 else None
     if context is None:
-        yield from (function(item) for item in items)
+        yield from _beside_twin(function, items)
         return
     global _RUNNING
     processes, links, finished, before = [], [], False, _RUNNING
@@ -194,6 +197,25 @@ def fork_imap(function, items, workers=None):
     finally:
         _RUNNING = before
         _stop(processes, links, finished)
+
+
+def _beside_twin(function, items):
+    # the last width search's pricing (two designs, seconds of elaboration each) ran alone
+    # with a core idle: the twin takes the odd items, this process the even ones
+    if len(items) < 2 or not spare_core():
+        yield from (function(item) for item in items)
+        return
+    twin = Twin(function)
+    try:
+        for index in range(0, len(items), 2):
+            pair = index + 1 < len(items)
+            if pair:
+                twin.send(items[index + 1])
+            yield function(items[index])
+            if pair:
+                yield twin.result()
+    finally:
+        twin.close()
 
 
 def _ordered(items, processes, links):

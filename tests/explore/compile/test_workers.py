@@ -130,6 +130,25 @@ def test_a_twin_computes_beside_its_worker_and_raises_its_errors_there():
     assert not multiprocessing.active_children()
 
 
+def _inner_map(_):
+    return list(workers.fork_imap(lambda x: (os.getpid(), x * x), range(5), 1))
+
+
+def test_a_worker_with_a_spare_core_shares_its_own_items_with_a_twin(monkeypatch):
+    monkeypatch.setattr(workers, "spare_core", lambda: True)
+    # here (no worker: workers=1 runs in this process) the twin is used as in a worker
+    out = _inner_map(None)
+    assert [x for _, x in out] == [0, 1, 4, 9, 16]
+    assert {pid for pid, _ in out[::2]} == {os.getpid()} and os.getpid() not in {pid for pid, _ in out[1::2]}
+    (inside,) = fork_map(_inner_map, [None, None], 2)[:1]
+    assert [x for _, x in inside] == [0, 1, 4, 9, 16] and len({pid for pid, _ in inside}) == 2
+    with pytest.raises(ValueError, match="item 3"):
+        list(workers.fork_imap(lambda x: x if x != 3 else int(f"item {x}"), range(5), 1))
+    assert not multiprocessing.active_children()
+    monkeypatch.setattr(workers, "spare_core", lambda: False)
+    assert {pid for pid, _ in _inner_map(None)} == {os.getpid()}
+
+
 def _half_built(seconds):
     import time
 
