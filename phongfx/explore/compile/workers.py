@@ -13,7 +13,8 @@ How many workers: ``workers`` as given, else the cores this process may run on
 samples) is not worth a fork: the callers go parallel only from :data:`MIN_POINTS` points.
 
 :class:`Pending` is one piece of work begun in a forked process now and waited for later,
-while this process does another (the chosen design's full certificate during its witness).
+while this process does another (the chosen design's full certificate during its witness);
+once this process waits for it, it has a spare core.
 :class:`Twin` is a copy of a worker that shares its work item by item while a core is idle
 (:func:`spare_core`): the last width search running alone bounds half of each round's boxes
 there (:func:`phongfx.certify.branch.bound_boxes`), measures half of each width point's
@@ -54,7 +55,8 @@ _RUNNING = None  # in a worker of fork_imap: how many of its workers are running
 def spare_core():
     """Whether this process may take one more core now: it is a worker of :func:`fork_imap`
     and fewer of its workers are running an item than this process has cores (the others have
-    ended: the last ones run alone).  False anywhere else."""
+    ended: the last ones run alone), or it computes a :class:`Pending` that the process which
+    began it waits for (on a machine of two cores or more).  False anywhere else."""
     return _RUNNING is not None and _RUNNING.value < count()
 
 #: Seconds a worker is given to end after SIGTERM before it is killed.
@@ -256,16 +258,25 @@ class Pending:
     is a RuntimeError), :meth:`cancel` ends it unfinished, and does nothing once it has ended."""
 
     def __init__(self, function, item, fork=True):
+        global _RUNNING
         self.function, self.item, self.process, self.link, self.ended = function, item, None, None, False
         context = _context() if fork else None
         if context is not None:
-            self.process, self.link = _start(context, function)
+            # this process counts as running until it waits in result(): the work then has a
+            # spare core (:func:`spare_core`), as the last width search has
+            before, _RUNNING = _RUNNING, context.Value("i", 1)
+            try:
+                self.process, self.link = _start(context, function)
+            finally:
+                self.running, _RUNNING = _RUNNING, before
             self.link.send((0, item))
 
     def result(self):
         if self.process is None:
             return self.function(self.item)
         try:
+            with self.running.get_lock():
+                self.running.value -= 1
             _, (ok, value) = self.link.recv()
         except EOFError:
             raise _lost(self.process) from None

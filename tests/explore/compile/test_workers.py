@@ -107,6 +107,27 @@ def test_a_core_is_spare_in_a_worker_once_fewer_items_run_than_cores(monkeypatch
     assert fork_map(_spare, [False, True], 2) == [False, True]
 
 
+def _spare_once_waited(_):
+    import time
+
+    early = workers.spare_core()
+    _CHECKED.wait(10)  # the process that began it waits for it only after this look
+    deadline = time.monotonic() + 10
+    while not workers.spare_core() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    return early, workers.spare_core()
+
+
+def test_a_pending_piece_of_work_has_a_spare_core_once_it_is_waited_for(monkeypatch):
+    global _CHECKED
+    monkeypatch.setattr(workers, "count", lambda workers=None: 2 if workers is None else workers)
+    _CHECKED = multiprocessing.Barrier(2)
+    pending = workers.Pending(_spare_once_waited, None)
+    _CHECKED.wait(10)
+    assert pending.result() == (False, True)
+    assert not workers.spare_core()
+
+
 def _twin_pids(items):
     twin = workers.Twin(lambda x: (os.getpid(), x * x))
     try:
