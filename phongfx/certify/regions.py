@@ -86,11 +86,13 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
     name and ``parts["whole_bound"]`` the whole domain's bound.  With ``enough`` (a width search,
     which asks only whether the bound is below it) a region is refined only until it is below,
     and the first region that stays above ends the search (``parts["unbounded_regions"]``
-    names the others not yet below; the bound is then the whole domain's)."""
+    names the others not yet below; the bound is then the whole domain's).  With no
+    ``max_boxes`` only the whole domain is bounded."""
     regions = getattr(domain, "regions", ())
     bound, parts = how.bound(shader, spec, replace(domain, regions=()) if regions else domain,
                              max_boxes=max_boxes, enough=enough)
-    if not regions or target is None or bound < target or not np.isfinite(bound):
+    # no budget (whether the domain can be bounded at all): the regions could only refine it
+    if not regions or target is None or not max_boxes or bound < target or not np.isfinite(bound):
         return bound, parts
     same = like_whole(how, domain)
     if same:  # the regions cannot beat the whole (module docstring)

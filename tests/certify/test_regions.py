@@ -48,6 +48,16 @@ def test_the_bound_by_region_holds_on_frames_and_region_samples_smoke():
     assert "regions" not in whole.parts and whole.bound_levels == got.parts["whole_bound"]
 
 
+def test_a_probe_without_budget_bounds_the_whole_domain_only():
+    """``max_boxes=0`` asks whether the domain can be bounded at all (the compiler's coverage
+    probe): the regions could only refine a finite whole, so they are not bounded."""
+    d = domain(SPEC)
+    probe = certify("fig7", LYON, SPEC, d, max_boxes=0, early=True)
+    whole = certify("fig7", LYON, SPEC, dataclasses.replace(d, regions=()), max_boxes=0, early=True)
+    assert "regions" not in probe.parts and np.isfinite(probe.bound_levels) and probe.bound_levels > 1.5
+    assert probe.bound_levels == whole.bound_levels and probe.parts["boxes"] == whole.parts["boxes"]
+
+
 def test_early_stops_at_the_first_region_that_fails():
     """Every region on its first share, then the highest first: the first that stays over the
     requirement ends the certificate, the others over it are named unbounded."""
