@@ -240,16 +240,14 @@ def proxy_estimate(block, target, library=None):
 
 
 def rtlil_of(block):
-    from amaranth.back import rtlil
+    """The RTLIL the flows synthesize for ``block`` (without the simulation-only overflow
+    flags), as the proxies were fitted on: :func:`~phongfx.explore.synth.toolrun.design_rtlil`,
+    which the clock proxy of a design without DSP mapping reads too."""
+    from phongfx.explore.synth.toolrun import design_rtlil
 
-    from phongfx.hdl.overflow import overflow_checks
-
-    with overflow_checks(False):  # the flows synthesize without the simulation-only flags
-        return rtlil.convert(block.component(), name="top")
+    return design_rtlil(block, "top")
 
 
 def proxy_cost(block):
     """:func:`rtlil_cost` of ``block``'s component (a :class:`~phongfx.core.registry.Block`)."""
-    from amaranth.back import rtlil
-
-    return rtlil_cost(rtlil.convert(block.component(), name="top"))
+    return rtlil_cost(rtlil_of(block))

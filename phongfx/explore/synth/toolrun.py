@@ -17,7 +17,7 @@ from pathlib import Path
 from phongfx.core.cache import folder, make_entry, remembered_key
 from phongfx.sim.tools import SynthError, run, run_yosys, tail, tool
 
-__all__ = ["SynthError", "RESULT", "tool", "run", "run_yosys", "tail", "read_json", "harness", "design_rtlil",
+__all__ = ["SynthError", "RESULT", "KEEP", "tool", "run", "run_yosys", "tail", "read_json", "harness", "design_rtlil",
            "flow_key", "cached_run"]
 
 #: The file written last in a run folder: its presence means a complete run.
@@ -63,19 +63,35 @@ endmodule
 """
 
 
+#: How many elaborated designs :func:`design_rtlil` keeps: a design's area and clock proxies,
+#: and its flows' cache keys, read the same text (Amaranth's netlist takes 0.5 to 1.5 s a shader).
+KEEP = 4
+_ELABORATED = {}  # identity -> RTLIL, oldest first
+
+
 def design_rtlil(block, module, dsp=None):
     """RTLIL of ``block`` (a :class:`~phongfx.core.registry.Block`) emitted as ``module``, as
     the flows' cache keys hash it: without source locations, and without the
     simulation-only overflow flags (they cost nothing in a netlist, and the flows
     synthesize without them); its products mapped onto ``dsp``'s DSPs
-    (:func:`~phongfx.hdl.dsp.dsp_mapping`) when given."""
+    (:func:`~phongfx.hdl.dsp.dsp_mapping`) when given.  The last :data:`KEEP` designs with
+    an identity (:func:`~phongfx.hdl.identity.design_identity`) are elaborated once."""
     from amaranth.back import rtlil
 
     from phongfx.hdl.dsp import dsp_mapping
+    from phongfx.hdl.identity import design_identity
     from phongfx.hdl.overflow import overflow_checks
 
     with overflow_checks(False), dsp_mapping(dsp):
-        return rtlil.convert(block.component(), name=module, emit_src=False)
+        identity = design_identity(block.component_class, block.config, module)
+        if identity is not None and identity in _ELABORATED:
+            return _ELABORATED[identity]
+        text = rtlil.convert(block.component(), name=module, emit_src=False)
+    if identity is not None:
+        _ELABORATED[identity] = text
+        while len(_ELABORATED) > KEEP:
+            del _ELABORATED[next(iter(_ELABORATED))]
+    return text
 
 
 def flow_key(block, module, dsp, head, tail):
