@@ -13,15 +13,18 @@ Verilator's run-time library objects (``verilated*.o``), which do not depend on 
 design and are most of the C++ compile, are kept once per tool version and flavour
 of build in ``<root>/runtime-<key>`` (:func:`seed_runtime` copies them into a new
 build, :func:`keep_runtime` saves those of a successful one), so ``make`` finds them
-up to date and compiles only the design.
+up to date and compiles only the design; a build that finds none holds :func:`runtime_lock`
+meanwhile, so that builds begun together compile them once.
 
 :func:`cached_build` is the cache itself, for any flavour of build: the cocotb one of
 :mod:`phongfx.sim.verilator_backend` and the compiled checker of
 :mod:`phongfx.sim.fast_backend`.
 """
 
+import contextlib
 import functools
 import hashlib
+import os
 import shutil
 import subprocess
 from dataclasses import dataclass
@@ -35,7 +38,7 @@ from phongfx.hdl.emit import verilog
 from phongfx.hdl.handshake import Handshake
 from phongfx.hdl.identity import design_identity
 
-__all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "seed_runtime",
+__all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "runtime_lock", "seed_runtime",
            "keep_runtime", "cached_build"]
 
 _MARKER = "phongfx-build-ok"  # written last: its presence means a complete build
@@ -106,6 +109,28 @@ def _runtime_dir(root, waves, flavour=()):
 
 def _runtime_files(directory):
     return [f for f in directory.glob("verilated*") if f.suffix in (".o", ".d")]
+
+
+@contextlib.contextmanager
+def runtime_lock(root, waves, flavour=()):
+    """Held by a build around its :func:`seed_runtime` and :func:`keep_runtime` while no
+    run-time objects of its flavour are kept yet, so that another process's build waits for
+    this one's objects instead of compiling them too (a compile's RTL check and a render begun
+    together, as ``make sim`` begins them, each compiled them).  One lock per cache root, on
+    the folder itself (``flock``: released when this process ends, however it ends)."""
+    if (_runtime_dir(root, waves, flavour) / _MARKER).is_file():
+        yield
+        return
+    import fcntl
+
+    root.mkdir(parents=True, exist_ok=True)
+    handle = os.open(root, os.O_RDONLY)
+    try:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        yield
+    finally:
+        fcntl.flock(handle, fcntl.LOCK_UN)  # not only closed: a process forked meanwhile holds it too
+        os.close(handle)
 
 
 def seed_runtime(root, work, waves, flavour=()):

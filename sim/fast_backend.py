@@ -41,7 +41,7 @@ from phongfx.hdl.block import checked_outputs
 from phongfx.hdl.emit import payload_widths
 
 from .fast_top import is_stream, words_of, wrapper
-from .build_cache import BUILD_ARGS, cache_root, cached_build, keep_runtime, seed_runtime
+from .build_cache import BUILD_ARGS, cache_root, cached_build, keep_runtime, runtime_lock, seed_runtime
 from .result import Mismatch, Result, checked_expected, payload_mismatch
 from .stream import handshake_component, plan_stream, restart_points, stream_mismatch, stream_mode
 from .vectors import columns, payload_fields, row_of, schedule
@@ -132,9 +132,9 @@ def build(component, *, build_dir=None, design=None, trace=False, optimize=True)
 
     def compile_(work, source, log):
         (work / MAIN.name).write_text(main)
-        seeded = seed_runtime(root, work, trace, runtime)
         verilator = tool_environment()
-        with open(log, "w") as out:
+        with runtime_lock(root, trace, runtime), open(log, "w") as out:
+            seeded = seed_runtime(root, work, trace, runtime)
             run_ = dict(cwd=work, stdout=out, stderr=subprocess.STDOUT, check=True)
             subprocess.run([str(verilator), *verilator_args, *BUILD_ARGS, "--top-module", top,
                             "--Mdir", str(work), str(source), str(work / MAIN.name)], **run_)
@@ -142,7 +142,7 @@ def build(component, *, build_dir=None, design=None, trace=False, optimize=True)
             if seeded:
                 subprocess.run(["touch", "-c", *map(str, seeded)], **run_)
             subprocess.run(["make", "-f", "Vtop.mk", "-j", "2", *_MAKE_ARGS[optimize]], **run_)
-        keep_runtime(root, work, trace, runtime)
+            keep_runtime(root, work, trace, runtime)
 
     return cached_build(component, module, top, top_text, compile_, root=root, waves=trace,
                         executable=EXECUTABLE, design=design)

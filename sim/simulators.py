@@ -110,7 +110,7 @@ def run_verilator(out_dir, name, *, timeout=3600, build_dir=None):
         As :func:`run_icarus`; the build log's tail instead if it did not build.  Raises
         :class:`SimulatorMissing` if Verilator (or make and g++) is missing.
     """
-    from .build_cache import cache_root, keep_runtime, seed_runtime
+    from .build_cache import cache_root, keep_runtime, runtime_lock, seed_runtime
 
     tools = require_simulator("verilator")
     out_dir, sources = _files(out_dir, name)
@@ -120,18 +120,19 @@ def run_verilator(out_dir, name, *, timeout=3600, build_dir=None):
     root.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="phongfx-verilator-") as work:
         work = Path(work)
-        seeded = seed_runtime(root, work, bool(trace), flavour)
-        log = ""
-        for step in ([tools["verilator"], "--main", "--exe", "--timing", *trace, *VERILATOR_WARNINGS,
-                      *COROUTINES, "--top-module", f"tb_{name}", "--Mdir", str(work), *map(str, sources)],
-                     # make rebuilds objects older than the makefile just written: refresh the seeded ones
-                     ["touch", "-c", *map(str, seeded)] if seeded else ["true"],
-                     ["make", "-C", str(work), "-f", f"Vtb_{name}.mk", "-j", "2"]):
-            built = subprocess.run(step, cwd=out_dir, capture_output=True, text=True)
-            log += built.stdout + built.stderr
-            if built.returncode:
-                return False, f"{Path(step[0]).name} failed (exit {built.returncode}):\n{_tail(log)}"
-        keep_runtime(root, work, bool(trace), flavour)
+        with runtime_lock(root, bool(trace), flavour):
+            seeded = seed_runtime(root, work, bool(trace), flavour)
+            log = ""
+            for step in ([tools["verilator"], "--main", "--exe", "--timing", *trace, *VERILATOR_WARNINGS,
+                          *COROUTINES, "--top-module", f"tb_{name}", "--Mdir", str(work), *map(str, sources)],
+                         # make rebuilds objects older than the makefile just written: refresh the seeded ones
+                         ["touch", "-c", *map(str, seeded)] if seeded else ["true"],
+                         ["make", "-C", str(work), "-f", f"Vtb_{name}.mk", "-j", "2"]):
+                built = subprocess.run(step, cwd=out_dir, capture_output=True, text=True)
+                log += built.stdout + built.stderr
+                if built.returncode:
+                    return False, f"{Path(step[0]).name} failed (exit {built.returncode}):\n{_tail(log)}"
+            keep_runtime(root, work, bool(trace), flavour)
         ran = subprocess.run([str(work / f"Vtb_{name}")], cwd=out_dir, capture_output=True, text=True,
                              timeout=timeout)
     text = ran.stdout + ran.stderr

@@ -30,7 +30,7 @@ from cocotb_tools.runner import Verilator, get_runner
 from phongfx.hdl.emit import payload_widths
 
 from .build_cache import (BUILD_ARGS, TOOL_ERRORS, Build, cache_root, cached_build, keep_runtime, log_tail,
-                          seed_runtime)
+                          runtime_lock, seed_runtime)
 
 __all__ = ["BLOCK", "Build", "tool_environment", "wrapper", "build", "run"]
 
@@ -152,11 +152,12 @@ def build(component, *, build_dir=None, waves=False):
     top_text = wrapper(module, *payload_widths(component))
 
     def compile_(work, source, log):
-        seeded = seed_runtime(root, work, waves)
-        _runner(seeded).build(sources=[source], hdl_toplevel=top, build_dir=work,
-                              waves=bool(waves), build_args=BUILD_ARGS,
-                              timescale=("1ns", "1ps"), log_file=log)
-        keep_runtime(root, work, waves)
+        with runtime_lock(root, waves):
+            seeded = seed_runtime(root, work, waves)
+            _runner(seeded).build(sources=[source], hdl_toplevel=top, build_dir=work,
+                                  waves=bool(waves), build_args=BUILD_ARGS,
+                                  timescale=("1ns", "1ps"), log_file=log)
+            keep_runtime(root, work, waves)
 
     root = cache_root(build_dir)
     return cached_build(component, module, top, top_text, compile_, root=root, waves=waves)

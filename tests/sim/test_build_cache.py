@@ -60,3 +60,40 @@ def test_a_source_edit_keys_the_design_afresh(conversions, tmp_path, monkeypatch
     assert conversions == ["lirp", "lirp"] and second.directory == first.directory and not second.built
     changed = _build(get_block("lirp", pipeline=1).component(), root)
     assert changed.directory != first.directory and changed.built
+
+
+def _wait_for_lock(root, started, done):
+    from phongfx.sim.build_cache import runtime_lock
+
+    started.set()
+    with runtime_lock(root, False, ("toy",)):
+        done.set()
+
+
+def test_builds_without_run_time_objects_take_turns_and_kept_ones_need_no_turn(tmp_path):
+    import multiprocessing
+    import time
+
+    from phongfx.sim.build_cache import _MARKER, _runtime_dir, runtime_lock
+
+    context = multiprocessing.get_context("fork")
+    started, done = context.Event(), context.Event()
+    with runtime_lock(tmp_path, False, ("toy",)):
+        other = context.Process(target=_wait_for_lock, args=(tmp_path, started, done))
+        other.start()
+        assert started.wait(10)
+        time.sleep(0.3)
+        assert not done.is_set()  # the other build waits for this one's objects
+    assert done.wait(10)
+    other.join(10)
+    # once the objects are kept, nobody waits: taken while this process holds the lock
+    kept = _runtime_dir(tmp_path, False, ("toy",))
+    kept.mkdir()
+    (kept / _MARKER).write_text("runtime\n")
+    started.clear()
+    done.clear()
+    with runtime_lock(tmp_path, False, ("other",)):
+        other = context.Process(target=_wait_for_lock, args=(tmp_path, started, done))
+        other.start()
+        assert done.wait(10)
+    other.join(10)
