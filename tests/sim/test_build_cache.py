@@ -74,7 +74,7 @@ def test_builds_without_run_time_objects_take_turns_and_kept_ones_need_no_turn(t
     import multiprocessing
     import time
 
-    from phongfx.sim.build_cache import _MARKER, _runtime_dir, runtime_lock
+    from phongfx.sim.build_cache import keep_runtime, runtime_lock
 
     context = multiprocessing.get_context("fork")
     started, done = context.Event(), context.Event()
@@ -87,9 +87,10 @@ def test_builds_without_run_time_objects_take_turns_and_kept_ones_need_no_turn(t
     assert done.wait(10)
     other.join(10)
     # once the objects are kept, nobody waits: taken while this process holds the lock
-    kept = _runtime_dir(tmp_path, False, ("toy",))
-    kept.mkdir()
-    (kept / _MARKER).write_text("runtime\n")
+    work = tmp_path / "work"
+    work.mkdir()
+    (work / "verilated.o").write_bytes(b"object")
+    keep_runtime(tmp_path, work, False, ("toy",))
     started.clear()
     done.clear()
     with runtime_lock(tmp_path, False, ("other",)):
