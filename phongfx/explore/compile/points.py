@@ -14,7 +14,7 @@ sample's.  Asked only whether a design stays within a ``limit`` (the width searc
 a measurement stops at the first chunk past it, after first trying the worst points of the
 method's earlier measurements (its *screen*): a narrower width fails, nearly always, where the
 last one was worst.  While a core is idle (the last width search runs alone) a forked twin of
-the process measures the second half of the chunks (:class:`~.workers.Twin`): the same result.
+the process measures every other chunk (:class:`~.workers.Twin`): the same result.
 
 A domain point is one pixel of a span of its own, which the units fed per pixel take as
 they take a frame's.  A unit fed per *span* (the spherical unit's setup is per span and
@@ -24,6 +24,7 @@ of the domain (:func:`pose_frames`, rasterized, real spans), until they hold ``c
 visible pixels, drawn on the first such measurement.
 """
 
+import contextlib
 import dataclasses
 import hashlib
 
@@ -36,7 +37,7 @@ from phongfx.scene.sampling import random_rotations
 from . import run as runs
 from .climb import climb, state_of
 from .measure import phong_terms, point_errors, shade_points, worst_per_point
-from .workers import Twin, spare_core
+from .workers import fork_imap
 
 __all__ = ["STARTS", "CLIMB_ROUNDS", "BATCH", "SCREENS", "OWN_FORMS", "DomainPoints", "worst_index", "take", "concat", "posed_frame",
            "pose_frames"]
@@ -202,18 +203,19 @@ class DomainPoints:
             return None
         worst = worst_raw = total = 0.0
         points, kept = 0, []
-        for chunk_worst, chunk_raw, chunk_total, count, chunk_kept in self._chunks(method, config, params, parts,
-                                                                                    limit):
-            worst = max(worst, chunk_worst)
-            worst_raw = max(worst_raw, chunk_raw)
-            total += chunk_total
-            points += count
-            if per_pixel:
-                kept.append(chunk_kept)
-            if limit is not None and (worst > limit[0] or worst_raw > limit[1]):
+        # closed at the first part past the limit: the twin's part in hand is not waited for
+        with contextlib.closing(self._chunks(method, config, params, parts)) as measured:
+            for chunk_worst, chunk_raw, chunk_total, count, chunk_kept in measured:
+                worst = max(worst, chunk_worst)
+                worst_raw = max(worst_raw, chunk_raw)
+                total += chunk_total
+                points += count
                 if per_pixel:
-                    self._screen(method, kept[-1])
-                return None
+                    kept.append(chunk_kept)
+                if limit is not None and (worst > limit[0] or worst_raw > limit[1]):
+                    if per_pixel:
+                        self._screen(method, kept[-1])
+                    return None
         out = {"max": worst, "mean": total / max(3 * points, 1), "max_unrounded": worst_raw, "points": points,
                "climbed": 0, "how": "domain points" if per_pixel else f"visible pixels of {len(parts)} random poses"}
         if not per_pixel:
@@ -234,42 +236,26 @@ class DomainPoints:
             out.update(max=max(worst, float(best[0])), max_unrounded=max(worst_raw, best[1]))
         return out
 
-    def _chunks(self, method, config, params, parts, limit):
-        """Per part of ``parts`` (the sample's chunks, or the random poses' frames), in order, its
-        ``(max levels, max unrounded, sum of levels, points, worst points)`` (the worst points
-        only for a unit fed per pixel), up to the first past ``limit``.  While a core is idle
-        (:func:`~.workers.spare_core`: the last width search runs alone) the second half is
-        measured by a :class:`~.workers.Twin` of this process: the same parts, the same order."""
+    def _chunks(self, method, config, params, parts):
+        """Per part of ``parts`` (the sample's chunks, or the random poses' frames), in order as
+        the caller takes them, its ``(max levels, max unrounded, sum of levels, points, worst
+        points)`` (the worst points only for a unit fed per pixel).  While a core is idle
+        (:func:`~.workers.spare_core`: the last width search runs alone) a
+        :class:`~.workers.Twin` of this process measures every other part
+        (:func:`~.workers.fork_imap` inside a worker): the same parts, the same order."""
         per_pixel = runs.per_pixel(method)
 
-        def past(entry):
-            return limit is not None and (entry[0] > limit[0] or entry[1] > limit[1])
+        def measure(index):
+            g, n, phong = parts[index]
+            own = self._own_terms(index, method, config, params) if per_pixel else None
+            codes, reference, _, _ = shade_points(method, config, params, self.spec.requirement.against, g, n,
+                                                  phong, own)
+            levels, raw = point_errors(codes, reference, g.bits)
+            return (float(levels.max(initial=0)), float(raw.max(initial=0.0)), float(levels.sum()), len(g),
+                    take(g, worst_index(levels.max(axis=-1), raw.max(axis=-1), STARTS)) if per_pixel else None)
 
-        def measure(indices):
-            out = []
-            for index in indices:
-                g, n, phong = parts[index]
-                own = self._own_terms(index, method, config, params) if per_pixel else None
-                codes, reference, _, _ = shade_points(method, config, params, self.spec.requirement.against, g, n,
-                                                      phong, own)
-                levels, raw = point_errors(codes, reference, g.bits)
-                out.append((float(levels.max(initial=0)), float(raw.max(initial=0.0)), float(levels.sum()), len(g),
-                            take(g, worst_index(levels.max(axis=-1), raw.max(axis=-1), STARTS)) if per_pixel
-                            else None))
-                if past(out[-1]):
-                    break
-            return out
-
-        half = len(parts) // 2
-        if not half or not spare_core():
-            return measure(range(len(parts)))
-        twin = Twin(measure)
-        try:
-            twin.send(range(half, len(parts)))
-            mine = measure(range(half))
-            return mine if past(mine[-1]) else mine + twin.result()
-        finally:
-            twin.close()
+        # one worker: this process, and a twin only where a core is spare
+        return fork_imap(measure, range(len(parts)), 1)
 
     def _own_terms(self, index, method, config, params):
         """Against ``"self"``, the method's own terms of chunk ``index``, computed once per

@@ -22,6 +22,7 @@ domain sample (:meth:`phongfx.explore.compile.points.DomainPoints.error`), and p
 other of its designs (:func:`fork_imap` inside a worker).
 """
 
+import contextlib
 import multiprocessing
 import multiprocessing.connection
 import os
@@ -185,20 +186,29 @@ def fork_imap(function, items, workers=None):
     if context is None:
         yield from _beside_twin(function, items)
         return
-    global _RUNNING
-    processes, links, finished, before = [], [], False, _RUNNING
+    processes, links, finished = [], [], False
     try:
-        _RUNNING = context.Value("i", 0)  # inherited by the workers: spare_core() there
-        for _ in range(workers):
-            process, link = _start(context, function)
-            processes.append(process)
-            links.append(link)
-        _RUNNING = before
+        with _counting(context, 0):  # no item runs yet
+            for _ in range(workers):
+                process, link = _start(context, function)
+                processes.append(process)
+                links.append(link)
         yield from _ordered(items, processes, links)
         finished = True
     finally:
-        _RUNNING = before
         _stop(processes, links, finished)
+
+
+@contextlib.contextmanager
+def _counting(context, running):
+    """Processes forked inside inherit a count of running items (beginning at ``running``)
+    for :func:`spare_core`; this process keeps its own; yields the count."""
+    global _RUNNING
+    before, _RUNNING = _RUNNING, context.Value("i", running)
+    try:
+        yield _RUNNING
+    finally:
+        _RUNNING = before
 
 
 def _beside_twin(function, items):
@@ -258,17 +268,13 @@ class Pending:
     is a RuntimeError), :meth:`cancel` ends it unfinished, and does nothing once it has ended."""
 
     def __init__(self, function, item, fork=True):
-        global _RUNNING
         self.function, self.item, self.process, self.link, self.ended = function, item, None, None, False
         context = _context() if fork else None
         if context is not None:
             # this process counts as running until it waits in result(): the work then has a
             # spare core (:func:`spare_core`), as the last width search has
-            before, _RUNNING = _RUNNING, context.Value("i", 1)
-            try:
+            with _counting(context, 1) as self.running:
                 self.process, self.link = _start(context, function)
-            finally:
-                self.running, _RUNNING = _RUNNING, before
             self.link.send((0, item))
 
     def result(self):

@@ -119,11 +119,12 @@ def test_an_infeasible_method_reports_the_best_point_it_tried(monkeypatch):
         fast["default"]["params"]
 
 
-def test_while_a_core_is_idle_a_twin_measures_half_the_chunks_and_nothing_changes(monkeypatch):
-    """The last width search, alone, has a core to spare: the second half of the sample's chunks
-    is measured by a forked twin of the process; the numbers, and where a point that fails on the
+def test_while_a_core_is_idle_a_twin_measures_every_other_chunk_and_nothing_changes(monkeypatch):
+    """The last width search, alone, has a core to spare: every other chunk of the sample is
+    measured by a forked twin of the process; the numbers, and where a point that fails on the
     domain stops, are those of one process."""
     from phongfx.explore.compile import run as runs
+    from phongfx.explore.compile import workers
     from phongfx.explore.compile.workers import Twin
     from phongfx.scene.sampling import CHUNK
 
@@ -139,16 +140,16 @@ def test_while_a_core_is_idle_a_twin_measures_half_the_chunks_and_nothing_change
             twins.append(function)
             super().__init__(function)
 
-    monkeypatch.setattr(points_module, "Twin", Counted)
+    monkeypatch.setattr(workers, "Twin", Counted)
     conventional = {"vec_frac": 12, "rsqrt_addr": 8, "table_addr": 6, "coef": 4}
-    # measured whole; within a limit; past one in the first chunk (no screen yet: the twin's half
+    # measured whole; within a limit; past one in the first chunk (no screen yet: the twin's chunk
     # is not waited for); a point the domain fails, measured whole
     for method, params, limit in (("fig7", PASSING, None), ("fig7", PASSING, (1, 1.4)),
                                   ("conventional", conventional, (0, 0.3)), ("fig7", {**PASSING, "vec_frac": 8}, None)):
         config = runs.build(method, params, scene.analysis)
-        monkeypatch.setattr(points_module, "spare_core", lambda: False)
+        monkeypatch.setattr(workers, "spare_core", lambda: False)
         one = alone.error(method, config, params, limit)
-        monkeypatch.setattr(points_module, "spare_core", lambda: True)
+        monkeypatch.setattr(workers, "spare_core", lambda: True)
         assert twinned.error(method, config, params, limit) == one
         assert (one is None) == (limit == (0, 0.3))
     assert len(twins) == 4
