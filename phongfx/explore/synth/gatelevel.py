@@ -10,7 +10,8 @@ middle of the stream):
 
 1. Yosys maps the testbench's own ``<name>_top.v`` (the shipped top, handshake and all)
    onto the Liberty file's cells exactly as :mod:`.asic` maps a block (``synth -flatten``,
-   ``dfflibmap`` and ``abc -liberty`` with the same ``dont_use`` cells), and writes the
+   ``dfflibmap`` and ``abc -liberty`` with the same ``dont_use`` cells, buffering and
+   sizing: :func:`~phongfx.explore.synth.asic.mapping`), and writes the
    netlist as a module ``<name>_top`` with the same ports;
 2. the netlist, the cell models and their primitives replace ``<name>_top.v`` in a copy of
    the testbench folder, and :func:`phongfx.sim.testbench.run_icarus` runs it: ``PASS``
@@ -30,13 +31,12 @@ import time
 from pathlib import Path
 
 from phongfx.core.cache import versions
-from phongfx.explore.synth.asic import library_facts
-from phongfx.explore.synth.liberty import dont_use
+from phongfx.explore.synth.asic import library_facts, mapping
 from phongfx.explore.synth.toolrun import SynthError, cached_run, read_json, run_yosys
 
 __all__ = ["functional_models", "map_top", "check_gate_level"]
 
-FLOW_VERSION = "1"  # bump when the script changes what a cached netlist is
+FLOW_VERSION = "2"  # bump when the script changes what a cached netlist is
 
 _SPECIFY = re.compile(r"^\s*specify\b.*?^\s*endspecify\b", re.S | re.M)
 _DELAYED = re.compile(r"\bdelayed_(\w+)")
@@ -56,10 +56,9 @@ def functional_models(*paths):
     return "\n".join(texts)
 
 
-def _script(top, avoid):
-    avoid = "".join(f" -dont_use {cell}" for cell in avoid)
+def _script(top, mapped):
     return (f"read_verilog {top}.v\nhierarchy -top {top}\nsynth -flatten -top {top}\n"
-            f"dfflibmap{avoid} -liberty cells.lib\nabc{avoid} -liberty cells.lib\nopt_clean -purge\n"
+            f"{mapped}opt_clean -purge\n"
             f"tee -q -o stat.json stat -json -liberty cells.lib\nwrite_verilog -noattr -noexpr netlist.v\n")
 
 
@@ -77,7 +76,10 @@ def map_top(top_file, liberty, *, workdir=None):
     def flow(work):
         (work / f"{top}.v").write_text(source)
         shutil.copyfile(facts.path, work / "cells.lib")
-        (work / "netlist.ys").write_text(_script(top, dont_use(facts)))
+        mapped, files = mapping(facts)
+        for name, text in files.items():
+            (work / name).write_text(text)
+        (work / "netlist.ys").write_text(_script(top, mapped))
         seconds = run_yosys(work, "netlist.ys", outputs=("netlist.v",))
         stat = read_json(work / "stat.json", "Yosys statistics", work / "yosys.log")
         entry = stat.get("modules", {}).get(f"\\{top}", {})

@@ -3,8 +3,9 @@
 Any foundry's library can be given (``--liberty FILE``): its name, its corner (the
 ``nom_process``, ``nom_voltage`` and ``nom_temperature`` every Liberty library states),
 its time unit (OpenSTA reads and reports times in it), which cells are sequential (those
-with an ``ff`` or ``latch`` group: no name convention is assumed) and which cells the
-mapper must not use:
+with an ``ff`` or ``latch`` group: no name convention is assumed), its smallest buffer (the
+cell of one input whose output's ``function`` is that input; ABC sizes and buffers nets driven
+as by it) and which cells the mapper must not use:
 
 * the cells the file marks ``dont_use : true`` (IHP SG13G2 marks its fillers, decaps,
   antenna diode, clock gates, the scan flip-flop with set and reset and the bus keeper);
@@ -30,6 +31,7 @@ DONT_USE_PATTERNS = ("*fill*", "*decap*", "*antenna*", "*tie*", "*lgcp*", "*icg*
 
 _UNITS_NS = {"1ps": 1e-3, "10ps": 1e-2, "100ps": 0.1, "1ns": 1.0, "10ns": 10.0, "1us": 1e3}
 _CELL = re.compile(r"^\s*cell\s*\(\s*\"?([^\")\s]+)\"?\s*\)\s*\{", re.M)
+_PIN = re.compile(r"^\s*pin\s*\(\s*\"?([^\")\s]+)\"?\s*\)\s*\{", re.M)
 
 
 class LibertyError(ValueError):
@@ -49,6 +51,7 @@ class Liberty:
     cells: tuple
     sequential: tuple
     dont_use: tuple
+    buffer: tuple = None  # (cell, input capacitance in the file's unit) of the smallest buffer
 
     @property
     def corner(self):
@@ -89,7 +92,7 @@ def _read(path, mtime_ns):
     unit = _attribute(head, "time_unit", path)
     if unit not in _UNITS_NS:
         raise LibertyError(f"{path}: time_unit must be one of {', '.join(_UNITS_NS)}, not {unit!r}")
-    cells, sequential, marked = [], [], []
+    cells, sequential, marked, buffers = [], [], [], []
     for this, after in zip(heads, [*heads[1:], None]):
         body = text[this.end():after.start() if after else len(text)]
         name = this.group(1)
@@ -98,13 +101,37 @@ def _read(path, mtime_ns):
             sequential.append(name)
         if re.search(r"^\s*dont_use\s*:\s*true\s*;", body, re.M):
             marked.append(name)
+        found = _buffer(body)
+        if found is not None and name not in marked and not _excluded(name):
+            buffers.append((found[0], name, found[1]))
     usable_ff = [cell for cell in sequential if cell not in marked and not _excluded(cell)]
     if not usable_ff:
         raise LibertyError(f"{path} ({header.group(1)}) has no usable flip-flop cell: no cell with an 'ff' "
                            f"or 'latch' group outside the dont_use ones ({', '.join(marked) or 'none'})")
     return Liberty(str(path), header.group(1), _number(head, "nom_process", path),
                    _number(head, "nom_voltage", path), _number(head, "nom_temperature", path), _UNITS_NS[unit],
-                   tuple(cells), tuple(sequential), tuple(marked))
+                   tuple(cells), tuple(sequential), tuple(marked), min(buffers)[1:] if buffers else None)
+
+
+def _buffer(body):
+    """``(area, input capacitance)`` of a cell whose text is ``body`` when it is a buffer (one
+    input pin, one output pin whose ``function`` is that input), else None."""
+    pins = list(_PIN.finditer(body))
+    kinds = {}
+    for this, after in zip(pins, [*pins[1:], None]):
+        text = body[this.end():after.start() if after else len(body)]
+        direction = re.search(r"\bdirection\s*:\s*\"?(\w+)\"?\s*;", text)
+        if direction:
+            kinds.setdefault(direction.group(1), []).append((this.group(1), text))
+    if len(kinds.get("input", ())) != 1 or len(kinds.get("output", ())) != 1:
+        return None
+    (name, text), (_, out) = kinds["input"][0], kinds["output"][0]
+    function = re.search(r"\bfunction\s*:\s*\"\s*\(?\s*(\w+)\s*\)?\s*\"\s*;", out)
+    area = re.search(r"\barea\s*:\s*([0-9.eE+-]+)\s*;", body)
+    cap = re.search(r"\bcapacitance\s*:\s*([0-9.eE+-]+)\s*;", text)
+    if function is None or function.group(1) != name or area is None or cap is None:
+        return None
+    return float(area.group(1)), float(cap.group(1))
 
 
 def _excluded(cell):

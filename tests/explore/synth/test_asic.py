@@ -115,6 +115,33 @@ def test_smoke_shape_osu018(monkeypatch, asic_tools):
     assert again["area_um2"] == wide["area_um2"]
 
 
+def _loads(netlist):
+    """Per net of a mapped netlist, the cell inputs it drives (outputs named Y, Q, YS, YC)."""
+    pins = re.findall(r"\.(\w+)\(([^()]*)\)", netlist)
+    counts = {}
+    for pin, net in pins:
+        if pin not in ("Y", "Q", "YS", "YC") and net.strip():
+            counts[net.strip()] = counts.get(net.strip(), 0) + 1
+    return counts
+
+
+def test_mapping_buffers_as_a_library_cell_drives():
+    facts = asic_module.library_facts("osu018")
+    script, files = asic_module.mapping(facts)
+    assert files == {"abc.constr": "set_driving_cell BUFX2\nset_load 0.0373268\n"}
+    assert script == "dfflibmap -liberty cells.lib\nabc -constr abc.constr -liberty cells.lib\n"
+
+
+def test_no_net_but_the_clock_drives_dozens_of_cells(asic_tools):
+    """ABC buffers and sizes: the reset, which reaches every register of the block (44
+    unbuffered), and every other net drive at most a handful of cells."""
+    result = synth("shape", target="asic")
+    loads = _loads((Path(result["directory"]) / "netlist.v").read_text())
+    assert loads.pop("clk") > 50  # the clock is ideal: left to clock-tree synthesis
+    assert max(loads.values()) <= 16
+    assert result["cells"]["BUFX2"] > 10
+
+
 def test_osu035_is_larger_and_slower(asic_tools):
     config = get_block("shape", k=1, t="1.7").config
     small = synth("shape", config=config, target="asic", device="osu018")

@@ -69,6 +69,39 @@ def test_any_liberty_file_its_own_facts(tmp_path):
     facts = read_liberty(path)
     assert (facts.name, facts.corner, facts.time_unit_ns) == ("tiny_lib", "0.90 V, 85 °C, process 1", 1e-3)
     assert (facts.cells, facts.sequential, dont_use(facts)) == (("INV", "DFQ", "FILLER1"), ("DFQ",), ("FILLER1",))
+    assert facts.buffer is None  # an inverter is no buffer: mapped without buffering
+
+
+BUFFERS = """  cell (BUF4) {
+    area : 3.0;
+    pin (A) { direction : input; capacitance : 0.004; }
+    pin (Y) { direction : output; function : "A"; }
+  }
+  cell (BUF1) {
+    area : 2.0;
+    pin ("A") { direction : "input"; capacitance : 0.001; }
+    pin ("Y") { direction : "output"; function : "(A)"; }
+  }
+  cell (AND2) {
+    area : 1.5;
+    pin (A) { direction : input; capacitance : 0.001; }
+    pin (B) { direction : input; capacitance : 0.001; }
+    pin (Y) { direction : output; function : "A"; }
+  }
+"""
+
+
+def test_the_smallest_buffer_is_what_abc_buffers_with(tmp_path):
+    path = tmp_path / "buffers.lib"
+    path.write_text(TINY % (FLOP + BUFFERS))
+    assert read_liberty(path).buffer == ("BUF1", 0.001)  # the smaller; AND2 has two inputs
+    path.write_text(TINY % (FLOP + BUFFERS.replace("BUF1", "dlybuf1")))
+    assert read_liberty(path).buffer == ("BUF4", 0.004)  # a delay cell is not for synthesis
+    try:
+        osu018 = read_liberty(LIBRARIES["osu018"].path)
+    except LibertyError:
+        pytest.skip("the OSU cells are not installed")
+    assert osu018.buffer == ("BUFX2", 0.00933171)
 
 
 @pytest.mark.parametrize("text, message", [
