@@ -152,8 +152,12 @@ def timing_line(timing):
     if timing.get("fmax_mhz") is None:
         return (f"  architecture: {describe(timing['architecture'])}; clock not estimated (no clock proxy for this "
                 f"target: --synth measures it); latency {timing['latency']} cycles")
-    source = "synthesized" if timing["clock_source"] == "synthesis" else "by the clock proxy"
-    error = f" (±{timing['clock_error']:.0%})" if timing.get("clock_error") else ""
+    source = "synthesized" if timing["clock_source"] == "synthesis" else "promised by the clock proxy"
+    error = ""
+    if timing["clock_source"] != "synthesis" and timing.get("clock_error") is not None:
+        margin = timing.get("clock_margin") or 0
+        error = (f" (its estimate {timing['clock_estimate_mhz']:g} less a {margin:.0%} margin, " if margin else " (") + (
+            f"never above synthesis on its calibration, at most {timing['clock_error']:.0%} below)")
     asked = timing.get("requirement_mpx")
     verdict = (f" against {asked:g} Mpixel/s asked" if asked else "") + (
         "" if timing.get("clock_required_mhz") is None else ": met" if timing["met"] else ": NOT MET")

@@ -15,8 +15,10 @@ the area proxy (:func:`phongfx.explore.synth.proxy.proxy_estimate`), clock by th
 :func:`timing` turns a clock into the figures a user plans around (the clock it runs at,
 pixel rate = clock / interval, latency in ns, the requirement and whether it is met, and by
 how much it is missed); :func:`pick` takes the cheapest that meets the requirement, or,
-when none does, says so with the fastest.  With synthesis (``--synth``) :func:`proposals`
-names the few the proxies rank best, which are synthesized and picked among by their
+when none does, says so with the fastest.  The clock proxy states a promise (its fitted
+estimate less the margin that keeps it at or below synthesis on every calibration point), so a
+rate met by the proxies is met by synthesis wherever the calibration holds.  With synthesis
+(``--synth``) :func:`proposals` names the few the proxies rank best, which are synthesized and picked among by their
 synthesized figures (:mod:`phongfx.explore.compile.costing`).
 """
 
@@ -154,21 +156,20 @@ def pick(priced):
 
 def proposals(priced, speed, count=2):
     """The architectures worth synthesizing, at most ``count``: the cheapest that meets the
-    speed by the proxies, then the cheapest that meets it even with the clock proxy's
-    stated error taken off its estimate (the safe one, should synthesis fall short of the
-    estimate); the fastest when none meets; :data:`DEFAULT` alone when nothing is asked."""
+    speed by the proxies (whose clock is a promise: its calibrated margin taken off the
+    fitted estimate), then the cheapest that meets it by the fitted estimate itself (it may
+    well synthesize fast enough, and costs less); the fastest when none meets;
+    :data:`DEFAULT` alone when nothing is asked."""
     fits = [p for p in priced if p.get("fits", True)] or priced
     chosen, fastest = pick(fits)
     if chosen is None:
         return [fastest]
     out = [chosen]
-    safe = [p for p in fits if p.get("fits", True) and speed.asked and p["fmax_mhz"] is not None
-            and p["fmax_mhz"] * (1 - p["clock"].get("error", 0)) >= speed.required_clock(p["interval"])
-            and p["clock_mhz"] / p["interval"] >= (speed.mpx or 0)]
-    if safe:
-        best = min(safe, key=lambda p: (p["cost"], -p["pixel_rate_mpx"]))
-        if best is not chosen:
-            out.append(best)
+    hopeful = [p for p in fits if speed.asked and p["clock"].get("estimate_mhz") is not None
+               and p["clock"]["estimate_mhz"] >= speed.required_clock(p["interval"])
+               and p["cost"] < chosen["cost"]]
+    if hopeful:
+        out.append(min(hopeful, key=lambda p: (p["cost"], -p["pixel_rate_mpx"])))
     return out[:count]
 
 
@@ -257,7 +258,7 @@ def design_block(result, analysis):
 
 #: The keys of a cost dict that say how fast the design runs (the manifest's ``"timing"``).
 TIMING_KEYS = ("architecture", "interval", "latency", "latency_ns", "fmax_mhz", "clock_mhz", "clock_source",
-               "clock_model", "clock_error", "pixel_rate_mpx", "requirement_mpx", "clock_required_mhz", "met",
+               "clock_model", "clock_error", "clock_margin", "clock_estimate_mhz", "pixel_rate_mpx", "requirement_mpx", "clock_required_mhz", "met",
                "missed_by_mhz", "missed_by_percent")
 
 

@@ -113,6 +113,8 @@ def _proxy_cost(priced, where, count):
     key = COST_UNITS[where["target"]][0]
     return {**priced["unit"], key: priced["cost"], "cost": priced["cost"], "copies": 1, **where,
             **_figures(priced), "clock_model": clock.get("model"), "clock_error": clock.get("error"),
+            "clock_margin": clock.get("margin"),
+            "clock_estimate_mhz": None if clock.get("estimate_mhz") is None else round(clock["estimate_mhz"], 2),
             "clock_path": clock.get("path"), "architectures_priced": count, "fit": priced.get("fit")}
 
 

@@ -33,11 +33,12 @@ import math
 
 from phongfx.explore.synth.netgraph import flatten
 
-__all__ = ["FEATURES", "COEFFICIENTS", "ERROR", "TARGETS", "LIBRARY_COEFFICIENTS", "LIBRARY_ERROR", "cell_features", "critical_path", "clock_rtlil",
+__all__ = ["FEATURES", "COEFFICIENTS", "ERROR", "MARGIN", "TARGETS", "LIBRARY_COEFFICIENTS", "LIBRARY_ERROR",
+           "LIBRARY_MARGIN", "promise_margin", "cell_features", "critical_path", "clock_rtlil",
            "clock_netlist", "proxy_clock", "estimate"]
 
 #: The amounts a cell's delay is linear in (module docstring); ``stage`` is 1 per path.
-FEATURES = ("stage", "mul", "mul_tiles", "mul_bits", "carry", "carry_bits", "carry_log", "lut")
+FEATURES = ("stage", "mul", "mul_tiles", "mul_bits", "carry", "carry_bits", "carry_log", "lut", "fanout")
 
 #: ns per unit of each feature, per target (``asic`` is osu018).  Fitted by
 #: ``phongfx tables clock --refit`` (:func:`phongfx.explore.tables.clock.fit`): non-negative
@@ -50,11 +51,16 @@ FEATURES = ("stage", "mul", "mul_tiles", "mul_bits", "carry", "carry_bits", "car
 #: multipliers and the LUT (gate) levels.
 COEFFICIENTS = {
     "ecp5": {"stage": 0.262, "mul": 6.812, "mul_tiles": 0.0, "mul_bits": 0.0,
-             "carry": 0.0, "carry_bits": 0.064, "carry_log": 0.117, "lut": 0.646},
+             "carry": 0.0, "carry_bits": 0.064, "carry_log": 0.117, "lut": 0.646, "fanout": 0.0},
     "asic": {"stage": 4.813, "mul": 0.0, "mul_tiles": 0.0, "mul_bits": 0.084,
-             "carry": 0.0, "carry_bits": 0.005, "carry_log": 0.0, "lut": 0.651},
+             "carry": 0.0, "carry_bits": 0.005, "carry_log": 0.0, "lut": 0.651, "fanout": 0.0},
 }
-#: The largest relative Fmax error of the calibration (``phongfx tables clock``), per target.
+#: The share of the fitted estimate the proxy gives up, per target, so that on no calibration
+#: point does it state a clock above the synthesized one (:func:`promise_margin` of the fit's
+#: errors): the clock it states is a promise the calibration holds, not a central estimate.
+MARGIN = {"ecp5": 0.0, "asic": 0.0}
+#: The largest relative Fmax error of the stated (promised) clock on the calibration
+#: (``phongfx tables clock``), per target: how far below synthesis the promise may be.
 ERROR = {"ecp5": 0.13, "asic": 0.11}
 #: The targets :func:`proxy_clock` knows, and the device (library) each was calibrated on.
 TARGETS = {"ecp5": "45k", "asic": "osu018"}
@@ -68,9 +74,17 @@ TARGETS = {"ecp5": "45k", "asic": "osu018"}
 LIBRARY_COEFFICIENTS = {
     "osu018": COEFFICIENTS["asic"],
     "sg13g2_stdcell_typ_1p20V_25C": {"stage": 1.1, "mul": 0.0, "mul_tiles": 0.0, "mul_bits": 0.197,
-                                     "carry": 0.0, "carry_bits": 0.028, "carry_log": 0.0, "lut": 0.0},
+                                     "carry": 0.0, "carry_bits": 0.028, "carry_log": 0.0, "lut": 0.0, "fanout": 0.0},
 }
 LIBRARY_ERROR = {"osu018": ERROR["asic"], "sg13g2_stdcell_typ_1p20V_25C": 0.06}
+LIBRARY_MARGIN = {"osu018": MARGIN["asic"], "sg13g2_stdcell_typ_1p20V_25C": 0.0}
+
+
+def promise_margin(errors):
+    """The share of an estimate to give up so that none of ``errors`` (estimate / measured − 1,
+    one per calibration point) is above the measured value: the largest ``e / (1 + e)``, 0
+    when the estimate is nowhere high."""
+    return max((e / (1 + e) for e in errors if e > 0), default=0.0)
 
 _CARRY = {"$add", "$sub", "$neg", "$alu", "$lt", "$le", "$gt", "$ge"}
 _EQ = {"$eq", "$ne", "$eqx", "$nex", "$reduce_and", "$reduce_or", "$reduce_xor", "$reduce_xnor", "$reduce_bool",
@@ -156,10 +170,18 @@ def _price(amounts, coefficients):
     return sum(coefficients.get(k, 0.0) * v for k, v in amounts.items())
 
 
+def _fanout(netlist, sink, src):
+    """The amounts of the net from ``src`` into ``sink``: log2 of its fan-out (a buffer tree's
+    depth, or an FPGA route's spread), nothing for a net of one load."""
+    fan = netlist.fanins(sink).get(src, 1)
+    return {"fanout": math.log2(fan)} if fan > 1 else {}
+
+
 def critical_path(netlist, coefficients):
     """``(ns, amounts, names)`` of the slowest register-to-register stage of ``netlist``
     under ``coefficients`` (ns per feature): its delay with the ``stage`` overhead, the
-    summed :data:`FEATURES` along it, and the names of its cells from launch to capture."""
+    summed :data:`FEATURES` along it (the nets' fan-out among them), and the names of its
+    cells from launch to capture."""
     nodes = netlist.nodes
     register = [_is_register(node) for node in nodes]
     own = [{} if register[i] else cell_features(node, netlist) for i, node in enumerate(nodes)]
@@ -171,11 +193,14 @@ def critical_path(netlist, coefficients):
             return 0.0
         return _price(ends[src][0], coefficients) if register[src] else arrival[src]
 
+    def into(sink, src):
+        return launch(src) + _price(_fanout(netlist, sink, src), coefficients)
+
     for index in netlist.order():
         if register[index]:
             continue
-        best = max(netlist.sources(index), key=launch, default=-1)
-        arrival[index] = launch(best) + _price(own[index], coefficients)
+        best = max(netlist.sources(index), key=lambda src: into(index, src), default=-1)
+        arrival[index] = into(index, best) + _price(own[index], coefficients)
         back[index] = best
     endpoints = [(i, netlist.sources(i)) for i in range(len(nodes)) if register[i]]
     endpoints.append((None, netlist.output_sources()))
@@ -183,22 +208,28 @@ def critical_path(netlist, coefficients):
     for sink, srcs in endpoints:
         capture = _price(ends[sink][1], coefficients) if sink is not None else 0.0
         for src in srcs:
-            delay = launch(src) + capture
+            delay = (launch(src) if sink is None else into(sink, src)) + capture
             if delay > worst[0]:
                 worst = (delay, sink, src)
     _, sink, src = worst
     path, amounts = [], dict.fromkeys(FEATURES, 0.0)
     amounts["stage"] = 1.0
-    if sink is not None:
-        path.append(nodes[sink].name)
-        for k, v in ends[sink][1].items():
-            amounts[k] += v
-    while src is not None and src >= 0:
-        path.append(nodes[src].name)
-        part = ends[src][0] if register[src] else own[src]
+
+    def add(part):
         for k, v in part.items():
             amounts[k] += v
-        src = None if register[src] else back[src]
+
+    if sink is not None:
+        path.append(nodes[sink].name)
+        add(ends[sink][1])
+    while src is not None:
+        if sink is not None:
+            add(_fanout(netlist, sink, src))
+        if src < 0:
+            break
+        path.append(nodes[src].name)
+        add(ends[src][0] if register[src] else own[src])
+        sink, src = src, None if register[src] else back[src]
     path.reverse()
     return _price(amounts, coefficients), amounts, path
 
@@ -221,6 +252,8 @@ def clock_netlist(block, target):
 def _describe(amounts, path, ns):
     parts = [f"{int(amounts[k])} {label}" for k, label in
              (("mul", "multiplier"), ("carry", "carry chain"), ("lut", "LUT level")) if amounts[k]]
+    if amounts.get("fanout", 0) >= 1:
+        parts.append(f"nets of fan-out {2 ** amounts['fanout']:,.0f} (product)")
     ends = f"{path[0]} → {path[-1]}" if path else "input → output"
     return f"{ends}: {', '.join(parts) or 'wiring only'} ({len(path)} cells), {ns:.2f} ns"
 
@@ -229,12 +262,16 @@ def estimate(netlist, target, library=None):
     """:func:`proxy_clock`'s result for a flattened ``netlist`` on ``target`` (on ``"asic"``,
     on ``library``'s coefficients, a name of :data:`LIBRARY_COEFFICIENTS`; default osu018)."""
     if target == "asic" and library not in (None, TARGETS["asic"]):
-        coefficients, error, model = LIBRARY_COEFFICIENTS[library], LIBRARY_ERROR[library], f"asic-clock-proxy {library}"
+        coefficients, margin, error = (LIBRARY_COEFFICIENTS[library], LIBRARY_MARGIN[library],
+                                       LIBRARY_ERROR[library])
+        model = f"asic-clock-proxy {library}"
     else:
-        coefficients, error, model = COEFFICIENTS[target], ERROR[target], f"{target}-clock-proxy"
+        coefficients, margin, error = COEFFICIENTS[target], MARGIN[target], ERROR[target]
+        model = f"{target}-clock-proxy"
     ns, amounts, path = critical_path(netlist, coefficients)
-    return {"fmax_mhz": 1000.0 / ns, "period_ns": ns, "model": model, "error": error,
-            "path": _describe(amounts, path, ns)}
+    promised = (1000.0 / ns) * (1 - margin)
+    return {"fmax_mhz": promised, "period_ns": 1000.0 / promised, "estimate_mhz": 1000.0 / ns, "margin": margin,
+            "model": model, "error": error, "path": _describe(amounts, path, ns)}
 
 
 def proxy_clock(block, target="ecp5", device=None):

@@ -249,6 +249,7 @@ class Netlist:
     root: list
     _sources: list = field(default=None, repr=False)
     _ordered: list = field(default=None, repr=False)
+    _fanins: list = field(default=None, repr=False)
 
     def source_bits(self, node):
         """Per input port of ``node``, the tuple of its bits' drivers: ``(node index, bit)``,
@@ -285,6 +286,31 @@ class Netlist:
                 if d[0] != "c":
                     found.add(-1 if d[0] == "in" else d[0])
         return found
+
+    def fanins(self, index):
+        """``{source: fan-out}`` of node ``index``: per node driving its inputs (-1 for the
+        primary inputs), the largest number of distinct cells (the design's outputs counting as
+        one) that one bit it drives into ``index`` reaches.  A bit driving hundreds of cells
+        (a turn counter's enable, an input fanned out to every light copy) is a slow net on
+        an FPGA's routing and on unbuffered standard cells alike."""
+        if self._fanins is None:
+            readers = {}
+            groups = [node.inputs.values() for node in self.nodes] + [self.outputs.values()]
+            for bits in groups:
+                for root in {self.root[bit] for port in bits for bit in port if self.root[bit] >= 3}:
+                    readers[root] = readers.get(root, 0) + 1
+            self._fanins = []
+            for node in self.nodes:
+                fan = {}
+                for bits in node.inputs.values():
+                    for bit in bits:
+                        root = self.root[bit]
+                        if root >= 3:
+                            d = self.driver.get(root, ("in", root))[0]
+                            d = -1 if d == "in" else d
+                            fan[d] = max(fan.get(d, 0), readers[root])
+                self._fanins.append(fan)
+        return self._fanins[index]
 
     def output_sources(self):
         """Indices of the nodes that drive the design's outputs (-1 for a pass-through input)."""

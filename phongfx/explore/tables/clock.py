@@ -26,11 +26,11 @@ from phongfx.core.words import plural
 
 from phongfx.explore.progress import Candidates
 from phongfx.explore.synth.clock import (COEFFICIENTS, ERROR, FEATURES, LIBRARY_COEFFICIENTS, LIBRARY_ERROR,
-                                        clock_netlist, critical_path)
+                                        LIBRARY_MARGIN, MARGIN, clock_netlist, critical_path, promise_margin)
 from phongfx.explore.synth.proxy import RESOURCE_MARGIN, rtlil_cost, rtlil_of
 from phongfx.explore.tables.proxy import relative_nnls
 
-__all__ = ["TABLES", "NAMES", "DEPTHS", "TARGETS", "FREQ", "SEED", "MARGIN_FROM_LUT4", "points",
+__all__ = ["TABLES", "NAMES", "DEPTHS", "TARGETS", "FREQ", "SEED", "MARGIN_FROM_LUT4", "SHADERS", "points",
            "calibration_rows", "fit", "summary", "resource_errors", "fit_lut4", "clock_table", "run_table", "markdown", "to_json"]
 
 TABLES = ("clock",)
@@ -44,16 +44,28 @@ FREQ = 150
 SEED = 1
 
 
-def _two_blinn():
-    unit = get_block("blinn").config
-    return ShaderConfig(unit="blinn", units=(unit, unit), blend=BlendConfig(lights=2, diff="1.15", spec="1.15"))
+def _two(unit, interval=1):
+    """Two lights on copies of one-light ``unit`` (at its defaults), taking ``interval`` turns."""
+    config = get_block(unit).config
+    return ShaderConfig(unit=unit, units=(config, config), interval=interval,
+                        blend=BlendConfig(lights=2, diff="1.15", spec="1.15"))
+
+
+#: Whole shaders beside the blocks, at the depths given (None: every one): where the blend,
+#: the light turns and the nets fanned out to every copy (the normal, the turn counter's
+#: enable) set the clock rather than one datapath's stage.
+SHADERS = (("shader blinn×2", _two("blinn"), ()),
+           ("shader conventional×2", _two("conventional"), (0, 4)),
+           ("shader conventional i2", _two("conventional", 2), (0, 4)))
 
 
 def _configs():
-    yield "shader", "shader", get_block("shader").config
-    yield "shader blinn×2", "shader", _two_blinn()
+    yield "shader", "shader", get_block("shader").config, None
+    for label, config, depths in SHADERS:
+        yield label, "shader", config, depths
+    yield "shader i2", "shader", get_block("shader").config.replace(interval=2), (0, 2, 4)
     for name in NAMES:
-        yield name, name, get_block(name).config
+        yield name, name, get_block(name).config, None
 
 
 def _deepen(config, depth):
@@ -65,13 +77,14 @@ def _deepen(config, depth):
 
 def points(depths=DEPTHS):
     """(label, block name, config, depth) of every calibration point: each datapath and
-    shader at every depth it takes (one row, depth None, for a unit without one)."""
+    shader at every depth it takes (one row, depth None, for a unit without one; a whole
+    shader of :data:`SHADERS` at its own depths)."""
     result = []
-    for label, name, config in _configs():
-        if _deepen(config, 0) is None:
+    for label, name, config, own in _configs():
+        if _deepen(config, 0) is None or own == ():
             result.append((label, name, config, None))
             continue
-        result.extend((label, name, _deepen(config, d), d) for d in depths)
+        result.extend((label, name, _deepen(config, d), d) for d in (depths if own is None else own))
     return result
 
 
@@ -86,11 +99,12 @@ def _where(target, device):
 
 
 def _stored(where):
-    """The stored coefficients and error margin of calibration ``where``, or osu018's
-    coefficients (a starting point for a fit) and no margin."""
+    """The stored coefficients, error and promise margin of calibration ``where``, or
+    osu018's coefficients (a starting point for a fit), no error and no margin."""
     if where in COEFFICIENTS:
-        return COEFFICIENTS[where], ERROR[where]
-    return LIBRARY_COEFFICIENTS.get(where, COEFFICIENTS["asic"]), LIBRARY_ERROR.get(where)
+        return COEFFICIENTS[where], ERROR[where], MARGIN[where]
+    return (LIBRARY_COEFFICIENTS.get(where, COEFFICIENTS["asic"]), LIBRARY_ERROR.get(where),
+            LIBRARY_MARGIN.get(where, 0.0))
 
 
 def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=None):
@@ -116,11 +130,14 @@ def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=N
                            progress=stage, **options)
             netlist = clock_netlist(block, target)
             where = _where(target, device)
-            ns, amounts, path = critical_path(netlist, _stored(where)[0])
+            coefficients, _, margin = _stored(where)
+            ns, amounts, path = critical_path(netlist, coefficients)
             row = {"label": label, "block": name, "depth": depth, "target": target, "device": device, "where": where,
+                   "interval": getattr(config, "interval", 1),
                    "fmax_mhz": result["fmax_mhz"], "critical_path": result.get("critical_path"),
                    "proxy_mhz": 1000 / ns, "amounts": amounts, "proxy_path": f"{path[0]} → {path[-1]}",
-                   "error": (1000 / ns) / result["fmax_mhz"] - 1, "netlist": netlist}
+                   "error": (1000 / ns) / result["fmax_mhz"] - 1, "promise_mhz": (1000 / ns) * (1 - margin),
+                   "promise_error": (1000 / ns) * (1 - margin) / result["fmax_mhz"] - 1, "netlist": netlist}
             if target != "asic":
                 cost = rtlil_cost(rtlil_of(block))
                 row.update({"lut4": result["lut4"] + 2 * result["carry"], "dsp": result["dsp"],
@@ -141,7 +158,8 @@ def fit(netlists, periods, start, rounds=12):
     coefficients, best = dict(start), (float("inf"), dict(start))
     for _ in range(rounds):
         amounts = [critical_path(netlist, coefficients)[1] for netlist in netlists]
-        worst = max(abs(sum(coefficients[k] * a[k] for k in FEATURES) / p - 1) for a, p in zip(amounts, periods))
+        ratios = [p / sum(coefficients[k] * a[k] for k in FEATURES) for a, p in zip(amounts, periods)]
+        worst = 1 - min(ratios) / max(ratios)  # how far below synthesis the promise may be
         if worst < best[0]:
             best = (worst, dict(coefficients))
         found = relative_nnls([[a[k] for k in FEATURES] for a in amounts], periods)
@@ -154,11 +172,19 @@ def fit(netlists, periods, start, rounds=12):
 
 def summary(rows):
     """Per target (or library: a row's ``where``): ``rows``, ``median`` and ``max`` of the
-    absolute relative Fmax error."""
+    absolute relative Fmax error of the fitted estimate; ``margin``, the share of it to give
+    up so that no row's estimate is above its synthesized clock (:func:`promise_margin`);
+    with the rows' stored promises, ``misses`` (rows whose promise is above synthesis) and
+    ``promise_max``, the largest absolute error of the promise."""
     result = {}
     for target in dict.fromkeys(row.get("where", row["target"]) for row in rows):
-        errors = [abs(row["error"]) for row in rows if row.get("where", row["target"]) == target]
-        result[target] = {"rows": len(errors), "median": statistics.median(errors), "max": max(errors)}
+        mine = [row for row in rows if row.get("where", row["target"]) == target]
+        errors = [abs(row["error"]) for row in mine]
+        result[target] = {"rows": len(errors), "median": statistics.median(errors), "max": max(errors),
+                          "margin": promise_margin([row["error"] for row in mine])}
+        if all("promise_error" in row for row in mine):
+            result[target].update(misses=sum(row["promise_error"] > 1e-9 for row in mine),
+                                  promise_max=max(abs(row["promise_error"]) for row in mine))
     return result
 
 
@@ -205,6 +231,7 @@ def clock_table(selected=None, *, targets=TARGETS, workdir=None, refit=False, pr
     wheres = dict.fromkeys(row["where"] for row in rows)
     result = {"table": "clock", "freq": FREQ, "seed": SEED,
               "coefficients": {w: _stored(w)[0] for w in wheres}, "error": {w: _stored(w)[1] for w in wheres},
+              "margin": {w: _stored(w)[2] for w in wheres},
               "summary": summary(rows), "resources": resource_errors(rows), "resource_margin": RESOURCE_MARGIN}
     if refit:
         result["refit"], refitted = {}, []
@@ -213,9 +240,10 @@ def clock_table(selected=None, *, targets=TARGETS, workdir=None, refit=False, pr
             found = fit([row["netlist"] for row in mine], [1000 / row["fmax_mhz"] for row in mine],
                         _stored(target)[0])
             result["refit"][target] = found
-            for row in mine:
-                ns = critical_path(row["netlist"], found)[0]
-                refitted.append({"target": target, "error": (1000 / ns) / row["fmax_mhz"] - 1})
+            errors = [(1000 / critical_path(row["netlist"], found)[0]) / row["fmax_mhz"] - 1 for row in mine]
+            margin = promise_margin(errors)
+            refitted.extend({"target": target, "error": e, "promise_error": (1 + e) * (1 - margin) - 1}
+                            for e in errors)
         result["refit_summary"] = summary(refitted)
         if any("lut4" in row for row in rows):
             result["refit_lut4"] = fit_lut4(rows)
@@ -236,28 +264,40 @@ def run_table(name, out_dir=None, refit=False, progress=None, selected=None, dev
 
 
 def _margin(error):
-    return "not calibrated: osu018's coefficients" if error is None else f"stored margin {error:.0%}"
+    return "not calibrated: osu018's coefficients" if error is None else f"stored error {error:.0%}"
 
 
 def _coefficients(values):
     return ", ".join(f"{k} {v:g}" for k, v in values.items())
 
 
+def _promise(numbers, stored):
+    text = f"margin needed {numbers['margin']:.1%} (stored {stored:.1%})"
+    if "misses" in numbers:
+        text += (f": the promise is above synthesis on {plural(numbers['misses'], 'point')}, at most "
+                 f"{numbers['promise_max']:.1%} off")
+    return text
+
+
 def markdown(result):
-    """Per target and point: measured and proxy Fmax, error, both critical paths; the summary."""
+    """Per target and point: measured, fitted and promised Fmax, errors, both critical paths;
+    the summary."""
     lines = [f"# The clock proxy against synthesis (ECP5 LFE5U-45F seed {result['seed']} at {result['freq']} MHz; "
              f"osu018 pre-layout)", ""]
     for target, numbers in result["summary"].items():
         lines += [f"## {target}: {plural(numbers['rows'], 'point')}, median error {numbers['median']:.1%}, "
-                  f"largest {numbers['max']:.1%} ({_margin(result['error'][target])})", "",
+                  f"largest {numbers['max']:.1%} ({_margin(result['error'][target])}); "
+                  f"{_promise(numbers, result['margin'][target])}", "",
                   f"Coefficients (ns): {_coefficients(result['coefficients'][target])}", "",
-                  "| point | depth | synthesized MHz | proxy MHz | error | synthesized path | proxy path |",
-                  "|---|---:|---:|---:|---:|---|---|"]
+                  "| point | depth | interval | synthesized MHz | proxy MHz | error | promise MHz | promise error | "
+                  "synthesized path | proxy path |",
+                  "|---|---:|---:|---:|---:|---:|---:|---:|---|---|"]
         for row in (r for r in result["rows"] if r.get("where", r["target"]) == target):
             path = row["critical_path"] or {}
             depth = "–" if row["depth"] is None else row["depth"]
-            lines.append(f"| {row['label']} | {depth} | {row['fmax_mhz']:.1f} | {row['proxy_mhz']:.1f} | "
-                         f"{row['error']:+.1%} | {path.get('from', '?')} → {path.get('to', '?')} | "
+            lines.append(f"| {row['label']} | {depth} | {row.get('interval', 1)} | {row['fmax_mhz']:.1f} | "
+                         f"{row['proxy_mhz']:.1f} | {row['error']:+.1%} | {row['promise_mhz']:.1f} | "
+                         f"{row['promise_error']:+.1%} | {path.get('from', '?')} → {path.get('to', '?')} | "
                          f"{row['proxy_path']} |")
         lines.append("")
     res = result["resources"]
@@ -270,7 +310,8 @@ def markdown(result):
         for target, values in result["refit"].items():
             numbers = result["refit_summary"][target]
             lines.append(f"* Refitted now, {target}: {_coefficients(values)} (median {numbers['median']:.1%}, "
-                         f"largest {numbers['max']:.1%}).")
+                         f"largest {numbers['max']:.1%}; promise margin {numbers['margin']:.1%}, the promise at "
+                         f"most {numbers['promise_max']:.1%} below synthesis).")
         if "refit_lut4" in result:
             lines.append(f"* LUT4 sites per bit refitted now: {_coefficients(result['refit_lut4'])} (largest error "
                          f"{result['refit_resources']['lut4']['max']:.1%}).")

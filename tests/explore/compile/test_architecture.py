@@ -34,9 +34,12 @@ def test_timing_at_its_own_fmax_and_at_a_given_clock():
     assert free["met"] is True and free["clock_required_mhz"] is None and free["pixel_rate_mpx"] == 50.0
 
 
-def _priced(cost, fmax, interval=1, depth=0, speed=Speed(40), error=0.1):
+def _priced(cost, fmax, interval=1, depth=0, speed=Speed(40), margin=0.2):
+    """An architecture whose stated (promised) clock is ``fmax``: its fitted estimate is higher
+    by the proxy's ``margin``."""
     return {"architecture": {"pipeline": depth, "interval": interval, "share": True}, "cost": cost,
-            "clock": {"fmax_mhz": fmax, "error": error}, **timing(fmax, interval, 5 + depth, speed, "proxy")}
+            "clock": {"fmax_mhz": fmax, "estimate_mhz": fmax / (1 - margin), "margin": margin},
+            **timing(fmax, interval, 5 + depth, speed, "proxy")}
 
 
 def test_the_cheapest_that_meets_the_rate_is_picked_else_none_and_the_fastest():
@@ -52,12 +55,14 @@ def test_the_cheapest_that_meets_the_rate_is_picked_else_none_and_the_fastest():
     assert pick([slow, half, wide])[0] is wide
 
 
-def test_synthesis_is_proposed_the_cheapest_and_the_one_safe_within_the_clock_error():
+def test_synthesis_is_proposed_the_promise_and_the_cheaper_one_the_estimate_says_meets():
     speed = Speed(40)
-    tight = _priced(1000, 42, speed=speed)               # meets, but not with 10 % off its clock
-    safe = _priced(1500, 60, depth=2, speed=speed)
-    assert proposals([safe, tight], speed) == [tight, safe]
-    assert proposals([safe], speed) == [safe]
+    hopeful = _priced(1000, 34, speed=speed)             # 34 promised, 42.5 by the fitted estimate
+    promised = _priced(1500, 60, depth=2, speed=speed)
+    hopeless = _priced(800, 30, speed=speed)             # 37.5 even by the estimate
+    assert pick([promised, hopeful, hopeless])[0] is promised
+    assert proposals([promised, hopeful, hopeless], speed) == [promised, hopeful]
+    assert proposals([promised, hopeless], speed) == [promised]
     too_slow = _priced(900, 20, speed=speed)
     assert proposals([too_slow], speed) == [too_slow]    # none meets: the fastest, to see what synthesis says
 

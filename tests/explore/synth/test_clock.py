@@ -1,5 +1,7 @@
 """The tool-free clock proxy (phongfx.explore.synth.clock) and the flattened graph it reads."""
 
+import math
+
 import pytest
 
 from phongfx.core.registry import get_block
@@ -39,6 +41,32 @@ def test_the_flattener_finds_the_adder_chain_between_two_registers():
     assert path == ["unit.a", "unit.s", "unit.t", "unit.out"]  # a launches both chains: the longer way
     assert amounts["carry"] == 2 and amounts["carry_bits"] == 9 + 10 and amounts["mul"] == 0
     assert ns == pytest.approx(1.0 + 2 * 2.0 + 0.5 * 19)
+
+
+def _fanned(loads):
+    """Register e drives one bit into ``loads`` adders (each adding it to input x), each
+    registered: the net of e has ``loads`` loads."""
+    cells = _dff("$e", "\\x [0]", "\\e", 1)
+    for index in range(loads):
+        cells += _cell("$add", f"$a{index}", "\\x", "{ 7'0 \\e }", f"\\s{index}", 8)
+        cells += _dff(f"$r{index}", f"\\s{index}", f"\\o [{9 * index + 8}:{9 * index}]", 9)
+    wires = "".join(f"  wire width 9 \\s{index}\n" for index in range(loads))
+    return (f"module \\top\n  wire width 1 input 0 \\clk\n  wire width 8 input 1 \\x\n"
+            f"  wire width {9 * loads} output 2 \\o\n  wire width 1 \\e\n{wires}{cells}end\n")
+
+
+@pytest.mark.parametrize("loads", [1, 4, 64])
+def test_a_net_of_many_loads_is_priced_by_its_fan_out(loads):
+    """log2 of the loads of each net along the path (a buffer tree's depth), the inputs' own
+    among them; the adders' outputs, one load each, add nothing."""
+    netlist = flatten(_fanned(loads))
+    assert netlist.fanins(netlist.nodes.index(next(n for n in netlist.nodes if n.name == "s0"))) == \
+        {-1: loads + 1, next(i for i, n in enumerate(netlist.nodes) if n.name == "e"): loads}
+    ns, amounts, path = critical_path(netlist, {"stage": 1.0, "carry_bits": 0.5, "fanout": 0.25})
+    # x[0] reaches e and every adder: the input's net is the slower start, its log2 counted once
+    assert amounts["fanout"] == pytest.approx(math.log2(loads + 1))
+    assert path[0] == "s0" and amounts["carry_bits"] == 9
+    assert ns == pytest.approx(1.0 + 0.5 * 9 + 0.25 * amounts["fanout"])
 
 
 def test_copies_on_the_same_inputs_are_one_copy():
