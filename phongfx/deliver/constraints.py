@@ -67,9 +67,10 @@ def clock_of(manifest):
     timing = manifest.get("timing") or {}
     target = str(manifest.get("cost_model") or "the target").partition("-")[0]
     fmax, how = timing.get("fmax_mhz"), timing.get("clock_source")
-    model = f" ({timing['clock_model']}, relative error {timing['clock_error']:g})" \
+    model = (f" ({timing['clock_model']}: its estimate less a {timing.get('clock_margin') or 0:.0%} margin, never above "
+             f"synthesis on its calibration, at most {timing['clock_error']:.0%} below)") \
         if timing.get("clock_model") and timing.get("clock_error") is not None else ""
-    estimate = f"{target} Fmax {fmax:g} MHz by {'the clock proxy' if how == 'proxy' else how}{model}" \
+    estimate = f"{target} Fmax {fmax:g} MHz {'promised by the clock proxy' if how == 'proxy' else 'by ' + how}{model}" \
         if fmax else None
     if asked:
         note = f"; the design's {estimate}" if estimate else "; no Fmax estimate for this target"
