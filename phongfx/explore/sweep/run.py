@@ -18,6 +18,7 @@ import multiprocessing
 import os
 import signal
 import sys
+import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
@@ -189,7 +190,7 @@ def _execute_pool(evaluate, points, record, workers):
         for point in points:
             record(_run_point(evaluate, point))
         return
-    before = set(multiprocessing.active_children())
+    before, threads = set(multiprocessing.active_children()), set(threading.enumerate())
     with ProcessPoolExecutor(min(workers, len(points)), initializer=_worker_init) as pool:
         futures = {pool.submit(_run_point, evaluate, point): point for point in points}
         recorded = set()
@@ -202,6 +203,12 @@ def _execute_pool(evaluate, points, record, workers):
             # them kept a sweep busy for minutes after Ctrl-C); what had finished is kept
             pool.shutdown(wait=False, cancel_futures=True)
             _stop_workers(set(multiprocessing.active_children()) - before)
+            # the pool's manager thread closes its wake-up pipe once it sees the workers gone, and
+            # Python's exit hook writes to that pipe unguarded: left running, the two raced and the
+            # interrupted sweep ended on an EBADF traceback after its one-line message
+            deadline = time.monotonic() + 5.0
+            for thread in set(threading.enumerate()) - threads:
+                thread.join(max(0.0, deadline - time.monotonic()))
             for future in futures:
                 if future not in recorded and future.done() and not future.cancelled() \
                         and future.exception() is None:
