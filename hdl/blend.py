@@ -78,7 +78,8 @@ class Blend(PipelinedBlock):
     **Backside test.**  With ``gate`` the specular amount of light ``i`` is multiplexed to 0
     where ``diff_i = 0``, the diffuse unit's clamp of ``N·L <= 0``: a light behind the
     surface gives no highlight (one OR of ``diff_i``'s bits and a multiplexer on the narrow
-    input, before the products).
+    input, before the input register from depth 1, so that the products' stage does not
+    start with it).
 
     **Constant multiplies by shift-and-add.**  Every coefficient is a constant, so every
     product is :func:`shift_add` (canonical signed digits): adders only, no ``$mul`` cell for
@@ -111,16 +112,16 @@ class Blend(PipelinedBlock):
 
     def datapath(self, m, i):
         cfg, depth = self.config, self.config.pipeline
+        i = dict(i)
+        for k in range(cfg.lights) if cfg.gate else ():
+            # gated before the input register when there is one: the OR of diff's bits and the
+            # select into every bit of spec then end a short stage of their own instead of
+            # leading the products' adders (on ECP5 the two-light shader's slowest path at depth 4)
+            d, s = i[f"diff{k}"], i[f"spec{k}"]
+            lit = d.flag(d.value.any(), f"lit{k}")
+            i[f"spec{k}"] = _wire(m, s.where(lit, FixedValue.const(0, s.fmt)), f"spec{k}_lit")
         inputs = {name: cut(m, value, depth >= 1, f"{name}_in") for name, value in i.items()}
-        spec = {}
-        for k in range(cfg.lights):
-            s = inputs[f"spec{k}"]
-            if cfg.gate:
-                d = inputs[f"diff{k}"]
-                lit = d.flag(d.value.any(), f"lit{k}")
-                s = _wire(m, s.where(lit, FixedValue.const(0, s.fmt)), f"spec{k}_lit")
-            spec[f"spec{k}"] = s
-        sources = {**{name: inputs[name] for name in inputs if name.startswith("diff")}, **spec}
+        sources = {name: inputs[name] for name in inputs if name.startswith(("diff", "spec"))}
         products = {}
 
         def product(port, code):
