@@ -9,7 +9,7 @@ says they are: the registers of :func:`~phongfx.hdl.fixed.stage` (and, on ECP5 f
 registers, :mod:`phongfx.hdl.dsp`) cut the datapath into combinational stages, and a
 deeper ``pipeline`` moves them.  So the estimate reads the same design the flows
 synthesize (:func:`~phongfx.explore.synth.toolrun.design_rtlil`, flattened by
-:func:`~phongfx.explore.synth.netgraph.flatten`), gives each combinational cell a delay
+:func:`~phongfx.explore.synth.flatten.flatten`), gives each combinational cell a delay
 (:func:`cell_features` × :data:`COEFFICIENTS`), and takes the longest path from a
 register or input to a register or output (:func:`critical_path`), plus a fixed
 per-stage overhead (clock-to-Q, setup, the first and last route).
@@ -31,7 +31,7 @@ that calibration, the margin the compiler keeps.
 
 import math
 
-from phongfx.explore.synth.netgraph import flatten
+from phongfx.explore.synth.flatten import flatten
 
 __all__ = ["FEATURES", "COEFFICIENTS", "ERROR", "MARGIN", "TARGETS", "LIBRARY_COEFFICIENTS", "LIBRARY_ERROR",
            "LIBRARY_MARGIN", "promise_margin", "cell_features", "critical_path", "clock_rtlil",
@@ -50,18 +50,18 @@ FEATURES = ("stage", "mul", "mul_tiles", "mul_bits", "carry", "carry_bits", "car
 #: fixed overhead; on osu018 on a fixed overhead, the operand bits of the array
 #: multipliers and the LUT (gate) levels.
 COEFFICIENTS = {
-    "ecp5": {"stage": 0.262, "mul": 6.812, "mul_tiles": 0.0, "mul_bits": 0.0,
-             "carry": 0.0, "carry_bits": 0.064, "carry_log": 0.117, "lut": 0.646, "fanout": 0.0},
-    "asic": {"stage": 4.813, "mul": 0.0, "mul_tiles": 0.0, "mul_bits": 0.084,
-             "carry": 0.0, "carry_bits": 0.005, "carry_log": 0.0, "lut": 0.651, "fanout": 0.0},
+    "ecp5": {"stage": 1.569, "mul": 5.857, "mul_tiles": 0.0, "mul_bits": 0.067,
+             "carry": 0.0, "carry_bits": 0.063, "carry_log": 0.06, "lut": 0.566, "fanout": 0.0},
+    "asic": {"stage": 3.283, "mul": 1.773, "mul_tiles": 0.664, "mul_bits": 0.008,
+             "carry": 0.412, "carry_bits": 0.0, "carry_log": 0.0, "lut": 0.113, "fanout": 0.0},
 }
 #: The share of the fitted estimate the proxy gives up, per target, so that on no calibration
 #: point does it state a clock above the synthesized one (:func:`promise_margin` of the fit's
 #: errors): the clock it states is a promise the calibration holds, not a central estimate.
-MARGIN = {"ecp5": 0.0, "asic": 0.0}
+MARGIN = {"ecp5": 0.141, "asic": 0.032}
 #: The largest relative Fmax error of the stated (promised) clock on the calibration
 #: (``phongfx tables clock``), per target: how far below synthesis the promise may be.
-ERROR = {"ecp5": 0.13, "asic": 0.11}
+ERROR = {"ecp5": 0.28, "asic": 0.11}
 #: The targets :func:`proxy_clock` knows, and the device (library) each was calibrated on.
 TARGETS = {"ecp5": "45k", "asic": "osu018"}
 #: The standard-cell libraries the clock proxy is calibrated on (by the name
@@ -73,11 +73,11 @@ TARGETS = {"ecp5": "45k", "asic": "osu018"}
 #: operand bits and the adders' width, little in a fixed overhead.
 LIBRARY_COEFFICIENTS = {
     "osu018": COEFFICIENTS["asic"],
-    "sg13g2_stdcell_typ_1p20V_25C": {"stage": 1.1, "mul": 0.0, "mul_tiles": 0.0, "mul_bits": 0.197,
-                                     "carry": 0.0, "carry_bits": 0.028, "carry_log": 0.0, "lut": 0.0, "fanout": 0.0},
+    "sg13g2_stdcell_typ_1p20V_25C": {"stage": 0.0, "mul": 0.0, "mul_tiles": 0.026, "mul_bits": 0.195,
+                                     "carry": 0.0, "carry_bits": 0.026, "carry_log": 0.0, "lut": 0.0, "fanout": 0.0},
 }
 LIBRARY_ERROR = {"osu018": ERROR["asic"], "sg13g2_stdcell_typ_1p20V_25C": 0.06}
-LIBRARY_MARGIN = {"osu018": MARGIN["asic"], "sg13g2_stdcell_typ_1p20V_25C": 0.0}
+LIBRARY_MARGIN = {"osu018": MARGIN["asic"], "sg13g2_stdcell_typ_1p20V_25C": 0.037}
 
 
 def promise_margin(errors):

@@ -31,7 +31,7 @@ bits, registers by their width; one coefficient per kind and library
 (:data:`AREA_COEFFICIENTS`), fitted to the real flow over the registry's blocks
 (``phongfx tables proxy``, which also states the error).
 
-The design is read flattened (:func:`~phongfx.explore.synth.netgraph.flatten`), and
+The design is read flattened (:func:`~phongfx.explore.synth.flatten.flatten`), and
 identical cells (same type, parameters and drivers) count once, to a fixpoint, as
 Yosys' ``flatten`` and ``opt_merge`` merge them: the expression trees Amaranth writes
 out again for every use, and the logic of light copies that take the same shared
@@ -43,7 +43,7 @@ device, not a synthesis result: the manifest says
 import math
 import re
 
-from phongfx.explore.synth.netgraph import flatten
+from phongfx.explore.synth.flatten import flatten
 
 __all__ = ["DSP_LUT_EQ", "LUT4_WEIGHTS", "RESOURCE_MARGIN", "FEATURES", "AREA_COEFFICIENTS", "proxy_cost", "proxy_area", "proxy_estimate", "price",
            "rtlil_cost", "rtlil_features", "rtlil_of"]
@@ -93,7 +93,7 @@ _SHIFT = {"$shl", "$shr", "$sshl", "$sshr", "$shift", "$shiftx"}
 
 def _cells(text):
     """(type, parameters, connections) of every distinct cell of the flattened design
-    (:func:`~phongfx.explore.synth.netgraph.flatten`): cells of one type with the same
+    (:func:`~phongfx.explore.synth.flatten.flatten`): cells of one type with the same
     parameters and the same drivers count once, to a fixpoint, as Yosys' ``flatten`` and
     ``opt_merge`` leave them; a connection is its constant text, or ``""`` when not constant."""
     netlist = flatten(text)

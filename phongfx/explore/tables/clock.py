@@ -51,6 +51,15 @@ def _two(unit, interval=1):
                         blend=BlendConfig(lights=2, diff="1.15", spec="1.15"))
 
 
+def _scene_blend(config):
+    """``config`` with the blend of the two-light example scene (5 coefficient bits, its
+    intensities): a gate whose select steers every bit of a wide product, the path that
+    limits the compiler's choice for that scene at depth 4."""
+    blend = config.blend.replace(coef_frac=5, diffuse=(((0.42,) * 3, (0.18,) * 3),),
+                                 specular=(((0.28,) * 3, (0.12,) * 3),))
+    return config.replace(blend=blend)
+
+
 #: Whole shaders beside the blocks, at the depths given (None: every one): where the blend,
 #: the light turns and the nets fanned out to every copy (the normal, the turn counter's
 #: enable) set the clock rather than one datapath's stage.
@@ -64,6 +73,7 @@ def _configs():
     for label, config, depths in SHADERS:
         yield label, "shader", config, depths
     yield "shader i2", "shader", get_block("shader").config.replace(interval=2), (0, 2, 4)
+    yield "shader i2 coef 5", "shader", _scene_blend(get_block("shader").config.replace(interval=2)), (4,)
     for name in NAMES:
         yield name, name, get_block(name).config, None
 
@@ -147,23 +157,25 @@ def calibration_rows(selected=None, *, targets=TARGETS, workdir=None, progress=N
     return rows
 
 
-def fit(netlists, periods, start, rounds=12):
+def fit(netlists, periods, start, rounds=24):
     """Non-negative ns per feature (:data:`~phongfx.explore.synth.clock.FEATURES`) that
     minimize the squared relative error of the proxy's period against ``periods`` (ns),
     one per netlist.  The critical path depends on the coefficients, so the fit alternates:
-    each round takes every netlist's critical path under the previous round's
-    coefficients (``start`` the first), fits them by
-    :func:`~phongfx.explore.tables.proxy.relative_nnls`, and keeps the best round (least
-    largest error)."""
+    each round takes every netlist's critical path under the current coefficients
+    (``start`` the first), fits them by :func:`~phongfx.explore.tables.proxy.relative_nnls`,
+    and moves halfway to that fit (after the first round: taken whole, two fits can pick
+    each other's paths and swap for ever), keeping the best round (least spread of the
+    measured over the estimated period)."""
     coefficients, best = dict(start), (float("inf"), dict(start))
-    for _ in range(rounds):
+    for round_ in range(rounds):
         amounts = [critical_path(netlist, coefficients)[1] for netlist in netlists]
         ratios = [p / sum(coefficients[k] * a[k] for k in FEATURES) for a, p in zip(amounts, periods)]
         worst = 1 - min(ratios) / max(ratios)  # how far below synthesis the promise may be
         if worst < best[0]:
             best = (worst, dict(coefficients))
         found = relative_nnls([[a[k] for k in FEATURES] for a in amounts], periods)
-        new = {k: round(float(v), 3) for k, v in zip(FEATURES, found)}
+        new = {k: round(float(v) if round_ == 0 else (coefficients[k] + float(v)) / 2, 3)
+               for k, v in zip(FEATURES, found)}
         if new == coefficients:
             break
         coefficients = new

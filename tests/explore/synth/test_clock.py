@@ -5,8 +5,8 @@ import math
 import pytest
 
 from phongfx.core.registry import get_block
-from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, critical_path, proxy_clock
-from phongfx.explore.synth.netgraph import flatten
+from phongfx.explore.synth.clock import COEFFICIENTS, ERROR, MARGIN, critical_path, proxy_clock
+from phongfx.explore.synth.flatten import flatten
 
 
 def _cell(kind, name, a, b, y, width):
@@ -69,6 +69,23 @@ def test_a_net_of_many_loads_is_priced_by_its_fan_out(loads):
     assert ns == pytest.approx(1.0 + 0.5 * 9 + 0.25 * amounts["fanout"])
 
 
+@pytest.mark.parametrize("width", [1, 24])
+def test_a_select_steers_as_many_loads_as_its_multiplexer_has_bits(width):
+    """A multiplexer is a LUT per output bit on an FPGA, a gate per bit in cells: its select
+    bit reaches ``width`` of them, though it is one port of one word-level cell (the blend's
+    gate of a two-light shader, missed by a count of cells)."""
+    mux = (f"  cell $mux $m\n    parameter \\WIDTH {width}\n    connect \\A \\a\n    connect \\B \\b\n"
+           f"    connect \\S \\e\n    connect \\Y \\y\n  end\n")
+    text = (f"module \\top\n  wire width 1 input 0 \\clk\n  wire width {width} input 1 \\a\n"
+            f"  wire width {width} input 2 \\b\n  wire width 1 input 3 \\s\n  wire width {width} output 4 \\o\n"
+            f"  wire width 1 \\e\n  wire width {width} \\y\n"
+            + _dff("$e", "\\s", "\\e", 1) + mux + _dff("$r", "\\y", "\\o", width) + "end\n")
+    netlist = flatten(text)
+    index = next(i for i, n in enumerate(netlist.nodes) if n.type == "$mux")
+    assert netlist.fanins(index)[next(i for i, n in enumerate(netlist.nodes) if n.name == "e")] == width
+    assert critical_path(netlist, {"fanout": 1.0})[1]["fanout"] == pytest.approx(math.log2(width))
+
+
 def test_copies_on_the_same_inputs_are_one_copy():
     """Two instances of the unit fed the same bits merge, registers and adders alike."""
     twice = ADDER_CHAIN.replace(
@@ -86,8 +103,8 @@ def test_proxy_clock_rises_with_the_pipeline_depth_of_fig7(target):
     fmax = [r["fmax_mhz"] for r in results]
     if target == "ecp5":  # synthesized: 42.0, 67.4, 79.2, 121.1, 189.5 MHz
         assert all(a <= b for a, b in zip(fmax, fmax[1:])) and fmax[-1] > 2 * fmax[0]
-    else:  # on osu018 an array multiplier bounds every depth past 0: 103.8, then 120 to 134 MHz
-        assert fmax[0] < min(fmax[1:]) and max(fmax) < 1.5 * fmax[0]
+    else:  # on osu018 (buffered) an array multiplier bounds every depth past 0: 117.6, then 164 to 184 MHz
+        assert fmax[0] < min(fmax[1:]) and 1.3 * fmax[0] < max(fmax) < 1.7 * fmax[0]
     assert results[0]["model"] == f"{target}-clock-proxy" and results[0]["error"] == ERROR[target]
     assert results[0]["period_ns"] == pytest.approx(1000 / fmax[0])
     assert "→" in results[0]["path"] and "ns" in results[0]["path"]
@@ -105,4 +122,4 @@ def test_every_target_has_every_coefficient():
 
     for target, coefficients in COEFFICIENTS.items():
         assert set(coefficients) == set(FEATURES) and min(coefficients.values()) >= 0
-        assert 0 < ERROR[target] < 1
+        assert 0 < ERROR[target] < 1 and 0 <= MARGIN[target] < 1
