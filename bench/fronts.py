@@ -31,12 +31,12 @@ from phongfx.scene.geometry import frames
 __all__ = ["DESIGNS", "RATES", "TARGETS", "variants", "measure", "fronts", "choices", "markdown", "main"]
 
 ROOT = os.path.join(os.path.dirname(__file__), "..")
-#: The design ``phongfx compile`` chooses for each scene (searched on its domain; main 1ad3f69).
+#: The design ``phongfx compile`` chooses for each scene (certified, on its domain; main 0db86fe).
 DESIGNS = {
-    "torus": ("fig7", {"vec_frac": 11, "x2_frac": 7, "shape_t_frac": 12, "coef": 0, "order": 2, "k": 4}),
-    "local-mesh": ("conventional", {"vec_frac": 13, "rsqrt_addr": 8, "table_addr": 5, "coef": 1}),
-    "lyon-balls": ("conventional", {"vec_frac": 16, "rsqrt_addr": 9, "table_addr": 4, "coef": 2}),
-    "two-lights": ("fig7", {"vec_frac": 10, "x2_frac": 6, "shape_t_frac": 13, "coef": 1, "order": 2, "k": 4}),
+    "torus": ("conventional", {"vec_frac": 11, "rsqrt_addr": 8, "table_addr": 5, "coef": 0}),
+    "local-mesh": ("conventional", {"vec_frac": 14, "rsqrt_addr": 9, "table_addr": 5, "coef": 1}),
+    "lyon-balls": ("halfway", {"vec_frac": 15, "x2_frac": 5, "shape_t_frac": 13, "coef": 2, "order": 2}),
+    "two-lights": ("conventional", {"vec_frac": 10, "rsqrt_addr": 7, "table_addr": 6, "coef": 5}),
 }
 #: The pixel rates (Mpixel/s) the compiler's choice is shown at.
 RATES = (30, 60, 150, 250)
