@@ -4,10 +4,11 @@
 stage of a design's RTLIL; its coefficients
 (:data:`~phongfx.explore.synth.clock.COEFFICIENTS`) were fitted by :func:`fit` to the
 synthesized clock of every point of :func:`points`: every datapath the compiler can
-choose (Lyon's Figures 7, 8 and 5, the Blinn–Phong, spherical and conventional units) and
-two whole shaders (Figure 7 holding two lights; two Blinn–Phong copies, one per light) at
-every pipeline depth they take, on ECP5 (nextpnr's Fmax on the LFE5U-45F, seed 1, 150 MHz
-asked) and on osu018 (OpenSTA, pre-layout).  This table reruns that comparison: per
+choose (Lyon's Figures 7, 8 and 5, the Blinn–Phong, spherical and conventional units) at
+every pipeline depth they take, and whole shaders (:data:`SHADERS`: Figure 7 holding two lights
+at every depth, in turns, and with the two-light scene's blend; two Phong or Blinn–Phong copies,
+one per light), on ECP5 (nextpnr's Fmax on the LFE5U-45F, seed 1, 150 MHz asked) and on osu018
+(Yosys with ABC's buffering and sizing, OpenSTA pre-layout).  This table reruns that comparison: per
 point and target the measured Fmax, the proxy's, the error and both critical paths; per
 target the median and largest error.  On ECP5 it also compares the area proxy's LUT4
 and DSP counts with the synthesized ones, the margins of
