@@ -80,16 +80,17 @@ class Netlist:
         (a turn counter's enable, an input fanned out to every light copy) is a slow net on
         an FPGA's routing and on unbuffered standard cells alike."""
         if self._fanins is None:
+            loads = [_loads(node, self.root) for node in self.nodes]
+            outputs = {self.root[bit]: 1 for bits in self.outputs.values() for bit in bits if self.root[bit] >= 3}
             readers = {}
-            groups = [_loads(node) for node in self.nodes] + [{bit: 1 for bits in self.outputs.values() for bit in bits}]
-            for loads in groups:
-                for root, count in _by_root(loads, self.root).items():
+            for counts in loads + [outputs]:
+                for root, count in counts.items():
                     readers[root] = readers.get(root, 0) + count
             self._fanins = []
-            for node in self.nodes:
+            for counts in loads:
                 fan = {}
-                for root in _by_root(_loads(node), self.root):
-                    d = self.driver.get(root, ("in", root))[0]
+                for root in counts:
+                    d = self._driver(root)[0]  # a root is its own root
                     d = -1 if d == "in" else d
                     fan[d] = max(fan.get(d, 0), readers[root])
                 self._fanins.append(fan)
@@ -172,10 +173,10 @@ class Netlist:
 _STEERING = {"S": ("$mux",), "EN": ("$dffe", "$sdffe", "$adffe", "$aldffe", "$dffsre")}
 
 
-def _loads(node):
-    """``{bit: loads}`` of the data bits ``node`` reads (its clocks are not): one per bit, the
-    output's width for a bit that steers every output bit (a multiplexer's select, a
-    register's enable)."""
+def _loads(node, root):
+    """``{root bit: loads}`` of the data bits ``node`` reads (its clocks and constants are not):
+    one per bit, the output's width for a bit that steers every output bit (a multiplexer's
+    select, a register's enable); bits joined to one root count as that root once."""
     width = max((len(bits) for bits in node.outputs.values()), default=1)
     loads = {}
     for port, bits in node.inputs.items():
@@ -183,16 +184,9 @@ def _loads(node):
             continue
         count = width if node.type in _STEERING.get(port, ()) else 1
         for bit in bits:
-            loads[bit] = max(loads.get(bit, 0), count)
+            if root[bit] >= 3:
+                loads[root[bit]] = max(loads.get(root[bit], 0), count)
     return loads
-
-
-def _by_root(loads, root):
-    merged = {}
-    for bit, count in loads.items():
-        if root[bit] >= 3:
-            merged[root[bit]] = max(merged.get(root[bit], 0), count)
-    return merged
 
 
 def _scope(name):
