@@ -6,8 +6,8 @@
 * ``needs_yosys`` (Yosys and nextpnr from PyPI: synthesis), ``needs_sta`` (OpenSTA and the
   OSU cells, through the :func:`asic_tools` fixture), ``needs_sby`` (SymbiYosys proofs),
   ``needs_iverilog`` (Icarus Verilog), ``needs_gappa`` (Gappa): set in the test files, or
-  by a fixture that stands for the tool (:data:`FIXTURE_NEEDS`: :func:`asic_tools`,
-  ``verilator_exe``);
+  by a fixture that stands for the tool or needs it (:data:`FIXTURE_NEEDS`: :func:`asic_tools`,
+  ``verilator_exe``; :func:`tiny_compiled`, whose compile runs the RTL check);
 * the cocotb back end (``backend="verilator"``) checks the same Verilog as
   ``verilator-fast`` at about twice the cost, so it runs by default only in
   :data:`COCOTB_TESTS`, the proof that back end works; elsewhere a cocotb run whose
@@ -18,9 +18,12 @@ The marks are added before pytest's own ``-m`` deselection (``tryfirst``), so a 
 sees them; a mark added while a fixture runs would come too late.
 """
 
+import contextlib
+import io
 import os
 import shutil
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -38,7 +41,8 @@ COCOTB_TESTS = ("tests/sim/test_harness.py::", "tests/hdl/test_lirp.py::",
                 "tests/hdl/test_datapath.py::test_harness[verilator-fig7]")
 VERILATOR_BACKENDS = ("verilator", "verilator-fast")
 #: Fixtures that stand for a tool: a test that asks for one needs it.
-FIXTURE_NEEDS = {"asic_tools": ("needs_yosys", "needs_sta"), "verilator_exe": ("needs_verilator",)}
+FIXTURE_NEEDS = {"asic_tools": ("needs_yosys", "needs_sta"), "verilator_exe": ("needs_verilator",),
+                 "tiny_compiled": ("needs_verilator",)}
 BACKEND_PARAMETERS = ("backend", "stream_backend")
 
 
@@ -137,3 +141,22 @@ def sg13g2():
     pytest.skip(f"IHP SG13G2 standard cells not found (looked in {', '.join(map(str, candidates))}): get "
                 f"{', '.join(SG13G2_FILES)} from github.com/IHP-GmbH/IHP-Open-PDK, "
                 f"ihp-sg13g2/libs.ref/sg13g2_stdcell/{{lib,verilog}}/, and set PHONGFX_SG13G2 to their folder")
+
+
+@pytest.fixture(scope="session")
+def tiny_compiled(tmp_path_factory):
+    """One ``phongfx compile`` of the tiny torus (``tests/explore/compile/test_compiler.py``'s
+    ``TORUS`` at 1 level against Phong; fig7 and blinn, ``--sampled``, with the RTL check),
+    shared by the tests that read a compiled folder: a compile takes seconds to a minute, so
+    the suite makes this one once.  ``.scene`` (the scene file), ``.out`` (the folder),
+    ``.code`` (the exit code), ``.stdout``, ``.stderr``; the tests only read the folder."""
+    from phongfx.cli import main
+    from tests.explore.compile.test_compiler import TORUS
+
+    root = tmp_path_factory.mktemp("tiny-compiled")
+    scene, out = root / "tiny.toml", root / "out"
+    scene.write_text(TORUS.format(error=1.0, against="phong"))
+    stdout, stderr = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+        code = main(["compile", str(scene), "-o", str(out), "--methods", "fig7,blinn", "--sampled", "--quiet"])
+    return SimpleNamespace(scene=scene, out=out, code=code, stdout=stdout.getvalue(), stderr=stderr.getvalue())

@@ -335,6 +335,7 @@ def cmd_compile(args):
     print(f"shipped top: {args.output}/{top['file']} ({top['module']}, {len(top['ports'])} ports, "
           f"latency {top['latency']}"
           + (f", one pixel every {top['interval']} clocks)" if top.get("interval", 1) > 1 else ")"))
+    print(f"report: {args.output}/report.html")
     if "testbench" in data:
         print(f"testbench: {args.output}/testbench ({data['testbench']['vectors']} vectors of frame "
               f"{data['testbench']['frame']}; run: sh {args.output}/testbench/run.sh)")

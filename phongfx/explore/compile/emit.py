@@ -20,6 +20,11 @@ frame as a self-checking Verilog testbench for Icarus Verilog and Verilator
 ``DIR/constraints/`` the clock the core was compiled for as SDC, ECP5 LPF and an iCE40
 nextpnr script (:mod:`phongfx.deliver.constraints`), ``DIR/<module>.core`` a FuseSoC core
 of the RTL, the testbench and the constraints (:mod:`phongfx.deliver.fusesoc`).
+``DIR/report.html``, written last (also when nothing is chosen, beside the manifest alone),
+is one self-contained page of all of it: the requirement, the chosen design and why, every
+candidate on a cost/error chart, the pixel rates, the certificate and witness, the error
+maps and frames embedded, the RTL check, the ports and the input contract
+(:mod:`phongfx.deliver.report`).
 """
 
 import dataclasses
@@ -40,6 +45,7 @@ from phongfx.deliver.constraints import clock_of
 from phongfx.deliver.contract import contract_lines, error_paragraph, input_contract
 from phongfx.deliver.fusesoc import write_flow
 from phongfx.deliver.manifest import MANIFEST_VERSION
+from phongfx.deliver.report import REPORT_NAME, write_report
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
@@ -249,6 +255,7 @@ def _write(compiled, out_dir, check, progress, vcd, final):
         data = manifest(compiled, out_dir=final)
         atomic_write(os.path.join(out_dir, "manifest.json"),
                      lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
+        write_report(os.path.join(out_dir, REPORT_NAME), data, out_dir)
         return data
     method, scene = best["method"], compiled.scene
     block = design_block(best, compiled.analysis)
@@ -320,4 +327,6 @@ def _write(compiled, out_dir, check, progress, vcd, final):
     data["flow"] = _flow(out_dir, module, data)
     atomic_write(os.path.join(out_dir, "manifest.json"),
                  lambda p: open(p, "w").write(json.dumps(data, indent=2) + "\n"))
+    # after the manifest is final: the page shows the RTL check's result and every field above
+    write_report(os.path.join(out_dir, REPORT_NAME), data, out_dir)
     return data

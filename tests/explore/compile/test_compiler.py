@@ -209,11 +209,11 @@ def test_an_unreachable_requirement_chooses_nothing(tmp_path, capsys):
 
 
 @pytest.mark.needs_verilator
-def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
-    path = tmp_path / "tiny.toml"
-    path.write_text(TORUS.format(error=1.0, against="phong"))
-    out = tmp_path / "out"
-    assert main(["compile", str(path), "-o", str(out), "--methods", "fig7,blinn", "--sampled", "--quiet"]) == 0
+def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tiny_compiled):
+    """On the suite's shared compile (``tiny_compiled`` in ``tests/conftest.py``: this
+    test's compile, made once and read by the report page's tests too)."""
+    path, out = tiny_compiled.scene, tiny_compiled.out
+    assert tiny_compiled.code == 0, tiny_compiled.stderr
     data = json.loads((out / "manifest.json").read_text())
     for key in ("scene", "analysis", "chosen", "block", "formats", "latency", "ports", "error", "cost",
                 "cost_model", "rejected", "minimality_proof", "default_widths", "blinn_baseline", "conventional_baseline",
@@ -236,7 +236,7 @@ def test_cli_writes_manifest_verilog_pngs_and_checks_the_rtl(tmp_path, capsys):
     assert "// Material 0 = shiny: kd 0.6, ks 0.4, ka 0, colour (1, 1, 1), n 16;" in text
     assert (out / "frames" / "frame_000.png").is_file() and (out / "error" / "frame_000.png").is_file()
     assert check["stalls"] > 0 and check["reset_at_cycle"] > 0  # the check stalls and resets mid-stream
-    assert "0 mismatches" in capsys.readouterr().out
+    assert "0 mismatches" in tiny_compiled.stdout
 
 
 @pytest.mark.needs_verilator
