@@ -8,10 +8,11 @@ BACKEND ?= verilator-fast
 STAMP := $(VENV)/.installed-stamp
 # Standard-cell synthesis (phongfx synth --target asic) needs OpenSTA and the OSU Liberty
 # files from Debian, the exported testbenches (phongfx testbench) run under Icarus Verilog,
-# and phongfx certify proves Figure 7's rounding error with Gappa.
+# phongfx certify proves Figure 7's rounding error with Gappa, and the compile report page
+# (DIR/report.html) is opened by its test in headless Chromium through chromedriver.
 # make installs them where it can (as root with apt-get, as in CI); elsewhere it says how,
 # and the tests that need them are skipped.
-DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035 iverilog gappa
+DEBIAN_PACKAGES := opensta qflow-tech-osu018 qflow-tech-osu035 iverilog gappa chromium chromium-driver
 DEBIAN_STAMP := $(VENV)/.debian-stamp
 
 DOCS_OUT ?= build/docs
@@ -23,12 +24,13 @@ DOCS_OUT ?= build/docs
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/python -m pip install --quiet --upgrade pip
-	$(VENV)/bin/python -m pip install --quiet -c constraints.txt -e '.[cluster,bench,docs]'
+	$(VENV)/bin/python -m pip install --quiet -c constraints.txt -e '.[cluster,bench,docs,browser]'
 	touch $(STAMP)
 
 # the Makefile too: a package added to DEBIAN_PACKAGES is installed where the stamp exists
 $(DEBIAN_STAMP): $(STAMP) Makefile
 	@if command -v sta >/dev/null && command -v iverilog >/dev/null && command -v gappa >/dev/null \
+	    && command -v chromium >/dev/null && command -v chromedriver >/dev/null \
 	    && [ -f /usr/share/qflow/tech/osu018/osu018_stdcells.lib ] \
 	    && [ -f /usr/share/qflow/tech/osu035/osu035_stdcells.lib ]; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
@@ -36,7 +38,7 @@ $(DEBIAN_STAMP): $(STAMP) Makefile
 	    DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null \
 	    || { apt-get update -q >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEBIAN_PACKAGES) >/dev/null; }; \
 	else \
-	    echo "note: standard-cell tools, Icarus Verilog or Gappa missing; as root: apt-get install $(DEBIAN_PACKAGES)"; \
+	    echo "note: standard-cell tools, Icarus Verilog, Gappa or Chromium missing; as root: apt-get install $(DEBIAN_PACKAGES)"; \
 	fi
 	touch $@
 

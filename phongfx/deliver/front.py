@@ -6,7 +6,7 @@ The compiler prices every architecture of a method (pipeline depth, interval) an
 the method's ``cost`` the one it was priced at: the cheapest that meets the pixel rate and
 clock asked, or the default architecture when nothing is asked; where none meets, the
 cost also holds ``fastest``, the highest pixel rate any architecture reached
-(:func:`phongfx.explore.compile.architecture.pick`).  So the front shown is those points
+(``phongfx.explore.compile.architecture.pick``).  So the front shown is those points
 alone, one or two per method, not every architecture priced (``architectures_priced``
 counts those); an infeasible method has no cost and no point.  The chart
 (:func:`phongfx.deliver.chart.scatter`) puts pixel rate (Mpixel/s) against cost, with the

@@ -2,7 +2,7 @@
 tables, a manifest's numbers, costs and widths in words, and PNGs as ``data:`` URIs.
 
 Every text that comes from a manifest reaches the page through :func:`esc`
-(:func:`html.escape`); only :class:`Html`, text a builder made itself, passes as it is.
+(``html.escape``); only :class:`Html`, text a builder made itself, passes as it is.
 """
 
 import base64

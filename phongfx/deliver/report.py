@@ -1,6 +1,6 @@
 """The compile report page: ``DIR/report.html``, one self-contained HTML file of a compiled folder.
 
-Built from the folder's manifest dict (:mod:`phongfx.explore.compile.emit` writes both) and
+Built from the folder's manifest dict (``phongfx.explore.compile.emit`` writes both) and
 the PNGs beside it, the page shows, top to bottom:
 
 * a summary: the scene, the chosen design, its error against the requirement, its cost,
@@ -23,7 +23,7 @@ the PNGs beside it, the page shows, top to bottom:
 
 A section whose data the manifest lacks is left out.  No network: the pictures are
 ``data:`` URIs, the charts inline SVG, the style inline, no script; every text from the
-manifest goes through :func:`html.escape`.
+manifest goes through ``html.escape``.
 """
 
 import math

@@ -47,3 +47,18 @@ def test_compare_finds_each_kind_of_difference(tmp_path, capsys):
                            "differs: verilog/lirp.v"]
     assert compare(str(a), str(other), common_only=True)[1] == differences[1:]
     assert compare(str(a), str(other), ignore=("tables/",))[1] == [differences[0], differences[2]]
+
+
+def test_a_compiled_folder_s_report_page_is_a_view_not_compared(tmp_path):
+    """``report.html`` is made from the manifest and PNGs beside it, which are compared: a
+    capture with it and one from before it (without) agree, and so do two pages that differ."""
+    table = {"rows": [1]}
+    a = _capture(tmp_path / "a", "module lirp; endmodule\n", table)
+    b = _capture(tmp_path / "b", "module lirp; endmodule\n", table)
+    for root in (a, b):
+        (root / "work" / "compile" / "torus").mkdir(parents=True)
+        (root / "work" / "compile" / "torus" / "manifest.json").write_text('{"chosen": "fig7"}')
+    (b / "work" / "compile" / "torus" / "report.html").write_text("<p>certified in 5.6 s</p>")
+    assert compare(str(a), str(b)) == (3, [])
+    (a / "work" / "compile" / "torus" / "report.html").write_text("<p>certified in 9.1 s</p>")
+    assert compare(str(a), str(b)) == (3, [])
