@@ -99,7 +99,9 @@ def test_the_cli_prints_the_hint_and_the_relaxed_requirement_is_met(tmp_path, ca
     assert (relaxed / "verilog").is_dir() and (relaxed / "frames" / "sheet.png").is_file()
     # an infeasible rerun into that folder leaves no Verilog or frames of the earlier result
     assert main(["compile", str(path), "-o", str(relaxed), *args]) == 1
-    assert sorted(p.name for p in relaxed.iterdir()) == ["manifest.json"]
+    assert sorted(p.name for p in relaxed.iterdir()) == ["manifest.json", "report.html"]
+    page = (relaxed / "report.html").read_text(encoding="utf-8")
+    assert "no design chosen" in page and "hint: " in page and "<img" not in page
     assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".")) == []
 
 
