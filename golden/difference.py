@@ -20,28 +20,13 @@ Error against exact ``n·|R-L|²`` on the same codes, when nothing saturates:
 ``D`` and ``D·D`` are exact, ``2x`` is within 1/2 LSB (``2^-13``).
 
 With :attr:`~phongfx.config.DifferenceConfig.n_const` set, ``n`` is that constant in the
-same format ``n``: the product and its rounding are those of feeding it on the port.
+same format ``n`` (:func:`~phongfx.golden.shininess.shininess_input`): the product and its
+rounding are those of feeding it on the port.
 """
 
-import numpy as np
+from .shininess import shininess_input
 
-from .fixed import Fixed, check_range
-
-__all__ = ["difference", "shininess_input"]
-
-
-def shininess_input(name, value, constant, fmt, top, count):
-    """The shininess operand ``name`` (``n`` or ``m``): the port's ``value`` (checked to lie
-    in ``1..top``) when ``constant`` is 0, else ``constant`` in ``fmt`` for each of ``count``
-    cases, which must then come without a port value."""
-    if constant:
-        if value is not None:
-            raise ValueError(f"{name} must not be given: {name}_const = {constant} fixes it")
-        return Fixed(np.full(count, constant), fmt)
-    if value is None:
-        raise ValueError(f"{name} must be given: {name}_const = 0 makes it an input")
-    check_range(name, value, 1, top)
-    return value
+__all__ = ["difference"]
 
 
 def difference(config, r, l, n=None):
@@ -59,7 +44,7 @@ def difference(config, r, l, n=None):
     dict
         ``{"x2": Fixed (count,) in config.x2}``
     """
-    n = shininess_input("n", n, config.n_const, config.n, config.n_max, len(r))
+    n = shininess_input(config, n, len(r))
     d = (r - l).quantize(config.d, config.rounding, "saturate", op="difference D")
     dd = d.dot(d).quantize(config.dd, config.rounding, "saturate", op="difference D·D")
     return {"x2": (n * dd).quantize(config.x2, config.rounding, "saturate", op="difference 2x")}

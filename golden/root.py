@@ -55,9 +55,9 @@ import numpy as np
 
 from phongfx.core.format import Format
 
-from .difference import shininess_input
 from .fixed import Fixed
 from .shape import shape
+from .shininess import shininess_input
 
 __all__ = ["root"]
 
@@ -71,14 +71,15 @@ def root(config, r, l, m=None):
     r, l : Fixed, shape (count, 3), format ``config.vec``
     m : Fixed, shape (count,), format ``config.m``, integers 1..``config.m_max``
         Exactly when ``config.m_const`` is 0 (``m`` is a port); otherwise None: ``m`` is
-        ``m_const`` in format ``m``, the same codes as feeding it on the port.
+        ``m_const`` in format ``m``, the same codes as feeding it on the port
+        (:func:`~phongfx.golden.shininess.shininess_input`).
 
     Returns
     -------
     dict
         ``{"spec": Fixed (count,) in config.t}``
     """
-    m = shininess_input("m", m, config.m_const, config.m, config.m_max, len(r))
+    m = shininess_input(config, m, len(r))
     d = (r - l).quantize(config.d, config.rounding, "saturate", op="root D")
     # rectifier: negator and multiplexer; only D = -2^int_bits saturates into the unsigned twin
     neg = -d

@@ -10,7 +10,7 @@ from phongfx.config.blend import CHANNELS
 from phongfx.core.format import Format
 
 from .block import PipelinedBlock
-from .difference import signed_digits
+from .constant import signed_digits
 from .fixed import FixedValue, cut, quantize_cut, stage
 
 __all__ = ["Blend", "shift_add", "adder_tree"]
@@ -40,7 +40,7 @@ def adder_tree(values):
 def shift_add(value, code, frac=0):
     """``value × code·2^−frac`` exactly, for an integer ``code >= 0``, as a sum and difference of
     shifted copies of ``value``: the canonical signed digits of ``code``
-    (:func:`~phongfx.hdl.difference.signed_digits`, the fewest non-zero digits, so
+    (:func:`~phongfx.hdl.constant.signed_digits`, the fewest non-zero digits, so
     ``k`` digits cost ``k − 1`` adders and a power of two is wiring), positive digits summed,
     negative ones summed and subtracted, each by :func:`adder_tree`.
 

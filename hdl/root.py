@@ -8,8 +8,8 @@ from phongfx.config import RootConfig
 from phongfx.core.format import Format
 
 from .block import PipelinedBlock, unbuilt
-from .difference import const_product
-from .dsp import product, registered
+from .constant import shininess_product
+from .dsp import product
 from .fixed import FixedValue, FixedVector, cut, delay, stage
 from .shape import Shape
 
@@ -39,8 +39,8 @@ class Root(PipelinedBlock):
     follows the shape's.
 
     With ``config.m_const`` there is no ``m`` port and the three multipliers are constant
-    ones, shifts and adds (:func:`~phongfx.hdl.difference.const_product`; none for a power
-    of two), with the same codes, registers and latency.
+    ones, shifts and adds (:func:`~phongfx.hdl.constant.shininess_product`, as Figure 7c's
+    ``n_const``; none for a power of two), with the same codes, registers and latency.
 
     Ports: ``i.payload`` = ``r``, ``l`` (3 × ``config.vec``), ``m`` (``config.m``; absent
     when ``config.m_const`` is set); ``o.payload`` = ``spec`` (``config.t``).
@@ -64,14 +64,9 @@ class Root(PipelinedBlock):
         d = cut(m, i["r"] - i["l"], depth >= 2, "dsub").quantize(cfg.d, cfg.rounding, "saturate")
         d = cut(m, d, depth >= 2, "d")
         magnitude = cut(m, FixedVector(_rectify(di, cfg.rounding) for di in d), depth >= 1, "abs")
-        if cfg.m_const:
-            if depth >= 4:
-                magnitude = registered(magnitude)[0]
-            md = FixedVector(const_product(m, mi, cfg.m_const, cfg.m, False, f"md_{axis}")
-                             for mi, axis in zip(magnitude, "xyz"))
-            md = cut(m, md, depth >= 4, "md_out")  # as a multiplier's isolated product
-        else:
-            md = product(m, magnitude, cut(m, i["m"], depth >= 1, "m_in"), name="md", isolate=depth >= 4)
+        md = shininess_product(m, cfg, i, magnitude,
+                               lambda port: product(m, magnitude, cut(m, port, depth >= 1, "m_in"), name="md",
+                                                  isolate=depth >= 4), "md")
         u = md.shift(-cfg.shift)
         big = md[0].flag(Cat(*(ui >= 1 for ui in u)).any(), "big")
         frac = u.quantize(cfg.frac, "truncate", "wrap")

@@ -42,11 +42,12 @@ import numpy as np
 
 from phongfx.core.format import Format
 from phongfx.golden.diffuse import diffuse
-from phongfx.golden.difference import difference, shininess_input
+from phongfx.golden.difference import difference
 from phongfx.golden.fixed import Fixed
 from phongfx.golden.halfway import halfway
 from phongfx.golden.normalize import normalize
 from phongfx.golden.reflect import reflect
+from phongfx.golden.shininess import shininess_input
 
 from .approximation import PIECES, scale_range
 from .cones import at_infinity
@@ -217,7 +218,7 @@ def _pieces(config, r, l, n, span):
     large ``D`` (a steep ``x``) and a small one (a steep shape function) are bounded apart.
     Every point of a box lies in one piece: the box's Interval is their hull and their
     largest deviation."""
-    n = shininess_input("n", n, config.n_const, config.n, config.n_max, len(r))
+    n = shininess_input(config, n, len(r))
     d = (r - l).quantize(config.d, config.rounding, "saturate", op="difference D")
     dd = d.dot(d)
     count, cut = len(dd), np.linspace(0.0, 1.0, PIECES + 1)
@@ -262,7 +263,7 @@ def _fig7_specular(config, normal, view, lights, shininess, hints):
 def _fig8_specular(config, normal, view, lights, shininess, hints):
     # as phongfx.golden.datapath.fig8: R once, then per light the root-shininess unit
     r = _reflected(config, normal, view, hints)
-    m = shininess if shininess is not None else Fixed(np.full(len(r), config.root.m_const), config.root.m)
+    m = shininess_input(config.root, shininess, len(r))
     return [root(config.root, r, light, m) for light in lights]
 
 

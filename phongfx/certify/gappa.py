@@ -68,9 +68,9 @@ def _power(exponent):
 
 
 def _n_range(diff, ranges):
-    if diff.n_const:
-        return diff.n_const, diff.n_const
-    lo, hi = ranges.get("n", (1, diff.n_max))
+    if diff.shininess_const:
+        return diff.shininess_range  # the one n built into the hardware
+    lo, hi = ranges.get("n", diff.shininess_range)
     if not (isinstance(lo, int) and isinstance(hi, int) and 1 <= lo <= hi <= diff.n_max):
         raise ValueError(f"ranges n must be integers lo <= hi in 1..{diff.n_max}, not {(lo, hi)!r}")
     return lo, hi

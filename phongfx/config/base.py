@@ -14,7 +14,7 @@ from dataclasses import dataclass, fields, replace
 from phongfx.core.format import Format, check_rounding
 from phongfx.core.limits import MAX_VEC_FRAC
 
-__all__ = ["BlockConfig", "SpecularUnit", "floor_sqrt", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_format",
+__all__ = ["BlockConfig", "ConstantShininess", "SpecularUnit", "floor_sqrt", "MAX_PIPELINE", "MAX_VEC_FRAC", "check_int", "check_format",
            "check_integer_format", "check_fraction_format", "check_step_formats"]
 
 #: Deepest ``pipeline`` of a block (:class:`BlockConfig`).
@@ -212,14 +212,20 @@ class SpecularUnit:
     def check(self, config):
         """Raise ValueError for a config the unit cannot take beyond its links."""
 
+    def shininess_block(self, config):
+        """The block config that takes the shininess, a port or a constant
+        (:class:`ConstantShininess`): Figure 7c's difference block by default."""
+        return config.difference
+
     def shininess(self, config):
         """``(port, format, largest value)`` of the per-pixel shininess input (the config
         asks only when :meth:`shininess_const` is 0)."""
-        return "n", config.difference.fmt("n"), config.difference.n_max
+        block = self.shininess_block(config)
+        return block.SHININESS, block.fmt(block.SHININESS), block.shininess_max
 
     def shininess_const(self, config):
         """The shininess fixed in the hardware in the port's terms, 0 when it is a port."""
-        return config.difference.n_const
+        return self.shininess_block(config).shininess_const
 
     def top_n(self, shininess):
         """The ``n`` of a shininess of the port's terms (``m = √n`` ports square it)."""
@@ -237,12 +243,71 @@ class SpecularUnit:
     def fit(self, config, n_hi, n_const):
         """``config`` with its shininess port narrowed to ``n`` up to ``n_hi``, or the
         shininess fixed in the hardware at ``n_const`` (0: a port)."""
-        difference = config.difference.replace(n=f"{n_hi.bit_length()}.0", n_max=n_hi)
-        if n_const:
-            difference = difference.replace(n_const=n_const)
-        return config.replace(difference=difference)
+        return config.replace(difference=config.difference.with_shininess(n_hi, n_const))
 
     def sweep(self, config, params):
         """``config`` at a sweep point's unit parameters (``params``: the method's, resolved;
         the datapath's ``vec_frac`` and ``lights`` are already applied)."""
         return config
+
+
+class ConstantShininess:
+    """A block's shininess: a per-pixel input port, or a constant built into the hardware.
+
+    Lyon (1993) takes the shininess in two forms: Figure 7c scales ``D·D`` by ``n``
+    (``x = (n/2)·D·D``), Figure 8 scales each ``|D_i|`` by the root shininess ``m = √n``.  A
+    scene with a single shininess needs neither as a port: the value is fixed in the hardware
+    and the multiplier by it becomes a constant one (shifts and adds,
+    :func:`phongfx.hdl.constant.shininess_product`), with the codes and latency of feeding
+    that value on the port.  This mixin is that choice, once, for both blocks: validation,
+    the port it drops, the range of values the hardware takes, the narrowing of a fit.
+
+    A mixin of a :class:`BlockConfig` (listed before it among the bases, so that
+    :attr:`inputs` drops the port) with a shininess port :attr:`SHININESS` (``"n"`` for
+    :class:`~phongfx.config.DifferenceConfig`, ``"m"`` for :class:`~phongfx.config.RootConfig`)
+    and three fields named after it: ``<port>``, its integer format ``n.0``; ``<port>_max``,
+    the largest value the port takes; ``<port>_const``, 0 (the default) for a per-pixel port,
+    ``1..<port>_max`` for that value fixed in the hardware, with no port.
+    """
+
+    #: The shininess port, which names the three fields.
+    SHININESS = None
+
+    @property
+    def shininess_max(self):
+        """``<port>_max``: the largest shininess the port takes."""
+        return getattr(self, f"{self.SHININESS}_max")
+
+    @property
+    def shininess_const(self):
+        """``<port>_const``: the shininess fixed in the hardware, 0 when it is a port."""
+        return getattr(self, f"{self.SHININESS}_const")
+
+    @property
+    def shininess_range(self):
+        """``(lo, hi)`` of the shininess the hardware takes: ``1..<port>_max``, or the constant."""
+        constant = self.shininess_const
+        return (constant, constant) if constant else (1, self.shininess_max)
+
+    def check_shininess(self):
+        """Validate the three fields: ``<port>`` an integer format, ``<port>_max`` in
+        ``1..`` its largest code, ``<port>_const`` in ``0..<port>_max``."""
+        name = self.SHININESS
+        top = check_int(f"{name}_max", self.shininess_max, 1, check_integer_format(name, getattr(self, name)).max_raw)
+        check_int(f"{name}_const", self.shininess_const, 0, top)
+
+    def with_shininess(self, top, constant=0):
+        """This config with its port narrowed to ``1..top`` (the fewest integer bits that hold
+        ``top``) and, unless ``constant`` is 0, the shininess fixed at ``constant``."""
+        name = self.SHININESS
+        changes = {name: f"{top.bit_length()}.0", f"{name}_max": top}
+        if constant:
+            changes[f"{name}_const"] = constant
+        return self.replace(**changes)
+
+    @property
+    def inputs(self):
+        ports = super().inputs
+        if self.shininess_const:
+            del ports[self.SHININESS]  # the constant is wired into the multiplier(s)
+        return ports

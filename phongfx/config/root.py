@@ -2,7 +2,7 @@
 
 from dataclasses import dataclass
 
-from .base import (BlockConfig, SpecularUnit, check_format, check_fraction_format, check_int, check_integer_format,
+from .base import (BlockConfig, ConstantShininess, SpecularUnit, check_format, check_fraction_format, check_int,
                    floor_sqrt)
 from .shape import K_MAX, ShapeConfig
 
@@ -10,7 +10,7 @@ __all__ = ["RootConfig", "Figure8Unit", "FIG8"]
 
 
 @dataclass(frozen=True)
-class RootConfig(BlockConfig):
+class RootConfig(ConstantShininess, BlockConfig):
     """Figure 8 root-shininess specular unit: ``|D|·m``, fraction-only dot product,
     augmented comparator, shape ``f_k`` (``k = 1`` by default); ``m = √n`` in ``1..m_max``.
 
@@ -19,7 +19,8 @@ class RootConfig(BlockConfig):
     (see :mod:`phongfx.golden.root`).  ``m_const``: 0 (default) takes ``m`` per pixel on
     the ``m`` port; ``1..m_max`` fixes it in the hardware (no ``m`` port; the three
     ``m × |D_i|`` become constant multiplications), with the codes and latency of
-    feeding ``m = m_const``, as :attr:`DifferenceConfig.n_const` does for ``n``.
+    feeding ``m = m_const``, as :attr:`DifferenceConfig.n_const` does for ``n``
+    (:class:`~.base.ConstantShininess`, shared by both).
     """
 
     vec: str = "S1.10"
@@ -33,6 +34,7 @@ class RootConfig(BlockConfig):
     pipeline: int = 0
     m_const: int = 0
 
+    SHININESS = "m"
     INPUTS = {"r": ("vec", 3), "l": ("vec", 3), "m": ("m", 1)}
     OUTPUTS = {"spec": ("t", 1)}
     VECTOR_FIELDS = {"vec": (1, 0), "d": (1, 0)}
@@ -40,8 +42,7 @@ class RootConfig(BlockConfig):
     def validate(self):
         check_format("vec", self.vec, signed=True)
         check_format("d", self.d, signed=True)
-        check_int("m_max", self.m_max, 1, check_integer_format("m", self.m).max_raw)
-        check_int("m_const", self.m_const, 0, self.m_max)
+        self.check_shininess()
         check_fraction_format("frac", self.frac)
         check_int("k", self.k, 0, K_MAX)
         check_format("t", self.t, signed=False, holds_one=True)
@@ -66,13 +67,6 @@ class RootConfig(BlockConfig):
         return ShapeConfig(x2=str(x2), k=self.k, t=self.t, rounding=self.rounding,
                            pipeline=self.pipeline)
 
-    @property
-    def inputs(self):
-        ports = super().inputs
-        if self.m_const:
-            del ports["m"]  # the constant is wired into the three multipliers
-        return ports
-
 
 class Figure8Unit(SpecularUnit):
     """Figure 8: reflect → root-shininess unit (``m = √n``)."""
@@ -84,11 +78,8 @@ class Figure8Unit(SpecularUnit):
                 ("reflect.out", c.reflect.out, "root.vec", c.root.vec),
                 (*self.vec(c), "root.vec", c.root.vec)]
 
-    def shininess(self, c):
-        return "m", c.root.fmt("m"), c.root.m_max
-
-    def shininess_const(self, c):
-        return c.root.m_const
+    def shininess_block(self, c):
+        return c.root
 
     def top_n(self, shininess):
         return shininess * shininess
@@ -103,11 +94,9 @@ class Figure8Unit(SpecularUnit):
 
     def fit(self, config, n_hi, n_const):
         m = floor_sqrt(n_hi - 1) + 1  # ⌈√n_hi⌉
-        root = config.root.replace(m=f"{m.bit_length()}.0", m_max=m)
-        if n_const:
-            low = floor_sqrt(n_const)  # √n_const rounded (never a tie for an integer)
-            root = root.replace(m_const=min(max(low + (n_const - low * low > low), 1), m))
-        return config.replace(root=root)
+        low = floor_sqrt(n_const)  # √n_const rounded (never a tie for an integer), 0 for a port
+        m_const = min(max(low + (n_const - low * low > low), 1), m) if n_const else 0
+        return config.replace(root=config.root.with_shininess(m, m_const))
 
     def sweep(self, c, p):
         """``root_frac``, ``t_frac``: the fraction bits of ``root.frac`` and ``root.t``; ``k``."""

@@ -16,7 +16,7 @@ import numpy as np
 from phongfx.golden.fixed import Fixed
 
 __all__ = ["rng", "random_codes", "lengths", "normalized", "unit_vectors", "codes", "concat", "at_angle", "AXES", "axis_pairs",
-           "perpendicular_pairs", "scanline", "init_ends", "random_scanlines", "EXHAUSTIVE_LIMIT"]
+           "perpendicular_pairs", "random_pairs", "scanline", "init_ends", "random_scanlines", "EXHAUSTIVE_LIMIT"]
 
 #: Largest input space that is checked exhaustively.
 EXHAUSTIVE_LIMIT = 1 << 16
@@ -94,6 +94,21 @@ def concat(*parts):
     """Concatenate dicts of raw code arrays port by port."""
     return {name: np.concatenate([np.asarray(part[name], dtype=np.int64) for part in parts])
             for name in parts[0]}
+
+
+def random_pairs(config, count, generator):
+    """Two sets of ``count`` direction pairs ``r``, ``l`` with a random shininess each, for
+    the blocks of Lyon (1993) Figures 7c (``n``) and 8 (``m``): seeded random unit pairs, and
+    raw codes over the whole ``vec`` format (``|D|`` up to 4).  The shininess is drawn from
+    the range the hardware takes, one value when it is a constant
+    (:attr:`~phongfx.config.base.ConstantShininess.shininess_range`)."""
+    vec, port = config.fmt("vec"), config.SHININESS
+    fmt, (lo, hi) = config.fmt(port), config.shininess_range
+    unit = {"r": codes(unit_vectors(count, generator), vec), "l": codes(unit_vectors(count, generator), vec),
+            port: random_codes(fmt, count, generator, lo, hi)}
+    full = {"r": random_codes(vec, (count, 3), generator), "l": random_codes(vec, (count, 3), generator),
+            port: random_codes(fmt, count, generator, lo, hi)}
+    return unit, full
 
 
 def scanline(config, ports, length, generator, **loads):

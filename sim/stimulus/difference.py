@@ -8,7 +8,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
+from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, random_pairs, rng,
+               unit_vectors)
 from .extreme import Extreme, at_shininess_ends, constant, corner, equal, round_exact, zero
 
 __all__ = ["stimulus", "extremes"]
@@ -17,8 +18,7 @@ __all__ = ["stimulus", "extremes"]
 def stimulus(config, count=1000, seed=0):
     vec, nfmt = config.fmt("vec"), config.fmt("n")
     g = rng(seed)
-    # the n range the hardware takes: 1..n_max, or the constant
-    lo, hi = (config.n_const, config.n_const) if config.n_const else (1, config.n_max)
+    lo, hi = config.shininess_range  # 1..n_max, or the constant
     ns = sorted({lo, min(8000, hi), hi})
 
     # every pair of ± AXES: R = L (x = 0), R = -L (|D| = 2, +2 saturating), 90° apart
@@ -45,12 +45,7 @@ def stimulus(config, count=1000, seed=0):
     r_near, l_near = at_angle(alpha, g)
     near = {"r": codes(r_near, vec), "l": codes(l_near, vec), "n": n_near}
 
-    # seeded random unit pairs, and raw codes over the whole vec format (|D| up to 4)
-    unit = {"r": codes(unit_vectors(count, g), vec), "l": codes(unit_vectors(count, g), vec),
-            "n": random_codes(nfmt, count, g, lo, hi)}
-    full = {"r": random_codes(vec, (count, 3), g), "l": random_codes(vec, (count, 3), g),
-            "n": random_codes(nfmt, count, g, lo, hi)}
-    raw = concat(directed, lsb, near, unit, full)
+    raw = concat(directed, lsb, near, *random_pairs(config, count, g))
     return {name: raw[name] for name in config.inputs}
 
 

@@ -6,7 +6,8 @@ m the hardware has) and no ``m`` port is returned.
 
 import numpy as np
 
-from . import AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, rng, unit_vectors
+from . import (AXES, at_angle, axis_pairs, codes, concat, perpendicular_pairs, random_codes, random_pairs, rng,
+               unit_vectors)
 from .extreme import Extreme, at_shininess_ends, constant, corner, exactly, zero
 
 __all__ = ["stimulus", "fraction_codes", "pairs", "extremes"]
@@ -42,8 +43,7 @@ def _directed(config, ms, d):
 def stimulus(config, count=1000, seed=0):
     vec, mfmt, dfmt = config.fmt("vec"), config.fmt("m"), config.fmt("d")
     g = rng(seed)
-    # the m range the hardware takes: 1..m_max, or the constant
-    lo, hi = (config.m_const, config.m_const) if config.m_const else (1, config.m_max)
+    lo, hi = config.shininess_range  # 1..m_max, or the constant
     ms = sorted({lo, min(lo + 1, hi), (lo + hi) // 2, hi})
 
     # every pair of ± AXES (R = L: x = 0; R = -L: |D| = 2, rectified -2 saturating;
@@ -87,12 +87,7 @@ def stimulus(config, count=1000, seed=0):
     r_near, l_near = at_angle(alpha, g)
     near = {"r": codes(r_near, vec), "l": codes(l_near, vec), "m": m_near}
 
-    # seeded random unit pairs, and raw codes over the whole vec format (|D| up to 4)
-    unit = {"r": codes(unit_vectors(count, g), vec), "l": codes(unit_vectors(count, g), vec),
-            "m": random_codes(mfmt, count, g, lo, hi)}
-    full = {"r": random_codes(vec, (count, 3), g), "l": random_codes(vec, (count, 3), g),
-            "m": random_codes(mfmt, count, g, lo, hi)}
-    raw = concat(axis, big, threshold, near, unit, full)
+    raw = concat(axis, big, threshold, near, *random_pairs(config, count, g))
     return {name: raw[name] for name in config.inputs}
 
 

@@ -133,13 +133,6 @@ def test_a_config_without_ports_says_so():
         Bare().outputs
 
 
-def test_constant_shininess_drops_its_port():
-    assert list(DifferenceConfig().inputs) == ["r", "l", "n"]
-    assert list(DifferenceConfig(n_const=16).inputs) == ["r", "l"]
-    assert list(RootConfig().inputs) == ["r", "l", "m"]
-    assert list(RootConfig(m_const=4).inputs) == ["r", "l"]
-
-
 def test_replace_as_dict_fmt():
     config = NormalizeConfig().replace(order=1)
     assert config == NormalizeConfig(order=1)

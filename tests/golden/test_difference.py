@@ -62,49 +62,10 @@ def test_n_max_is_configurable():
 
 
 def test_config_errors_name_the_field():
-    with pytest.raises(ValueError, match=r"^n must be an integer format \(m = 0\), not 13\.2$"):
-        DifferenceConfig(n="13.2")
-    with pytest.raises(ValueError, match=r"^n_max must be an integer in 1\.\.8191, not 9000$"):
-        DifferenceConfig(n_max=9000)
     with pytest.raises(ValueError, match=r"^dd must be an unsigned format \(n\.m\), not S2\.20$"):
         DifferenceConfig(dd="S2.20")
     with pytest.raises(ValueError, match=r"^d must be a signed format \(Sn\.m\), not 1\.10$"):
         DifferenceConfig(d="1.10")
-
-
-@pytest.mark.parametrize("n", [1, 16, 77, 8000])
-def test_constant_n_gives_the_codes_of_n_on_the_port(n):
-    raw = get_block("difference").stimulus(count=300, seed=5)
-    config = DifferenceConfig(n_const=n)
-    r, l = Fixed(raw["r"], config.vec), Fixed(raw["l"], config.vec)
-    fixed = difference(config, r, l)["x2"]
-    fed = difference(DifferenceConfig(), r, l, Fixed(np.full(len(r), n), config.n))["x2"]
-    assert fixed.fmt == fed.fmt
-    assert np.array_equal(fixed.raw, fed.raw)
-    assert np.count_nonzero(fixed.raw) > len(r) // 2  # not all zero or saturated
-    assert np.count_nonzero(fixed.raw < fixed.fmt.max_raw) > 100
-
-
-def test_constant_n_has_no_port_and_refuses_one():
-    assert set(DifferenceConfig(n_const=16).inputs) == {"r", "l"}
-    assert set(DifferenceConfig().inputs) == {"r", "l", "n"}
-    r = Fixed.from_float([[1.0, 0, 0]], "S1.10")
-    with pytest.raises(ValueError, match=r"^n must not be given: n_const = 16 fixes it$"):
-        difference(DifferenceConfig(n_const=16), r, r, Fixed([16], "13.0"))
-    with pytest.raises(ValueError, match=r"^n must be given: n_const = 0 makes it an input$"):
-        difference(DifferenceConfig(), r, r)
-
-
-@pytest.mark.parametrize("changes, message", [
-    (dict(n_const=-1), r"^n_const must be an integer in 0\.\.8000, not -1$"),
-    (dict(n_const=8001), r"^n_const must be an integer in 0\.\.8000, not 8001$"),
-    (dict(n_max=100, n_const=101), r"^n_const must be an integer in 0\.\.100, not 101$"),
-    (dict(n_const=16.0), r"^n_const must be an integer in 0\.\.8000, not 16\.0$"),
-    (dict(n_const=True), r"^n_const must be an integer in 0\.\.8000, not True$"),
-])
-def test_n_const_errors_name_the_field(changes, message):
-    with pytest.raises(ValueError, match=message):
-        DifferenceConfig(**changes)
 
 
 def test_constant_n_vectors_have_no_port_and_reach_the_peak_edge():

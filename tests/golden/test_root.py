@@ -196,10 +196,6 @@ def test_fig8_against_fig7(k):
 
 
 def test_config_errors_name_the_field():
-    with pytest.raises(ValueError, match=r"^m must be an integer format \(m = 0\), not 6\.2$"):
-        RootConfig(m="6.2")
-    with pytest.raises(ValueError, match=r"^m_max must be an integer in 1\.\.63, not 64$"):
-        RootConfig(m_max=64)
     with pytest.raises(ValueError, match=r"^frac must be a fraction-only format \(0\.m\), not 1\.9$"):
         RootConfig(frac="1.9")
     with pytest.raises(ValueError, match=r"^frac must be an unsigned format \(n\.m\), not S0\.9$"):
@@ -214,39 +210,6 @@ def test_config_errors_name_the_field():
     with pytest.raises(ValueError, match=r"^rounding must be one of truncate, round_half_up, "
                                          r"round_half_even, not 'nearest'$"):
         RootConfig(rounding="nearest")
-
-
-@pytest.mark.parametrize("m", [1, 4, 7, 63])
-def test_constant_m_gives_the_codes_of_m_on_the_port(m):
-    raw = get_block("root").stimulus(count=300, seed=5)
-    config = RootConfig(m_const=m)
-    r, l = Fixed(raw["r"], config.vec), Fixed(raw["l"], config.vec)
-    fixed = root(config, r, l)["spec"]
-    fed = root(RootConfig(), r, l, Fixed(np.full(len(r), m), config.m))["spec"]
-    assert fixed.fmt == fed.fmt
-    assert np.array_equal(fixed.raw, fed.raw)
-    assert np.count_nonzero(fixed.raw) > 50 and np.count_nonzero(fixed.raw == 0) > 50
-
-
-def test_constant_m_has_no_port_and_refuses_one():
-    assert set(RootConfig(m_const=4).inputs) == {"r", "l"}
-    assert set(RootConfig().inputs) == {"r", "l", "m"}
-    r = Fixed.from_float([[1.0, 0, 0]], "S1.10")
-    with pytest.raises(ValueError, match=r"^m must not be given: m_const = 4 fixes it$"):
-        root(RootConfig(m_const=4), r, r, Fixed([4], "6.0"))
-    with pytest.raises(ValueError, match=r"^m must be given: m_const = 0 makes it an input$"):
-        root(RootConfig(), r, r)
-
-
-@pytest.mark.parametrize("changes, message", [
-    (dict(m_const=-1), r"^m_const must be an integer in 0\.\.63, not -1$"),
-    (dict(m_const=64), r"^m_const must be an integer in 0\.\.63, not 64$"),
-    (dict(m_max=10, m_const=11), r"^m_const must be an integer in 0\.\.10, not 11$"),
-    (dict(m_const="4"), r"^m_const must be an integer in 0\.\.63, not '4'$"),
-])
-def test_m_const_errors_name_the_field(changes, message):
-    with pytest.raises(ValueError, match=message):
-        RootConfig(**changes)
 
 
 @pytest.mark.parametrize("m", [1, 4, 63])

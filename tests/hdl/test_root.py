@@ -50,34 +50,3 @@ def test_harness_every_k(k):
 ])
 def test_harness_other_formats(changes):
     check(get_block("root", **changes), count=300, seed=1).raise_on_mismatch()
-
-
-#: the constant-shininess checks run on the simulator and the fast Verilator back end
-FAST = ["amaranth", pytest.param("verilator-fast", marks=pytest.mark.needs_verilator)]
-
-
-@pytest.mark.parametrize("backend", FAST)
-@pytest.mark.parametrize("m", [1, 4, 63])
-def test_harness_constant_m(backend, m):
-    check(get_block("root", m_const=m), backend=backend, bubbles=0.2, count=300,
-          seed=m).raise_on_mismatch()
-
-
-@pytest.mark.parametrize("depth", range(4))
-def test_constant_m_drops_the_port_not_a_cycle(depth):
-    fixed = Root(RootConfig(m_const=5, pipeline=depth))
-    assert fixed.latency == Root(RootConfig(pipeline=depth)).latency
-    assert len(fixed.i.payload.as_value()) == 2 * 3 * 12
-    check(get_block("root", m_const=5, pipeline=depth), count=100, seed=depth).raise_on_mismatch()
-
-
-def multipliers(component):
-    """``$mul`` cells of the elaborated design (the shape submodule included)."""
-    return rtlil.convert(component).count("cell $mul ")
-
-
-@pytest.mark.parametrize("depth", [0, 3])
-def test_constant_m_removes_the_three_m_multipliers(depth):
-    fed = multipliers(Root(RootConfig(pipeline=depth)))
-    for m in (4, 45, 63):
-        assert fed - multipliers(Root(RootConfig(m_const=m, pipeline=depth))) == 3
