@@ -28,6 +28,7 @@ import threading
 import time
 
 from phongfx.core.files import atomic_write
+from phongfx.deliver.manifest import manifest_path, read_manifest
 
 __all__ = ["SCENES", "TARGET", "GOAL", "SIM_TARGET", "timed", "chosen_design", "compile_scene", "make_sim", "run",
            "table", "main"]
@@ -65,11 +66,9 @@ def timed(command, cache, log):
 
 def chosen_design(folder):
     """What a compiled ``folder``'s manifest says was chosen."""
-    path = os.path.join(folder, "manifest.json")
-    if not os.path.exists(path):
+    if not os.path.exists(manifest_path(folder)):
         return None
-    with open(path) as file:
-        data = json.load(file)
+    data = read_manifest(folder)  # its version checked: a manifest of another layout is refused
     certificate = data.get("certificate") or {}
     return {"chosen": data.get("chosen"), "widths": data.get("widths"), "cost": (data.get("cost") or {}).get("cost"),
             "max_error": (data.get("error") or {}).get("max"), "certified": certificate.get("certified"),

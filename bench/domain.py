@@ -25,6 +25,7 @@ import time
 import numpy as np
 
 from phongfx.core.files import atomic_write
+from phongfx.deliver.manifest import read_manifest
 from phongfx.explore.compile import run as runs
 from phongfx.explore.compile.compiler import scene_domain
 from phongfx.explore.compile.measure import SceneEval, cosines, phong_terms, point_errors
@@ -118,8 +119,7 @@ def _designs(manifests):
     """:data:`DESIGNS` with the chosen design of each compiled folder's ``manifest.json``."""
     out = dict(DESIGNS)
     for folder in manifests or ():
-        with open(os.path.join(folder, "manifest.json")) as file:
-            data = json.load(file)
+        data = read_manifest(folder)  # its version checked: a manifest of another layout is refused
         out[os.path.splitext(os.path.basename(data["path"]))[0]] = (data["chosen"], data["widths"])
     return out
 

@@ -8,6 +8,7 @@ import sys
 import pytest
 
 from bench.compile import GOAL, SIM_TARGET, TARGET, chosen_design, main, table, timed
+from phongfx.deliver.manifest import MANIFEST_VERSION, ManifestError
 
 
 def test_a_command_is_timed_with_its_own_empty_cache(tmp_path):
@@ -23,13 +24,17 @@ def test_a_command_is_timed_with_its_own_empty_cache(tmp_path):
 
 def test_the_chosen_design_and_the_table(tmp_path):
     (tmp_path / "torus").mkdir()
-    (tmp_path / "torus" / "manifest.json").write_text(json.dumps({
-        "chosen": "fig7", "widths": {"vec_frac": 11}, "cost": {"cost": 28613}, "error": {"max": 1.0},
-        "certificate": {"certified": True, "bound_levels": 1.49}}))
+    manifest = {"manifest_version": MANIFEST_VERSION, "chosen": "fig7", "widths": {"vec_frac": 11},
+                "cost": {"cost": 28613}, "error": {"max": 1.0}, "certificate": {"certified": True, "bound_levels": 1.49}}
+    (tmp_path / "torus" / "manifest.json").write_text(json.dumps(manifest))
     design = chosen_design(tmp_path / "torus")
     assert design == {"chosen": "fig7", "widths": {"vec_frac": 11}, "cost": 28613, "max_error": 1.0,
                       "certified": True, "bound_levels": 1.49}
     assert chosen_design(tmp_path / "none") is None
+    # read by the one manifest reader: a manifest of another version is refused, not guessed at
+    (tmp_path / "torus" / "manifest.json").write_text(json.dumps({**manifest, "manifest_version": 1}))
+    with pytest.raises(ManifestError, match=r"field 'manifest_version' is 1"):
+        chosen_design(tmp_path / "torus")
     rows = [{"scene": "torus", "check": False, "seconds": GOAL - 1, "cpu_seconds": 40.0, "load": 2.0,
              "returncode": 0, "design": design},
             {"scene": "lyon-balls", "check": True, "seconds": TARGET + 12, "cpu_seconds": 90.0, "load": 2.0,
