@@ -1,4 +1,5 @@
-"""Golden model of the corrected Euler unit, Hast, Barrera & Bengtsson (equations 16–17).
+"""Golden model of the corrected Euler unit, Hast, Barrera & Bengtsson (equations 16–17),
+and of the forward-difference recurrence it shares with the Gouraud unit.
 
 Per pixel the unit outputs ``p`` and then steps ``p += t``, ``t += ds``: two adders and
 three registers, nothing else (the paper's inner loop).  A pixel with ``init`` set loads
@@ -7,6 +8,11 @@ the other pixels are ignored.  Over a scanline, ``k`` pixels after ``init``
 (equation 14 with ``t0`` for ``di_a``)::
 
     p_k = p0 + k·t0 + k(k-1)/2·ds
+
+Gouraud shading is the same recurrence one order lower, ``p += dp`` ("a forward
+difference or recurrence sequence in just 1 addition in the inner loop", Hast et al. §1):
+:func:`forward_differences` and :func:`forward_difference_unit` are the model of both
+(:mod:`phongfx.golden.gouraud`), as the hardware shares one builder.
 
 Formats (:class:`~phongfx.config.EulerConfig`): registers ``p`` [``S1.30``], ``t``
 [``S3.30``], ``ds`` [``S3.30``].  Fraction bits never fall from ``ds`` to ``t`` to
@@ -32,7 +38,7 @@ from phongfx.core.format import Format
 
 from .fixed import Fixed, quantize_raw
 
-__all__ = ["euler", "segments", "held", "wrap", "as_uint"]
+__all__ = ["euler", "forward_difference_unit", "forward_differences", "segments"]
 
 
 def segments(init):
@@ -44,17 +50,17 @@ def segments(init):
     return last, index - last
 
 
-def held(raw, last):
+def _held(raw, last):
     """``raw`` as loaded at pixel ``last`` (0, the reset value, where ``last`` is -1)."""
     return np.where(last >= 0, np.asarray(raw, dtype=np.int64)[np.maximum(last, 0)], 0)
 
 
-def as_uint(raw, shift=0):
+def _as_uint(raw, shift=0):
     """Raw codes moved ``shift`` places left, as ``uint64`` modulo ``2^64``."""
     return np.asarray(raw, dtype=np.int64).view(np.uint64) << np.uint64(shift)
 
 
-def wrap(value, fmt):
+def _wrap(value, fmt):
     """``uint64`` residues modulo ``2^64`` to raw codes of ``fmt``, wrapped like its register."""
     full = Format(63 - fmt.frac_bits, fmt.frac_bits, True)
     return quantize_raw(np.asarray(value, dtype=np.uint64).view(np.int64), full, fmt, "truncate", "wrap")
@@ -64,6 +70,37 @@ def _exclusive_sums(step, last):
     """Sum of ``step`` (``uint64``) over the earlier pixels of each pixel's scanline."""
     before = np.cumsum(step, dtype=np.uint64) - step
     return before - before[np.maximum(last, 0)]
+
+
+def forward_differences(init, loads):
+    """The first of a chain of registers stepped as forward differences, per pixel.
+
+    ``loads`` lists the :class:`Fixed` loads from the output down to the constant step
+    (``p0, t0, ds`` for Euler's equations 16–17, ``p0, dp`` for Gouraud), each in its
+    register's format, fraction bits never falling towards the output.  A pixel with
+    ``init`` (raw, 1 or 0) outputs its ``p0`` and loads every register; on every pixel
+    each register then takes itself plus the next one, wrapped in its own width, the
+    last one holding: the twin of :func:`phongfx.hdl.euler.forward_differences`.
+
+    Each register is the wrapped sum of its load and of the values of the next register
+    on the scanline's earlier pixels; the registers are modelled from the constant step
+    up, so a wrap of a middle register reaches the output as in the hardware.
+    """
+    last, _ = segments(init)
+    value = fmt = None
+    for load in reversed(loads):
+        total = _as_uint(_held(load.raw, last))
+        if value is not None:
+            total = total + _exclusive_sums(_as_uint(value, load.fmt.frac_bits - fmt.frac_bits), last)
+        value, fmt = _wrap(total, load.fmt), load.fmt
+    return Fixed(value, fmt)
+
+
+def forward_difference_unit(config, init, loads, op):
+    """``{"p", "level"}`` of a unit built on :func:`forward_differences`: ``p`` and its
+    intensity truncated and saturated to ``config.out`` (``op`` names that quantize)."""
+    p = forward_differences(init.raw, loads)
+    return {"p": p, "level": p.quantize(config.out, "truncate", "saturate", op=op)}
 
 
 def euler(config, init, p0, t0, ds):
@@ -84,12 +121,4 @@ def euler(config, init, p0, t0, ds):
     dict
         ``{"p": Fixed (count,) in config.p, "level": Fixed (count,) in config.out}``
     """
-    p, t, d = config.fmt("p"), config.fmt("t"), config.fmt("ds")
-    last, k = segments(init.raw)
-    loaded = last >= 0
-    # t_k = t0 + k·ds on t's grid; modular, so the closed form is the wrapped recurrence
-    ds_k = k.astype(np.uint64) * as_uint(held(ds.raw, last), t.frac_bits - d.frac_bits)
-    t_k = wrap(as_uint(held(t0.raw, last)) + ds_k, t)
-    step = np.where(loaded, as_uint(t_k, p.frac_bits - t.frac_bits), np.uint64(0))
-    p_k = Fixed(wrap(as_uint(held(p0.raw, last)) + _exclusive_sums(step, last), p), p)
-    return {"p": p_k, "level": p_k.quantize(config.out, "truncate", "saturate", op="euler level")}
+    return forward_difference_unit(config, init, (p0, t0, ds), "euler level")

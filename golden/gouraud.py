@@ -2,6 +2,9 @@
 
 Per pixel the unit outputs ``p`` and then steps ``p += dp``; ``init`` loads ``p = p0``
 and ``dp`` first (output ``p0``).  ``k`` pixels after ``init``: ``p_k = p0 + k·dp``.
+Hast, Barrera & Bengtsson's corrected Euler recurrence (equations 16–17) without its
+second difference: the model is :func:`phongfx.golden.euler.forward_difference_unit`
+with one step register instead of two.
 
 Formats (:class:`~phongfx.config.GouraudConfig`): registers ``p`` [``S1.30``] and ``dp``
 [``S3.30``], ``dp`` with no more fraction bits than ``p``; the sum has no bit growth and
@@ -10,10 +13,7 @@ saturated to ``out`` [``0.8``], as in :mod:`phongfx.golden.euler`.  Before any `
 the registers hold 0.
 """
 
-import numpy as np
-
-from .euler import as_uint, held, segments, wrap
-from .fixed import Fixed
+from .euler import forward_difference_unit
 
 __all__ = ["gouraud"]
 
@@ -35,8 +35,4 @@ def gouraud(config, init, p0, dp):
     dict
         ``{"p": Fixed (count,) in config.p, "level": Fixed (count,) in config.out}``
     """
-    p, d = config.fmt("p"), config.fmt("dp")
-    last, k = segments(init.raw)
-    step = as_uint(held(dp.raw, last), p.frac_bits - d.frac_bits)
-    p_k = Fixed(wrap(as_uint(held(p0.raw, last)) + k.astype(np.uint64) * step, p), p)
-    return {"p": p_k, "level": p_k.quantize(config.out, "truncate", "saturate", op="gouraud level")}
+    return forward_difference_unit(config, init, (p0, dp), "gouraud level")

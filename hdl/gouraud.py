@@ -2,20 +2,16 @@
 
 from phongfx.config import GouraudConfig
 
-from .block import PipelinedBlock
-from .euler import forward_differences
-from .fixed import stage
+from .euler import ForwardDifferenceUnit
 
 __all__ = ["Gouraud"]
 
 
-class Gouraud(PipelinedBlock):
-    """One adder and two registers: output ``p``, then ``p += dp``.
-
-    Control as :class:`phongfx.hdl.euler.Euler`: registers change only on valid
-    pixels, ``init`` multiplexes the loads in, the sum wraps in ``p``'s width, and
-    ``level`` is the output register truncated and saturated to ``config.out``;
-    see :func:`phongfx.golden.gouraud.gouraud`.
+class Gouraud(ForwardDifferenceUnit):
+    """One adder and two registers: output ``p``, then ``p += dp``: Hast, Barrera &
+    Bengtsson's Euler recurrence without its second difference, so control, wrapping and
+    ``level`` are those of :class:`phongfx.hdl.euler.ForwardDifferenceUnit`; see
+    :func:`phongfx.golden.gouraud.gouraud`.
 
     Latency: 1 (the output register).
 
@@ -24,15 +20,4 @@ class Gouraud(PipelinedBlock):
     """
 
     config_class = GouraudConfig
-    cycle_tags = False  # hand-aligned registers, no pipeline depth
-
-    @property
-    def latency(self):
-        return 1
-
-    def datapath(self, m, i):
-        cfg = self.config
-        p = forward_differences(m, self.i.valid, i["init"].value[0], [
-            ("p", i["p0"], cfg.fmt("p")), ("dp", i["dp"], cfg.fmt("dp"))])
-        out = stage(m, p, "p_out")
-        return {"p": out, "level": out.quantize(cfg.out, "truncate", "saturate")}
+    LOADS = (("p", "p0"), ("dp", "dp"))
