@@ -60,7 +60,7 @@ from phongfx.core.format import Format
 from .fixed import Fixed, check_range
 
 __all__ = ["blinn", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift",
-           "reciprocal_sqrt", "cosine", "log2_t", "pow2", "power"]
+           "reciprocal_sqrt", "inverse_length", "cosine", "clamp_one", "log2_t", "pow2", "power"]
 
 
 def rsqrt_table(config):
@@ -120,6 +120,22 @@ def reciprocal_sqrt(config, m):
     return (y0 * r).quantize(cfg.y, cfg.rounding, "saturate", op="blinn y1")
 
 
+def inverse_length(config, vector, op):
+    """``(j, y1)`` of ``vector`` (count, 3): :func:`even_shift` and :func:`reciprocal_sqrt` of
+    its exact ``q = X·X`` (``op`` names the quantize to ``config.q``), so ``1/|X| ~
+    2^(j-h)·y1``: the normalization of ``N`` before Blinn's (1977) ``N·H``, and of ``N`` and a
+    local ``L`` or ``V`` before Phong's (1975) ``R·V`` (:mod:`phongfx.golden.conventional`)."""
+    q = vector.dot(vector).quantize(config.q, "truncate", "error", op=op)
+    j, m = even_shift(config, q)
+    return j, reciprocal_sqrt(config, m)
+
+
+def clamp_one(value):
+    """``min(value, 1)`` in ``value``'s format: a rounded cosine (Blinn's 1977 ``N·H``, Phong's
+    1975 ``R·V``) may round up past 1, which ``t^n`` must not see."""
+    return value.where(value < 1, Fixed.const(1, value.fmt))
+
+
 def cosine(config, d, j, y1, fmt):
     """``max(d, 0)/sqrt(q)`` clamped to 1 in an unsigned ``fmt`` (``d/sqrt(q)`` clamped to 1 in
     a signed one: the conventional unit's cosines and unit vectors): ``d·2^(j-h)`` rounded to
@@ -129,8 +145,7 @@ def cosine(config, d, j, y1, fmt):
     wide = Format.covering(d.fmt.min_raw << shift, d.fmt.max_raw << shift,
                            d.fmt.frac_bits + cfg.q.int_bits // 2)
     scaled = Fixed(d.raw << j, wide).quantize(cfg.dot, cfg.rounding, "saturate", op="blinn d'")
-    t = (scaled * y1).quantize(fmt, cfg.rounding, "saturate", op="blinn cosine")
-    return t.where(t < 1, Fixed.const(1, fmt))
+    return clamp_one((scaled * y1).quantize(fmt, cfg.rounding, "saturate", op="blinn cosine"))
 
 
 def log2_t(config, t):
@@ -192,9 +207,7 @@ def blinn(config, normal, light, half, n):
         ``{"diffuse": Fixed (count,), "specular": Fixed (count,)}`` in ``config.out``
     """
     check_range("n", n, 1, config.n_max)
-    q = normal.dot(normal).quantize(config.q, "truncate", "error", op="blinn q")
-    j, m = even_shift(config, q)
-    y1 = reciprocal_sqrt(config, m)
+    j, y1 = inverse_length(config, normal, "blinn q")
     diffuse = cosine(config, normal.dot(light), j, y1, config.out)
     t = cosine(config, normal.dot(half), j, y1, config.t)
     return {"diffuse": diffuse, "specular": power(config, t, n)}

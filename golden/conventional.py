@@ -51,32 +51,24 @@ exp_addr = 4``): 0.92 levels; one bit fewer in any of the three misses (10-bit v
 1.9).
 """
 
-from .blinn import cosine, even_shift, power, reciprocal_sqrt
+from .blinn import clamp_one, cosine, inverse_length, power
 from .fixed import Fixed, check_range
 
 __all__ = ["conventional", "unit_length", "reflection"]
 
 
-def _inverse_length(config, vector, op):
-    """``(j, y1)`` of ``vector``: even shift and ``1/sqrt(m)`` of its exact ``q = X·X``."""
-    q = vector.dot(vector).quantize(config.q, "truncate", "error", op=op)
-    j, m = even_shift(config, q)
-    return j, reciprocal_sqrt(config, m)
-
-
 def unit_length(config, vector):
     """``X/|X|`` in ``config.vec`` for an un-normalized ``vector`` (count, 3): each component
     scaled like a dot product by :func:`~phongfx.golden.blinn.cosine`; 0 for ``X = 0``."""
-    j, y1 = _inverse_length(config, vector, "conventional |X|²")
+    j, y1 = inverse_length(config, vector, "conventional |X|²")
     return cosine(config, vector, j[:, None], Fixed(y1.raw[:, None], y1.fmt), config.fmt("vec"))
 
 
 def reflection(config, c_light, c_view, light_view):
     """``clamp(2·c_L·c_V - L·V, 0, 1)`` in ``config.t``: Phong's ``R·V`` for
     ``R = 2(N̂·L)N̂ - L``, exact until one rounding."""
-    t = ((c_light * c_view).shift(1) - light_view).quantize(
-        config.t, config.rounding, "saturate", op="conventional R·V")
-    return t.where(t < 1, Fixed.const(1, config.t))
+    return clamp_one(((c_light * c_view).shift(1) - light_view).quantize(
+        config.t, config.rounding, "saturate", op="conventional R·V"))
 
 
 def conventional(config, normal, light, view, n):
@@ -98,7 +90,7 @@ def conventional(config, normal, light, view, n):
     check_range("n", n, 1, config.n_max)
     light = unit_length(config, light) if config.local_light else light
     view = unit_length(config, view) if config.local_viewer else view
-    j, y1 = _inverse_length(config, normal, "conventional q")
+    j, y1 = inverse_length(config, normal, "conventional q")
     d_light = normal.dot(light)
     c_light, c_view = (cosine(config, d, j, y1, config.fmt("cos")) for d in (d_light, normal.dot(view)))
     diffuse = c_light.quantize(config.out, config.rounding, "saturate", op="conventional diffuse")

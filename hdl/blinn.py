@@ -5,8 +5,8 @@ from phongfx.config import BlinnConfig
 
 from .block import PipelinedBlock
 from .fixed import delay, stage
-from .tables import (COSINE_STAGES, POWER_STAGES, RSQRT_STAGES, cosine, even_shift, power, reciprocal_sqrt,
-                     scaled)
+from .tables import (COSINE_STAGES, POWER_STAGES, RSQRT_STAGES, cosine, even_shift, length_squared,
+                     reciprocal_sqrt, scaled, shaded)
 
 __all__ = ["Blinn", "LATENCY"]
 
@@ -49,7 +49,7 @@ class Blinn(PipelinedBlock):
     def datapath(self, m, i):
         cfg = self.config
         normal = i["normal"]
-        q = stage(m, normal.dot(normal).tagged(0, m).quantize(cfg.q, "truncate", "error"), "q")
+        q = length_squared(m, cfg, normal)
         dots = [stage(m, normal.dot(i[name]), f"d_{name}") for name in ("light", "half")]
         j, mant = even_shift(m, cfg, q)
         dots = [stage(m, d, f"d{index}") for index, d in enumerate(dots)]
@@ -60,6 +60,4 @@ class Blinn(PipelinedBlock):
         s = [delay(m, value, RSQRT_STAGES - 1, f"s{index}") for index, value in enumerate(s)]
 
         diffuse, t = (cosine(m, cfg, value, y1, fmt) for value, fmt in zip(s, (cfg.out, cfg.t)))
-        n = delay(m, i["n"], COSINE_STAGES, "n")
-        return {"diffuse": delay(m, diffuse, POWER_STAGES, "diffuse"),
-                "specular": power(m, cfg, t, n, COSINE_STAGES)}
+        return shaded(m, cfg, diffuse, t, i["n"], COSINE_STAGES)

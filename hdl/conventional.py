@@ -5,8 +5,8 @@ from phongfx.config import ConventionalConfig
 
 from .block import PipelinedBlock
 from .fixed import FixedValue, FixedVector, delay, stage
-from .tables import (COSINE_STAGES, POWER_STAGES, RSQRT_STAGES, cosine, even_shift, power, reciprocal_sqrt,
-                     scaled)
+from .tables import (COSINE_STAGES, POWER_STAGES, RSQRT_STAGES, clamp_one, cosine, even_shift, length_squared,
+                     reciprocal_sqrt, scaled, shaded)
 
 __all__ = ["Conventional", "LATENCY", "LOCAL_LATENCY"]
 
@@ -64,7 +64,7 @@ class Conventional(PipelinedBlock):
         """``X/|X|`` in ``vec``, :data:`~phongfx.hdl.tables.COSINE_STAGES` after ``x``: the
         golden :func:`~phongfx.golden.conventional.unit_length`."""
         cfg = self.config
-        q = stage(m, x.dot(x).tagged(0, m).quantize(cfg.q, "truncate", "error"), f"{name}_q")
+        q = length_squared(m, cfg, x, f"{name}_")
         j, mant = even_shift(m, cfg, q, f"{name}_")
         lanes = [delay(m, lane, 2, f"{name}_{axis}") for lane, axis in zip(x, "xyz")]
         y1 = reciprocal_sqrt(m, cfg, mant, f"{name}_")
@@ -80,7 +80,7 @@ class Conventional(PipelinedBlock):
         light, view = (self._unit_length(m, i[name], name) if local else delay(m, i[name], start, name)
                        for name, local in (("light", cfg.local_light), ("view", cfg.local_viewer)))
         normal = i["normal"]
-        q = stage(m, normal.dot(normal).tagged(0, m).quantize(cfg.q, "truncate", "error"), "q")
+        q = length_squared(m, cfg, normal)
         normal = delay(m, normal, start, "normal")
         dots = [stage(m, normal.dot(x), f"d_{name}") for x, name in ((light, "light"), (view, "view"))]
         light_view = stage(m, light.dot(view), "d_lv")
@@ -104,10 +104,7 @@ class Conventional(PipelinedBlock):
         front = delay(m, front, cycle - meet - 1, "front")
 
         # R·V = 2(N̂·L)(N̂·V) - L·V, rounded once and clamped; zero t (so t^n) for N·L <= 0
-        rv = ((c_light * c_view).shift(1) - light_view).quantize(cfg.t, cfg.rounding, "saturate")
-        rv = rv.where(rv < 1, FixedValue.const(1, cfg.t))
+        rv = clamp_one(((c_light * c_view).shift(1) - light_view).quantize(cfg.t, cfg.rounding, "saturate"))
         t = stage(m, rv.where(front, FixedValue.const(0, cfg.t)), "t")
         diffuse = stage(m, c_light.quantize(cfg.out, cfg.rounding, "saturate"), "diffuse")
-        n = delay(m, i["n"], cycle + 1, "n")
-        return {"diffuse": delay(m, diffuse, POWER_STAGES, "diffuse"),
-                "specular": power(m, cfg, t, n, cycle + 1)}
+        return shaded(m, cfg, diffuse, t, i["n"], cycle + 1)

@@ -7,11 +7,13 @@ carry no cycle tags except where an ``overflow="error"`` quantize must be aligne
 ``valid``) and is the twin of a function of :mod:`phongfx.golden.blinn`, whose tables it
 reads:
 
-* :func:`even_shift` (1 stage) and :func:`reciprocal_sqrt` (4 stages): ``q = m·4^(h-j)``
-  and ``y1 ~ 1/sqrt(m)`` by the seed ROM and one Newton–Raphson step;
+* :func:`length_squared` (1 stage), :func:`even_shift` (1 stage) and
+  :func:`reciprocal_sqrt` (4 stages): ``q = X·X``, ``q = m·4^(h-j)`` and ``y1 ~ 1/sqrt(m)``
+  by the seed ROM and one Newton–Raphson step (the golden ``inverse_length``);
 * :func:`scaled` (1 stage) and :func:`cosine` (1 stage): a dot product times ``2^(j-h)``,
-  rounded to ``dot``, then times ``y1``, rounded and clamped to 1;
-* :func:`power` (7 stages): ``t^n`` by the log2 and exp2 ROMs with linear interpolation;
+  rounded to ``dot``, then times ``y1``, rounded and clamped to 1 (:func:`clamp_one`);
+* :func:`power` (7 stages): ``t^n`` by the log2 and exp2 ROMs with linear interpolation,
+  and :func:`shaded`, a unit's two outputs: the diffuse cosine delayed beside it;
 * :func:`rom` and :func:`interpolate`, the table reads under them.
 
 ``config`` is a :class:`~phongfx.config.BlinnConfig` (or a subclass); ``prefix`` keeps
@@ -26,8 +28,8 @@ from phongfx.golden.blinn import exp2_tables, log2_tables, rsqrt_table
 
 from .fixed import FixedValue, delay, stage
 
-__all__ = ["POWER_STAGES", "RSQRT_STAGES", "COSINE_STAGES", "rom", "interpolate", "even_shift",
-           "reciprocal_sqrt", "scaled", "cosine", "power"]
+__all__ = ["POWER_STAGES", "RSQRT_STAGES", "COSINE_STAGES", "rom", "interpolate", "length_squared",
+           "even_shift", "reciprocal_sqrt", "scaled", "clamp_one", "cosine", "power", "shaded"]
 
 #: Registered stages of :func:`power`: log normalization; log tables; log2 t; n·log2 t;
 #: exp tables; 2^f; shift and round.
@@ -58,6 +60,14 @@ def interpolate(m, config, name, tables, code, bits, addr_bits, fmt, cycle):
     phi = stage(m, FixedValue(code[:low], Format(0, low)), f"{name}_phi")
     step = (slope * phi).shift(-addr_bits).tagged(cycle, m)
     return value + step.quantize(fmt, config.rounding, "error")
+
+
+def length_squared(m, config, x, prefix=""):
+    """Registered ``q = X·X`` of a ``vec`` vector, exact in ``config.q`` (1 stage, beside a
+    unit's other dot products): the start of :func:`phongfx.golden.blinn.inverse_length`, the
+    normalization of ``N`` (Blinn 1977, Phong 1975) and of a local ``L`` or ``V``.  Tagged
+    with cycle 0 so that its ``overflow="error"`` quantize is aligned with ``valid``."""
+    return stage(m, x.dot(x).tagged(0, m).quantize(config.q, "truncate", "error"), f"{prefix}q")
 
 
 def even_shift(m, config, q, prefix=""):
@@ -102,12 +112,17 @@ def scaled(m, config, d, j, name):
     return stage(m, value.quantize(config.dot, config.rounding, "saturate"), name)
 
 
+def clamp_one(value):
+    """``min(value, 1)`` in ``value``'s format (a multiplexer): the clamp of
+    :func:`phongfx.golden.blinn.clamp_one`, on a rounded cosine."""
+    return value.where(value < 1, FixedValue.const(1, value.fmt))
+
+
 def cosine(m, config, s, y1, fmt, name="cos"):
     """``s·y1`` rounded to ``fmt`` (saturated: an unsigned ``fmt`` also clamps at 0) and
     clamped to 1, registered: the multiply of :func:`phongfx.golden.blinn.cosine`."""
     fmt = Format.parse(fmt)
-    t = (s * y1).quantize(fmt, config.rounding, "saturate")
-    return stage(m, t.where(t < 1, FixedValue.const(1, fmt)), name)
+    return stage(m, clamp_one((s * y1).quantize(fmt, config.rounding, "saturate")), name)
 
 
 def power(m, config, t, n, cycle):
@@ -146,3 +161,12 @@ def power(m, config, t, n, cycle):
     spec = spec.quantize(config.out, config.rounding, "error")
     spec = spec.where(keep & ~zero, FixedValue.const(0, config.out))
     return stage(m, spec, "specular")
+
+
+def shaded(m, config, diffuse, t, n, cycle):
+    """A table unit's outputs ``{"diffuse", "specular"}``, :data:`POWER_STAGES` after
+    ``cycle``: ``t^n`` by :func:`power` (Blinn's ``(N·H)^n``, Phong's ``(R·V)^n``) and the
+    diffuse cosine delayed beside it.  ``diffuse`` and ``t`` are valid at ``cycle``, ``n``
+    is the unit's input (cycle 0), delayed to meet ``t``."""
+    n = delay(m, n, cycle, "n")
+    return {"diffuse": delay(m, diffuse, POWER_STAGES, "diffuse"), "specular": power(m, config, t, n, cycle)}
