@@ -24,10 +24,10 @@ import time
 
 import numpy as np
 
+from phongfx.compiler.compile import scene_domain
 from phongfx.core.files import atomic_write
 from phongfx.deliver.manifest import read_manifest
 from phongfx.explore.compile import run as runs
-from phongfx.explore.compile.compiler import scene_domain
 from phongfx.explore.compile.measure import SceneEval, cosines, phong_terms, point_errors
 from phongfx.golden.blend import blend
 from phongfx.golden.fixed import Fixed

@@ -12,15 +12,19 @@ The package is a house of layers; each may import only the layers before it:
 ``phongfx.render``        pictures: shading scenes and meshes through the blocks
 ``phongfx.deliver``       what ships with a compiled core: input contract, constraints, cores
 ``phongfx.papers``        the seed papers' claims and tables, measured
-``phongfx.explore``       synthesis, cost models, sweeps, reports and the scene compiler
+``phongfx.explore``       synthesis, cost models, sweeps, reports and the scene compiler's parts
 ``phongfx.certify``       sound bounds on a design's error over a scene's input domain
+``phongfx.compiler``      the scene compiler: ``compile_scene`` on a ``CompileRequest``, certified
 ``phongfx.cli``           the ``phongfx`` command line
 ========================  ===============================================================
 
 ``golden/``, ``hdl/`` and ``sim/`` are top-level folders of the repository, installed as
 ``phongfx.golden``, ``phongfx.hdl`` and ``phongfx.sim``.  The registry, ``core``, loads
 each block's faces by name on first use, so it sits at the bottom without importing the
-layers above it.
+layers above it.  ``phongfx.certify`` bounds a design through the compile room of
+``phongfx.explore`` (how a method is fitted to a scene), and ``phongfx.compiler`` above it puts
+that room and the certificates together; ``phongfx.explore``'s own rooms are layered the same
+way (its ``__init__.py`` lists them).
 
 The names below are the everyday entry points, imported on first use (importing
 ``phongfx`` itself loads nothing else): :func:`get_block` and :func:`block_names` (the

@@ -1,17 +1,19 @@
-"""Honest imports: no module-level import cycle, no private name used outside its module,
-no relative import in ``golden/``, ``hdl/``, ``sim/`` that leaves its folder, no import of
-a higher layer (not even inside a function).
+"""Honest imports: no import cycle (not even through imports inside functions), no private
+name used outside its module, no relative import in ``golden/``, ``hdl/``, ``sim/`` that
+leaves its folder, no import of a higher layer or of a higher room of ``phongfx.explore``
+(not even inside a function).
 
 The checks read the source with :mod:`ast` (nothing is imported), module names taken from
 ``pyproject.toml``'s package list and ``package-dir`` mapping, so ``sim/harness.py`` is
 ``phongfx.sim.harness`` as Python sees it once installed.
 
 * A cycle of module-level imports makes the outcome depend on which module is imported
-  first: one of them runs against a half-initialized other.  Imports inside functions
-  run later and do not count; those under a module-level ``try`` or ``if`` (and in class
-  bodies) run at import and do.  Importing ``a.b.c`` runs ``a/__init__`` and
-  ``a/b/__init__`` first, so each parent package is an edge too, except the importer's
-  own ancestors, which are already being imported.
+  first: one of them runs against a half-initialized other.  Imports under a module-level
+  ``try`` or ``if`` (and in class bodies) run at import and count.  Importing ``a.b.c`` runs
+  ``a/__init__`` and ``a/b/__init__`` first, so each parent package is an edge too, except
+  the importer's own ancestors, which are already being imported.  An import inside a
+  function runs later and breaks nothing at import, but a cycle through it is still two
+  modules that need each other: the tree has none either.
 * A private name (``_name``) is its module's own business: what another module needs is
   made public or moved.  Test and benchmark files are held to the same rule.
 * ``golden/``, ``hdl/`` and ``sim/`` are installed under ``phongfx.`` by the package-dir
@@ -22,8 +24,11 @@ The checks read the source with :mod:`ast` (nothing is imported), module names t
   and the layers before them, inside functions too: an import deferred into a function
   is still a dependency on the layer above, only hidden from the reader.  The registry in
   ``phongfx.core`` loads the faces of a block by name when a block is asked for.
+* Inside ``phongfx.explore`` the rooms of :data:`EXPLORE_LAYERS` (its ``__init__.py`` lists
+  them) keep the same rule; rooms that share a step are peers and import none of each other.
 
-Each check is also run on a tiny fake tree that breaks it, to show it can fail.
+Each check is also run on a tiny fake tree that breaks it, to show it can fail
+(``tests/test_imports_can_fail.py``).
 """
 
 import ast
@@ -40,7 +45,16 @@ OTHER_FOLDERS = ("bench", "tests")
 #: The layers of phongfx, lowest first: each may import only itself and those before it.
 LAYERS = ("phongfx.core", "phongfx.config", "phongfx.golden", "phongfx.hdl", "phongfx.sim", "phongfx.scene",
           "phongfx.render", "phongfx.deliver", "phongfx.papers", "phongfx.explore", "phongfx.certify",
-          "phongfx.cli")
+          "phongfx.compiler", "phongfx.cli")
+#: The rooms of phongfx.explore, lowest first, as LAYERS; a tuple is a step of peers.  The shared
+#: pieces import no other room; synthesis runs its jobs on the cluster; one method at one point
+#: is evaluated on a scene by the synthesis or the proxies; a sweep evaluates many points; the
+#: tables evaluate and synthesize and read the sweep's fronts; the report runs the tables and
+#: reads the sweeps; the compile room prices designs by synthesis and may write any of them.
+EXPLORE_LAYERS = (("phongfx.explore.progress", "phongfx.explore.cluster", "phongfx.explore.methods",
+                   "phongfx.explore.scene_files"),
+                  "phongfx.explore.synth", "phongfx.explore.evaluate", "phongfx.explore.sweep",
+                  "phongfx.explore.tables", "phongfx.explore.report", "phongfx.explore.compile")
 
 
 # ---------------------------------------------------------------- reading the tree
@@ -195,15 +209,18 @@ def one_cycle(graph, component):
     raise AssertionError(f"no cycle through {start}")  # a component always has one
 
 
-def assert_no_cycles(modules):
-    graph = import_graph(modules)
+def assert_no_cycles(modules, inside_functions=False):
+    """Fail naming one cycle per strongly connected set of modules, of module-level imports (and
+    of those inside functions too with ``inside_functions``)."""
+    graph = import_graph(modules, inside_functions)
     problems = []
     for component in strongly_connected(graph):
         cycle = one_cycle(graph, component)
         steps = "; ".join(f"{_shown(modules[a][0])}:{graph[a][b]} imports {b}"
                           for a, b in zip(cycle, cycle[1:]))
         problems.append(f"{' -> '.join(cycle)} ({steps})")
-    assert not problems, "module-level import cycle(s):\n" + "\n".join(problems)
+    what = "import cycle(s), imports inside functions included" if inside_functions else "module-level import cycle(s)"
+    assert not problems, f"{what}:\n" + "\n".join(problems)
 
 
 # ---------------------------------------------------------------- private names
@@ -277,24 +294,32 @@ def assert_no_escaping_relative_imports(root, folders=MAPPED_FOLDERS):
                        + "\n".join(found))
 
 
+def room_of(module, layers):
+    """``(index, room)``: the step of ``layers`` (each a package or a tuple of peer packages)
+    ``module`` belongs to and which package of it, or ``(None, None)``."""
+    for index, step in enumerate(layers):
+        for room in (step,) if isinstance(step, str) else step:
+            if module == room or module.startswith(room + "."):
+                return index, room
+    return None, None
+
+
 def layer_of(module, layers):
     """Index in ``layers`` of the layer ``module`` belongs to, or None."""
-    for index, layer in enumerate(layers):
-        if module == layer or module.startswith(layer + "."):
-            return index
-    return None
+    return room_of(module, layers)[0]
 
 
 def assert_layered(modules, layers=LAYERS):
-    """Fail naming every import of a later layer than the importer's, inside functions too."""
+    """Fail naming every import of a later layer than the importer's, or of a peer of the
+    importer's step (another room of the same tuple), inside functions too."""
     found = []
     for name, edges in sorted(import_graph(modules, inside_functions=True).items()):
-        low = layer_of(name, layers)
+        low, own = room_of(name, layers)
         for target, line in sorted(edges.items()):
-            high = layer_of(target, layers)
-            if low is not None and high is not None and high > low:
-                found.append(f"{_shown(modules[name][0])}:{line}: {name} ({layers[low]}) imports "
-                             f"{target} ({layers[high]})")
+            high, room = room_of(target, layers)
+            if low is not None and high is not None and (high > low or high == low and room != own):
+                found.append(f"{_shown(modules[name][0])}:{line}: {name} ({own}) imports {target} "
+                             f"({room}{', a peer' if high == low else ''})")
     if found:
         pytest.fail("imports of a higher layer:\n" + "\n".join(found))
 
@@ -314,6 +339,10 @@ def test_every_package_folder_is_read():
 
 def test_no_module_level_import_cycle():
     assert_no_cycles(_package())
+
+
+def test_no_import_cycle_even_through_imports_inside_functions():
+    assert_no_cycles(_package(), inside_functions=True)
 
 
 def test_no_private_name_used_outside_its_module():
@@ -336,101 +365,9 @@ def test_every_layer_imports_only_the_layers_before_it():
     assert_layered(modules)
 
 
-# ---------------------------------------------------------------- each check can fail
-
-def _tree(tmp_path, files, packages=("fake", "fake.low"), package_dir=None):
-    """A fake project: ``files`` ``{path: source}`` and a pyproject naming ``packages``."""
-    package_dir = package_dir or {"fake": "fake", "fake.low": "low"}
-    mapping = "".join(f'"{k}" = "{v}"\n' for k, v in package_dir.items())
-    (tmp_path / "pyproject.toml").write_text(
-        f"[tool.setuptools]\npackages = {list(packages)!r}\n[tool.setuptools.package-dir]\n{mapping}")
-    for relative, source in files.items():
-        (tmp_path / relative).parent.mkdir(parents=True, exist_ok=True)
-        (tmp_path / relative).write_text(source)
-    return package_modules(tmp_path, *layout(tmp_path))
-
-
-def test_a_cycle_fails(tmp_path):
-    modules = _tree(tmp_path, {
-        "fake/__init__.py": "",
-        "fake/a.py": "from fake.low import b\n",
-        # a relative import resolved through the mapping: low/ is fake.low
-        "low/__init__.py": "",
-        "low/b.py": "try:\n    from fake import c\nexcept ImportError:\n    pass\n",
-        "fake/c.py": "if True:\n    import fake.a\n",
-    })
-    with pytest.raises(AssertionError, match=r"fake\.a -> fake\.low\.b -> fake\.c -> fake\.a \("):
-        assert_no_cycles(modules)
-
-
-def test_a_parent_package_closes_a_cycle(tmp_path):
-    modules = _tree(tmp_path, {
-        "fake/__init__.py": "",
-        "low/__init__.py": "from .b import B\n",  # importing fake.low runs this
-        "low/b.py": "from fake.x import X\nB = 1\n",
-        "fake/x.py": "from fake.low.c import C\nX = 1\n",  # runs low/__init__ first
-        "low/c.py": "C = 1\n",
-    })
-    with pytest.raises(AssertionError, match=r"fake\.low -> fake\.low\.b -> fake\.x -> fake\.low"):
-        assert_no_cycles(modules)
-
-
-def test_imports_inside_functions_and_own_ancestors_make_no_cycle(tmp_path):
-    modules = _tree(tmp_path, {
-        "fake/__init__.py": "from fake.low import b\n",
-        "low/__init__.py": "",
-        "low/b.py": "import fake.low\n\ndef f():\n    from fake import a\n",
-        "fake/a.py": "from fake.low import b\n",
-    })
-    assert_no_cycles(modules)
-
-
-def test_a_private_use_fails(tmp_path):
-    modules = _tree(tmp_path, {
-        "fake/__init__.py": "",
-        "fake/a.py": "_hidden = 1\n__version__ = '1'\nok = _hidden\n",
-        "low/__init__.py": "",
-        "low/b.py": "from fake.a import __version__\n\ndef f():\n    from fake.a import _hidden\n",
-        "low/c.py": "from fake import a as alias\nimport fake.a\nx = alias._hidden + fake.a._hidden\n",
-        "low/d.py": "from .. import a\ny = a.ok\n",
-    })
-    found = private_uses(modules, modules)
-    assert [line.split(": ", 1)[1] for line in found] == [
-        "imports _hidden from fake.a", "uses _hidden of fake.a", "uses _hidden of fake.a"]
-    with pytest.raises(AssertionError, match=r"low/b\.py:4: imports _hidden from fake\.a"):
-        assert_no_private_uses(modules, modules)
-
-
-def test_an_escaping_relative_import_fails(tmp_path):
-    _tree(tmp_path, {
-        "fake/__init__.py": "",
-        "fake/config.py": "X = 1\n",
-        "low/__init__.py": "from . import ok\n",
-        "low/ok.py": "from .sub import y\n",
-        "low/sub.py": "y = 1\n",
-        "low/bad.py": "def f():\n    from ..config import X\n",
-    })
-    assert escaping_relative_imports(tmp_path, ("low",)) == [
-        f"{tmp_path / 'low' / 'bad.py'}:2: from ..config import X"]
-    with pytest.raises(AssertionError, match=r"bad\.py:2: from \.\.config import X"):
-        assert_no_escaping_relative_imports(tmp_path, ("low",))
-
-
-def test_an_import_of_a_higher_layer_fails(tmp_path):
-    _tree(tmp_path, {"fake/__init__.py": "", "low/__init__.py": "",
-                     "low/base.py": "from fake.top import X\n",
-                     "fake/top.py": "X = 1\n"})
-    modules = package_modules(tmp_path, *layout(tmp_path))
-    assert_layered(modules, ("fake.top", "fake.low"))  # top is the lower layer here: allowed
-    with pytest.raises(pytest.fail.Exception, match=r"fake\.low\.base \(fake\.low\) imports fake\.top "):
-        assert_layered(modules, ("fake.low", "fake.top"))
-
-
-def test_an_import_of_a_higher_layer_inside_a_function_fails(tmp_path):
-    _tree(tmp_path, {"fake/__init__.py": "", "low/__init__.py": "",
-                     "low/base.py": "def f():\n    if True:\n        from fake.top import X\n    return X\n",
-                     "fake/top.py": "X = 1\n"})
-    modules = package_modules(tmp_path, *layout(tmp_path))
-    assert_no_cycles(modules)  # a deferred import closes no cycle, but it is still upward
-    with pytest.raises(pytest.fail.Exception, match=r"low/base\.py:3: fake\.low\.base \(fake\.low\) imports fake\.top "):
-        assert_layered(modules, ("fake.low", "fake.top"))
+def test_every_room_of_explore_imports_only_the_rooms_before_it():
+    modules = {name: where for name, where in _package().items() if layer_of(name, ("phongfx.explore",)) == 0}
+    rooms = {room_of(name, EXPLORE_LAYERS)[1] for name in modules}
+    assert rooms == {room for step in EXPLORE_LAYERS for room in ((step,) if isinstance(step, str) else step)} | {None}
+    assert [name for name in modules if layer_of(name, EXPLORE_LAYERS) is None] == ["phongfx.explore"]
+    assert_layered(modules, EXPLORE_LAYERS)

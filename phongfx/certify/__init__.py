@@ -15,7 +15,9 @@
   (exact per-pixel normals, one ``n``, lights and viewer at infinity);
 * :mod:`.gappa`: Gappa's proof of the rounding error of Lyon's Figure 7c–d chain.
 
-May import every layer but ``phongfx.cli``.
+May import every layer below it: everything but ``phongfx.compiler`` and ``phongfx.cli``
+(it bounds a design through the compile room's fitting of a method to a scene,
+:mod:`phongfx.explore.compile.run`, and the compiler calls it).
 """
 
 from .bound import certify

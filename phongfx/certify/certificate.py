@@ -1,6 +1,6 @@
 """A certificate: a sound upper bound on a design's error over a scene's input domain.
 
-The error is the compiler's (:mod:`phongfx.explore.compile.compiler`): per pixel and
+The error is the compiler's (:mod:`phongfx.compiler.compile`): per pixel and
 channel, ``|out - (2^bits - 1)·I_ref|`` in display levels before the reference's own
 rounding.  A continuous bound ``B`` on it bounds the displayed error
 ``|out - level(I_ref)|`` by ``floor(B + 0.5)`` (the reference's rounding adds at most half

@@ -80,7 +80,7 @@ def add_arguments(p):
 
 def parse_widths(method, settings):
     """``{width: int}`` of ``--set`` values for ``method``, each checked against its range."""
-    from phongfx.explore.compile.compiler import width_params
+    from phongfx.explore.compile.search import width_params
 
     widths = width_params(method, "phong")
     params = {}

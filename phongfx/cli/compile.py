@@ -208,8 +208,8 @@ def _warm(_):
 def cmd_compile(args):
     from tqdm import tqdm
 
-    from phongfx.certify.remembered import remembering
-    from phongfx.explore.compile.compiler import check_methods, compile_scene
+    from phongfx.compiler.compile import compile_scene
+    from phongfx.compiler.request import CompileRequest, check_methods
     from phongfx.explore.compile.emit import emit, prepare_check
     from phongfx.explore.compile.architecture import Speed
     from phongfx.explore.compile.workers import Pending
@@ -234,17 +234,14 @@ def cmd_compile(args):
             bar.set_description(f"compile {spec.name}: {step}")
             bar.update(1)
         try:
-            compiled = compile_scene(spec, methods=methods, synth=args.synth, target=args.target, device=device,
-                                     freq=args.freq, seed=args.seed, progress=progress,
-                                     journal=folder("compile"),
-                                     prove=args.prove, prove_timeout=args.prove_timeout,
-                                     samples=args.samples, final_samples=args.final_samples,
-                                     certifier=None if args.sampled else remembering(
-                                         folder("compile") / "certificates"),
-                                     certified=not args.sampled,
-                                     clock=args.clock,
-                                     scheduler=args.scheduler, workers=args.workers,
-                                     prepare=None if args.no_check else partial(prepare_check, vcd=args.vcd))
+            compiled = compile_scene(CompileRequest(
+                spec, methods=methods, synth=args.synth, target=args.target, device=device, freq=args.freq,
+                seed=args.seed, clock=args.clock, scheduler=args.scheduler, workers=args.workers,
+                samples=args.samples, final_samples=args.final_samples, journal=folder("compile"),
+                prove=args.prove, prove_timeout=args.prove_timeout,
+                certify="none" if args.sampled else "search",
+                certificates=None if args.sampled else folder("compile") / "certificates",
+                progress=progress, prepare=None if args.no_check else partial(prepare_check, vcd=args.vcd)))
             if warming is not None:
                 warming.result()
         finally:  # interrupted, or the compile failed: the build need not finish

@@ -33,16 +33,16 @@ backside test on the specular term) against the same formula in float on exact
 (:func:`pixel_metrics`; the terminator band as in the scene compiler,
 :func:`phongfx.scene.geometry.terminator_lit`); a unit without a diffuse output (Schlick's)
 blends its specular alone, and the diffuse-only units (Euler, Gouraud) have none.  The datapaths are evaluated with one light (the lights are
-independent copies), while :meth:`MethodSpec.config`, which synthesis sees, keeps the
+independent copies), while :meth:`Method.config <phongfx.core.methods.Method.config>`, which synthesis sees, keeps the
 ``lights`` parameter (registry default 2).
 """
 
 import numpy as np
 
-from phongfx.explore.methods import METHODS, SCENES, MethodSpec, Scene
-from phongfx.explore.sweep.scene import file_views, is_scene_file
+from phongfx.explore.methods import METHODS, SCENES, Scene
+from phongfx.explore.scene_files import file_views, is_scene_file
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "PIXEL_COEF", "COST_KEYS",
+__all__ = ["METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "PIXEL_COEF", "COST_KEYS",
            "ASIC_COST_KEYS", "error_metrics", "pixel_metrics", "pixel_errors", "evaluate"]
 
 STATS = ("max", "mean", "psnr", "pct_over1")
@@ -147,7 +147,7 @@ def evaluate(method, params, *, scenes=("torus", "sphere"), synth=None, proxy=No
         Parameters of the method; missing ones take their defaults.
     scenes : sequence of str
         Keys of :data:`SCENES`, or paths of scene files (``.toml``,
-        :mod:`phongfx.explore.sweep.scene`: every frame and light pooled, metrics named
+        :mod:`phongfx.explore.scene_files`: every frame and light pooled, metrics named
         after the file's stem).
     synth : dict, optional
         Options of :func:`phongfx.explore.synth.fpga.synth` (``target``, ``freq``, ``device``, ``seed``,

@@ -11,7 +11,7 @@ from phongfx.certify import certify, figures
 from phongfx.certify.bound import shader_config
 from phongfx.certify.branch import Resume
 from phongfx.certify.methods import bounding
-from phongfx.explore.compile.compiler import SceneEval
+from phongfx.explore.compile.measure import SceneEval
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene
 from tests.certify.test_bound import LYON

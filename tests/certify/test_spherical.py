@@ -11,7 +11,7 @@ from phongfx.certify import certify
 from phongfx.certify.bound import shader_config
 from phongfx.certify.lobe import cell_errors, diffuse_rom, lobe_range, rom_table, psi_max, wrap_error
 from phongfx.certify.span import max_pixels, slerp_gap
-from phongfx.explore.compile.compiler import SceneEval
+from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.points import pose_frames
 from phongfx.golden.spherical_setup import solve_a
 from phongfx.scene.domain import domain

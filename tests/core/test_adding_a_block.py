@@ -201,7 +201,8 @@ def test_a_new_specular_unit_is_selectable_everywhere(toy_unit, tmp_path):
 
     from phongfx.config import DatapathConfig
     from phongfx.core.methods import specular_units
-    from phongfx.explore.compile.compiler import check_methods, compile_scene
+    from phongfx.compiler.compile import compile_scene
+    from phongfx.compiler.request import CompileRequest, check_methods
     from phongfx.explore.evaluate import SCENES
     from phongfx.explore.methods import METHODS
     from phongfx.explore.sweep.spec import load_spec
@@ -232,8 +233,8 @@ def test_a_new_specular_unit_is_selectable_everywhere(toy_unit, tmp_path):
 
     # the compiler: its method list accepts it and it is searched like fig7
     assert check_methods(["toy"]) == ["toy"]
-    compiled = compile_scene(load_scene(ROOT / "scenes" / "torus.toml"), methods=["toy"], samples=2000,
-                             final_samples=10000)
+    compiled = compile_scene(CompileRequest(load_scene(ROOT / "scenes" / "torus.toml"), methods=["toy"],
+                                            samples=2000, final_samples=10000))
     assert list(compiled.results) == ["toy"]
 
     # the renderer: render mesh's method list has it and shades with it

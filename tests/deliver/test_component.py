@@ -205,13 +205,14 @@ def test_a_compile_in_python_gives_the_core_of_its_manifest_and_of_its_folder(tm
     manifest dict ``emit`` returns, the folder it wrote and the chosen design's config give
     one core, which shades like the golden model."""
     from phongfx.explore.compile.architecture import config_of
-    from phongfx.explore.compile.compiler import compile_scene
+    from phongfx.compiler.compile import compile_scene
+    from phongfx.compiler.request import CompileRequest
     from phongfx.explore.compile.emit import emit
     from phongfx.scene.file import parse_scene
     from tests.explore.compile.test_compiler import TORUS
 
-    compiled = compile_scene(parse_scene(TORUS.format(error=1.0, against="phong"), name="tiny"),
-                             methods=["conventional"])
+    compiled = compile_scene(CompileRequest(parse_scene(TORUS.format(error=1.0, against="phong"), name="tiny"),
+                                            methods=["conventional"]))
     data = emit(compiled, tmp_path / "tiny", check=False)
     core = load_core(data)
     assert data["manifest_version"] == MANIFEST_VERSION and core.manifest is data

@@ -116,12 +116,13 @@ def test_a_missing_folder_is_named_and_a_manifest_error_is_a_value_error(tmp_pat
 
 
 def test_the_folder_of_a_real_compile_that_chose_nothing_is_refused(tmp_path):
-    from phongfx.explore.compile.compiler import compile_scene
+    from phongfx.compiler.compile import compile_scene
+    from phongfx.compiler.request import CompileRequest
     from phongfx.explore.compile.emit import emit
     from phongfx.scene.file import parse_scene
     from tests.explore.compile.test_compiler import TORUS
 
-    compiled = compile_scene(parse_scene(TORUS.format(error=0.001, against="phong"), name="tiny"), methods=["fig7"])
+    compiled = compile_scene(CompileRequest(parse_scene(TORUS.format(error=0.001, against="phong"), name="tiny"), methods=["fig7"]))
     data = emit(compiled, tmp_path / "out", check=False)
     assert data["manifest_version"] == MANIFEST_VERSION and data["chosen"] is None
     with pytest.raises(ManifestError, match=r"out/manifest\.json: field 'config' is absent: the compile of scene "

@@ -24,8 +24,8 @@ def test_docs_build_without_a_warning(tmp_path):
 def test_importing_the_documented_packages_writes_nothing(tmp_path):
     """Autodoc imports them: that must leave no file behind, in the current folder or the cache."""
     code = ("import phongfx, phongfx.core, phongfx.core.format, phongfx.core.files, phongfx.core.registry, "
-            "phongfx.config, phongfx.explore.compile as c, phongfx.explore.compile.emit\n"
-            "[getattr(phongfx, n) for n in phongfx.__all__]\n[getattr(c, n) for n in c.__all__]\n")
+            "phongfx.config, phongfx.explore.compile as c, phongfx.explore.compile.emit, phongfx.compiler as d\n"
+            "[getattr(phongfx, n) for n in phongfx.__all__]\n[getattr(m, n) for m in (c, d) for n in m.__all__]\n")
     cache = tmp_path / "cache"
     work = tmp_path / "work"
     work.mkdir()

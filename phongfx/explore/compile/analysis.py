@@ -2,7 +2,7 @@
 
 :func:`analyse` reads a :class:`~phongfx.scene.file.SceneSpec` and its frames
 (:func:`phongfx.scene.geometry.frames`) and says what varies per pixel, which is what
-the compiler (:mod:`phongfx.explore.compile.compiler`) may leave out:
+the compiler (:mod:`phongfx.compiler.compile`) may leave out:
 
 * N always varies; L only if some light is local, V only if the camera is local
   (Lyon 1993, "Local lights and viewer": otherwise no L/V interpolator or normalizer);

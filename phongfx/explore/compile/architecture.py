@@ -29,9 +29,12 @@ from phongfx.core.registry import get_block
 
 from . import run as runs
 
-__all__ = ["DEFAULT", "CLOCK_MAX", "Speed", "candidates", "timing", "price", "pick", "proposals", "describe",
+__all__ = ["COST_UNITS", "DEFAULT", "CLOCK_MAX", "Speed", "candidates", "timing", "price", "pick", "proposals", "describe",
            "eligible", "rank_key", "refusal", "config_of", "design_block", "timing_of"]
 
+#: Per target: the key of the compared cost (:func:`price`'s ``cost``, the area proxy's number)
+#: and its unit.
+COST_UNITS = {"ecp5": ("lut_eq", "LUT-eq"), "ice40": ("lut_eq", "LUT-eq"), "asic": ("area_um2", "µm²")}
 #: The architecture compiled when no speed is asked: one unit per light side by side,
 #: unpipelined, the light-independent inputs taken once.
 DEFAULT = {"pipeline": 0, "interval": 1, "share": True}
@@ -124,8 +127,6 @@ def price(method, params, analysis, architecture, speed, *, target="ecp5", devic
     ``"clock"`` (the clock proxy's dict) and the :func:`timing` figures``}``."""
     from phongfx.explore.synth.clock import proxy_clock
     from phongfx.explore.synth.proxy import proxy_estimate
-
-    from .costing import COST_UNITS
 
     config = runs.build(method, params, analysis, architecture)
     block = get_block(runs.block_name(method), config=config)

@@ -2,8 +2,8 @@
 requirement as measured and by a sound bound.
 
 A method is certifiable on a scene when its unit has a bounding method that covers the
-scene's domain: the certifier (:func:`phongfx.certify.certify`, passed in by the command,
-since that wing sits above this one) answers for the method's default widths, asked for no
+scene's domain: the certifier (:func:`phongfx.certify.certify`, passed in by the compiler,
+:mod:`phongfx.compiler`, since certify sits above this room) answers for the method's default widths, asked for no
 refinement (``max_boxes=0``: the coverage, not the bound, is the question), with a bound, or
 without one only because some quantize may overflow at those widths (``parts["faults"]``: other
 widths may not).  Any other certificate without a bound says why no width can help (no bounding

@@ -1,6 +1,6 @@
 """The choice among the searched methods: the cheapest design whose witness meets the requirement.
 
-:func:`choose` (:mod:`phongfx.explore.compile.compiler`'s docstring): the feasible designs by
+:func:`choose` (:mod:`phongfx.compiler.compile`'s docstring): the feasible designs by
 cost; the cheapest is searched for its worst input over the domain (its witness,
 :mod:`phongfx.explore.compile.witness`); one over the requirement sends its method back to the
 width search with hard points (the same search again: measured, or measured and certified,

@@ -16,20 +16,17 @@ from phongfx.core.registry import get_block
 from phongfx.explore.synth.fpga import SynthError
 
 from . import architecture as architectures
+from .architecture import COST_UNITS
 from . import fit as fits
 from . import run as runs
 from .workers import fork_imap
 
-__all__ = ["COST_UNITS", "TIE_MARGIN", "utilisation", "cost", "costed", "price_designs", "tie"]
+__all__ = ["TIE_MARGIN", "utilisation", "cost", "costed", "price_designs", "tie"]
 
 #: Costs closer than this share of the chosen one are a tie.  The proxy misprices single
 #: blocks by more (the blend about 5×, carry chains at 0), and on an FPGA a LUT-eq weighs
 #: a DSP by a convention (958 LUT4s); nextpnr's placer seed moves Fmax by about ±10%.
 TIE_MARGIN = 0.10
-
-#: Per target: the key of the compared cost and its unit.
-COST_UNITS = {"ecp5": ("lut_eq", "LUT-eq"), "ice40": ("lut_eq", "LUT-eq"), "asic": ("area_um2", "µm²")}
-
 
 def utilisation(placed):
     """``{resource: {"used", "available", "percent"}}`` of nextpnr's placed counts (the

@@ -1,4 +1,4 @@
-"""Write what :func:`phongfx.explore.compile.compiler.compile_scene` found, and verify it.
+"""Write what :func:`phongfx.compiler.compile.compile_scene` found, and verify it.
 
 ``DIR/manifest.json`` (:func:`manifest`, with the top's input contract as ``"contract"``:
 :mod:`phongfx.deliver.contract`; ``"certified"`` and ``"certificate"``, the design's sound
@@ -213,7 +213,7 @@ CHECK_OPTIMIZE = False
 def prepare_check(result, analysis, vcd=None):
     """Build the RTL check's simulator of ``result`` (a search result) into the build cache as
     :func:`emit`'s check builds it, so that the check finds it built (the ``prepare`` of
-    :func:`~phongfx.explore.compile.compiler.compile_scene`, beside the witness search); a
+    :func:`~phongfx.compiler.compile.compile_scene`, beside the witness search); a
     failure is left for the check to report."""
     from phongfx.sim.fast_backend import checked_build
     from phongfx.sim.stream import stream_mode

@@ -1,6 +1,6 @@
 """How each method of :data:`phongfx.explore.methods.METHODS` shades a scene file's frame.
 
-The compiler (:mod:`phongfx.explore.compile.compiler`) asks, per method: can it represent the scene
+The compiler (:mod:`phongfx.compiler.compile`) asks, per method: can it represent the scene
 (:func:`rejection`), what is its whole shader at given widths (:func:`build`: the unit,
 :func:`unit_config`, and the hardware blend of the scene's constants to ``r``, ``g``,
 ``b``), what are a frame's raw input codes (:func:`frame_inputs`, the same stream the RTL

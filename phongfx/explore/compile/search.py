@@ -1,6 +1,6 @@
 """The width search of one method: the lowest widths whose error still meets the scene's requirement.
 
-:func:`search_widths` (the steps are those of :mod:`phongfx.explore.compile.compiler`'s
+:func:`search_widths` (the steps are those of :mod:`phongfx.compiler.compile`'s
 docstring): from the method's default widths, or from the widest (:func:`widest`), lower
 each width by binary search (after the first pass, only when one lower passes) while a width
 point ``passes`` (its error measured by
@@ -74,7 +74,7 @@ def search_widths(scene, method, progress=None, passes=None):
     """The width search of the module docstring; returns a result dict (an infeasible
     method's is :func:`~phongfx.explore.compile.infeasible.summary`).  ``passes(params)``:
     whether a width point is good enough (default: its measured error meets the requirement;
-    :func:`compile_scene`'s ``certified`` asks for a certificate too)."""
+    :func:`~phongfx.compiler.compile.compile_scene`'s ``certify="search"`` asks for a certificate too)."""
     if passes is None:
         def passes(params):
             return measured_passes(scene, method, params)

@@ -26,8 +26,8 @@ class SweepSpecError(ValueError):
 
 
 def _catalog():
-    """(methods, scene names) of :mod:`phongfx.explore.evaluate`, imported when first needed."""
-    from phongfx.explore.evaluate import METHODS, SCENES
+    """(methods, scene names) of :mod:`phongfx.explore.methods`, imported when first needed."""
+    from phongfx.explore.methods import METHODS, SCENES
     return METHODS, tuple(SCENES)
 
 
@@ -38,8 +38,8 @@ def is_int(value):
 def _check_scenes(value, where, known, base_dir="."):
     """``(labels, files)``: the metric names of the scenes (a built-in name, or a scene file's
     stem) and ``{label: absolute path}`` of the files among them, resolved from ``base_dir``
-    (the sweep file's folder) and checked (:func:`~phongfx.explore.sweep.scene.check_scene_file`)."""
-    from phongfx.explore.sweep.scene import check_scene_file, is_scene_file, scene_label
+    (the sweep file's folder) and checked (:func:`~phongfx.explore.scene_files.check_scene_file`)."""
+    from phongfx.explore.scene_files import check_scene_file, is_scene_file, scene_label
     allowed = f"scenes: {', '.join(known)}, or a scene file (.toml) relative to the sweep file"
     if not isinstance(value, list) or not value or not all(isinstance(s, str) for s in value):
         raise SweepSpecError(f"{where} must be a non-empty list of scene names, not {value!r}; {allowed}")
@@ -171,7 +171,7 @@ def point_id(method, params, scenes, synth, files=None):
     """A point's identity: sha256 of method, sorted params, scenes and synth options, 16 hex
     digits; with scene ``files`` (``{label: path}``) their contents too, so an edited scene
     file runs again (without, the hash is what it always was: old sweeps resume)."""
-    from phongfx.explore.sweep.scene import file_digest
+    from phongfx.explore.scene_files import file_digest
     fields = {"method": method, "params": params, "scenes": list(scenes), "synth": synth}
     if files:
         fields["scene_files"] = {label: file_digest(path) for label, path in files.items()}

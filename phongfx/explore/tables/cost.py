@@ -24,7 +24,7 @@ import sys
 from phongfx.config import DifferenceConfig, RootConfig
 
 from phongfx.explore.progress import Candidates
-from phongfx.explore.report import DSP_LUT_WEIGHT, lut_equivalent
+from phongfx.explore.sweep.front import DSP_LUT_WEIGHT, lut_equivalent
 from phongfx.explore.synth.fpga import SynthError, synth
 
 __all__ = ["TABLES", "BLOCKS", "CLAIM", "N", "WHAT", "multipliers", "cost_of", "cost_table", "run_table", "markdown",

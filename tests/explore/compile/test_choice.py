@@ -1,12 +1,15 @@
 """The choice among searched methods: the witness must meet the requirement, and with
-``certified`` a certificate too (a fake certifier here, so that the rule is tested apart from
-any bounding method; :mod:`tests.certify` tests the real ones)."""
+``certify="search"`` a certificate too (a fake in place of :func:`phongfx.certify.certify` here,
+so that the rule is tested apart from any bounding method; :mod:`tests.certify` tests the real
+ones)."""
 
 import pytest
 
 from phongfx.certify.certificate import Certificate
+from phongfx.compiler import compile as compiling
+from phongfx.compiler.compile import certifier_of, compile_scene
+from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile.certified import uncertifiable
-from phongfx.explore.compile.compiler import compile_scene
 from phongfx.scene.file import parse_scene
 
 from .test_compiler import TORUS
@@ -32,18 +35,33 @@ class Fake:
         return Certificate(bound < 1.5, bound, "fake")
 
 
-def test_the_chosen_designs_certificate_is_kept_without_changing_the_choice():
-    fake = Fake(floor={"vec_frac": 99})
-    out = compile_scene(_tiny(), methods=["fig7", "conventional"], certifier=fake)
+def _certified_by(monkeypatch, fake):
+    """The compiler's certificates given by ``fake``."""
+    monkeypatch.setattr(compiling, "certify", fake)
+    return fake
+
+
+def test_the_compilers_certifier_is_phongfx_certify_kept_where_the_request_says(tmp_path):
+    from phongfx.certify import certify
+
+    assert certifier_of(CompileRequest(_tiny())) is None
+    assert certifier_of(CompileRequest(_tiny(), certify="search")) is certify
+    assert certifier_of(CompileRequest(_tiny(), certify="chosen", certificates=tmp_path)).__qualname__ == (
+        "remembering.<locals>.certifier")
+
+
+def test_the_chosen_designs_certificate_is_kept_without_changing_the_choice(monkeypatch):
+    fake = _certified_by(monkeypatch, Fake(floor={"vec_frac": 99}))
+    out = compile_scene(CompileRequest(_tiny(), methods=["fig7", "conventional"], certify="chosen"))
     assert out.certificate is not None and not out.certified and "conventional" in out.results
     assert fake.calls == [(out.chosen, out.best["params"], False)]
 
 
-def test_certified_searches_each_method_once_with_both_tests_and_certifies_the_choice_once():
-    sampled = compile_scene(_tiny(), methods=["fig7"])
+def test_certified_searches_each_method_once_with_both_tests_and_certifies_the_choice_once(monkeypatch):
+    sampled = compile_scene(CompileRequest(_tiny(), methods=["fig7"]))
     floor = {**sampled.best["params"], "vec_frac": sampled.best["params"]["vec_frac"] + 1}
-    fake = Fake(floor)
-    out = compile_scene(_tiny(), methods=["fig7"], certifier=fake, certified=True)
+    fake = _certified_by(monkeypatch, Fake(floor))
+    out = compile_scene(CompileRequest(_tiny(), methods=["fig7"], certify="search"))
     assert out.chosen == "fig7" and out.certified and out.certificate.certified
     assert out.certificate.bound_levels == 1.2
     assert out.best["params"] == floor  # the cheapest certified widths
@@ -54,9 +72,9 @@ def test_certified_searches_each_method_once_with_both_tests_and_certifies_the_c
     assert out.witness["error_levels"] <= 1.0 and not out.rounds and out.refused is None
 
 
-def test_certified_rejects_an_uncertifiable_method_unsearched_and_refuses_with_each_reason():
-    fake = Fake({"vec_frac": 99})
-    out = compile_scene(_tiny(), methods=["conventional", "fig7"], certifier=fake, certified=True)
+def test_certified_rejects_an_uncertifiable_method_unsearched_and_refuses_with_each_reason(monkeypatch):
+    fake = _certified_by(monkeypatch, Fake({"vec_frac": 99}))
+    out = compile_scene(CompileRequest(_tiny(), methods=["conventional", "fig7"], certify="search"))
     assert out.chosen is None and out.results["fig7"]["feasible"] is False
     assert "conventional" not in out.results  # not searched at all
     assert out.rejected["conventional"] == "not certifiable: no bounding method for the conventional unit yet"
@@ -80,9 +98,16 @@ def test_a_certificate_without_a_bound_only_for_an_overflow_does_not_make_a_meth
     assert uncertifiable(Certificate(False, 3.0, "interval", why="the bound 3.000 levels rounds to 3")) is None
 
 
-def test_certified_needs_a_certifier():
-    with pytest.raises(ValueError, match=r"^certified=True needs a certifier \(phongfx\.certify\.certify\)$"):
-        compile_scene(_tiny(), methods=["fig7"], certified=True)
+@pytest.mark.parametrize("field, value, allowed", [
+    ("certify", "yes", r"one of none, chosen, search"), ("target", "xc7", r"one of ecp5, ice40, asic"),
+    ("method", "phong", r"one of fig7, .*, conventional"), ("samples", 0, r"a positive integer"),
+    ("final_samples", 2.5, r"a positive integer"), ("workers", 0, r"a positive integer"),
+    ("freq", -1, r"a number of MHz in \(0, 10000\]"), ("prove_timeout", 0, r"a number of seconds in \(0, inf\]"),
+    ("seed", "1", r"an integer"), ("clock", 1e6, r"a number of MHz in \(0, 10000\]")])
+def test_a_request_names_the_field_the_value_and_what_it_may_be(field, value, allowed):
+    options = {"methods": [value]} if field == "method" else {field: value}
+    with pytest.raises(ValueError, match=rf"^{field} must be {allowed}, not {value!r}$"):
+        CompileRequest(_tiny(), **options)
 
 
 def test_only_a_sampled_choice_has_a_quick_witness_search_first(monkeypatch):
@@ -97,9 +122,10 @@ def test_only_a_sampled_choice_has_a_quick_witness_search_first(monkeypatch):
         return explore(*args, starts=starts, **options)
 
     monkeypatch.setattr(witness, "explore", counted)
-    sampled = compile_scene(_tiny(), methods=["fig7"])
+    sampled = compile_scene(CompileRequest(_tiny(), methods=["fig7"]))
     assert quick[:2] == [True, False]  # each fresh sample after a quick search that did not miss
     floor = {**sampled.best["params"], "vec_frac": sampled.best["params"]["vec_frac"] + 1}
     del quick[:]
-    out = compile_scene(_tiny(), methods=["fig7"], certifier=Fake(floor), certified=True)
+    _certified_by(monkeypatch, Fake(floor))
+    out = compile_scene(CompileRequest(_tiny(), methods=["fig7"], certify="search"))
     assert out.certified and quick == [False]

@@ -9,13 +9,15 @@ import numpy as np
 import pytest
 
 from phongfx.cli import main
+from phongfx.compiler.compile import compile_scene
+from phongfx.compiler.request import CompileRequest
 from phongfx.core.registry import get_block
 from phongfx.deliver.manifest import design_of
-from phongfx.explore.compile.compiler import compile_scene, meets, width_params
-from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.emit import emit, prepare_check, submodules
+from phongfx.explore.compile.measure import SceneEval, meets
 from phongfx.explore.compile.run import block_name, build
 from phongfx.explore.compile.run import frame_inputs as run_frame_inputs
+from phongfx.explore.compile.search import width_params
 from phongfx.hdl.emit import verilog
 from phongfx.scene.file import load_scene, parse_scene
 from phongfx.sim import fast_backend
@@ -91,7 +93,7 @@ def _kinds(instances, kind):
 
 
 def test_the_cheapest_feasible_method_is_chosen_and_the_rest_say_why_not():
-    compiled = compile_scene(_torus(), methods=["fig7", "fig8", "schlick", "euler"])
+    compiled = compile_scene(CompileRequest(_torus(), methods=["fig7", "fig8", "schlick", "euler"]))
     assert compiled.rejected["schlick"].startswith("Schlick's unit computes only the specular term")
     assert "ks > 0" in compiled.rejected["euler"]
     feasible = {m: r["cost"]["lut_eq"] for m, r in compiled.results.items() if r["feasible"]}
@@ -107,9 +109,9 @@ def test_the_rtl_check_runs_on_the_simulator_prepared_beside_the_witness(tmp_pat
 
     def prepare(result, analysis):
         prepared.append((result["method"], result["params"]))
-    missed = compile_scene(_torus(), methods=["fig7"], prepare=prepare)
+    missed = compile_scene(CompileRequest(_torus(), methods=["fig7"], prepare=prepare))
     assert missed.rounds and missed.rounds[0]["params"] != missed.best["params"] and prepared == []
-    compiled = compile_scene(_torus(), methods=["conventional"], prepare=prepare)
+    compiled = compile_scene(CompileRequest(_torus(), methods=["conventional"], prepare=prepare))
     assert not compiled.rounds and prepared == [(compiled.chosen, compiled.best["params"])]
     # prepare_check builds what emit's RTL check then finds in the cache: the same build
     builds, real = [], fast_backend.checked_build
@@ -127,7 +129,7 @@ def test_the_rtl_check_runs_on_the_simulator_prepared_beside_the_witness(tmp_pat
 
 def test_widths_are_locally_minimal_measured_afresh():
     spec = _torus()
-    compiled = compile_scene(spec, methods=["fig7"])
+    compiled = compile_scene(CompileRequest(spec, methods=["fig7"]))
     best, fresh = compiled.best, SceneEval(spec)  # a new evaluator: no shared cache
     fresh.measure_domain(compiled.scene.points)   # the same domain points (hard points too)
     assert meets(fresh.error("fig7", best["params"]), 1.0)
@@ -142,7 +144,7 @@ def test_widths_are_locally_minimal_measured_afresh():
 
 
 def test_default_widths_are_measured_beside_the_minimal_ones():
-    best = compile_scene(_torus(against="self"), methods=["fig7"]).best
+    best = compile_scene(CompileRequest(_torus(against="self"), methods=["fig7"])).best
     default = best["default"]
     assert default["params"] == {k: v for k, (v, _) in width_params("fig7", "self").items()}
     assert default["frames_max"] <= default["max"] and default["cost"]["lut_eq"] > 0
@@ -151,7 +153,7 @@ def test_default_widths_are_measured_beside_the_minimal_ones():
 
 
 def test_lyon_balls_compile_without_l_or_v_interpolators():
-    compiled = compile_scene(_lyon(), methods=["fig7", "blinn", "spherical"])
+    compiled = compile_scene(CompileRequest(_lyon(), methods=["fig7", "blinn", "spherical"]))
     assert (compiled.analysis.local_lights, compiled.analysis.local_viewer) == (False, False)
     config, instances = _instances(compiled, "fig7")
     assert _kinds(instances, "lirp") == 1 and _kinds(instances, "normalize") == 1
@@ -167,7 +169,7 @@ def test_lyon_balls_compile_without_l_or_v_interpolators():
 
 
 def test_a_local_light_and_viewer_compile_with_their_interpolators():
-    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["fig7"])
+    compiled = compile_scene(CompileRequest(parse_scene(LOCAL, name="local"), methods=["fig7"]))
     assert compiled.chosen == "fig7"
     config, instances = _instances(compiled)
     # N, L and V each get a LIRP and a normalizer
@@ -176,17 +178,17 @@ def test_a_local_light_and_viewer_compile_with_their_interpolators():
 
 
 def test_the_blinn_baseline_takes_a_local_light_per_pixel():
-    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["blinn"])
+    compiled = compile_scene(CompileRequest(parse_scene(LOCAL, name="local"), methods=["blinn"]))
     assert "blinn" not in compiled.rejected
     # fed the exact L and H of each pixel, it is within a level of its own float (N·H)^(4n)
     assert compiled.chosen == "blinn" and 0 < compiled.best["max"] <= 1.0
 
 
 def test_single_n_is_a_hardware_constant_and_a_range_a_port():
-    single = compile_scene(_torus(), methods=["fig7"])
+    single = compile_scene(CompileRequest(_torus(), methods=["fig7"]))
     config = build("fig7", single.best["params"], single.analysis)
     assert config.units[0].difference.n_const == 16 and "n" not in config.inputs
-    ranged = compile_scene(parse_scene(LOCAL, name="local"), methods=["fig7"])
+    ranged = compile_scene(CompileRequest(parse_scene(LOCAL, name="local"), methods=["fig7"]))
     config = build("fig7", ranged.best["params"], ranged.analysis)
     assert config.inputs["n"][0].int_bits == 6 and config.units[0].difference.n_max == 32
 
@@ -332,14 +334,14 @@ def _fake_synth(name, *, config=None, **options):
 def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
     import phongfx.explore.synth.fpga as synth_module
     monkeypatch.setattr(synth_module, "synth", _fake_synth)
-    best = compile_scene(_torus(), methods=["fig7"], synth=True, workers=1).best
+    best = compile_scene(CompileRequest(_torus(), methods=["fig7"], synth=True, workers=1)).best
     vec = best["params"]["vec_frac"]
     assert best["cost"]["lut_eq"] == 100 + vec + 958 * 3 and best["cost"]["fmax_mhz"] == 99.0
 
     def broken(name, **options):
         raise synth_module.SynthError("Yosys did not finish (exit code 1); log x:\nmore")
     monkeypatch.setattr(synth_module, "synth", broken)
-    compiled = compile_scene(_torus(), methods=["fig7"], synth=True, workers=1)
+    compiled = compile_scene(CompileRequest(_torus(), methods=["fig7"], synth=True, workers=1))
     assert compiled.chosen == "fig7" and compiled.cost_model == "ecp5-synth"
     failed = compiled.best["cost"]
     assert {k: failed[k] for k in ("cost", "why", "log")} == {"cost": None, "why": "Yosys did not finish (exit code 1)",
@@ -348,7 +350,7 @@ def test_synthesis_costs_and_a_failed_synthesis_is_recorded(monkeypatch):
 
 
 def test_the_conventional_unit_meets_phong_where_blinn_cannot():
-    compiled = compile_scene(_torus(), methods=["conventional", "blinn"])
+    compiled = compile_scene(CompileRequest(_torus(), methods=["conventional", "blinn"]))
     # Phong's own (R·V)^n against true Phong: within a level below its default widths;
     # Blinn's (N·H)^(4n) stands for it only approximately, at any width
     assert compiled.chosen == "conventional" and compiled.best["max"] <= 1.0
@@ -364,7 +366,7 @@ def test_the_conventional_unit_meets_phong_where_blinn_cannot():
 
 
 def test_the_conventional_unit_normalizes_a_point_light_and_a_local_viewer():
-    compiled = compile_scene(parse_scene(LOCAL, name="local"), methods=["conventional"])
+    compiled = compile_scene(CompileRequest(parse_scene(LOCAL, name="local"), methods=["conventional"]))
     assert "conventional" not in compiled.rejected
     assert compiled.chosen == "conventional" and 0 < compiled.best["max"] <= 1.0
     shader = build("conventional", compiled.best["params"], compiled.analysis)
@@ -437,7 +439,7 @@ final_samples = 10000
 
 
 def test_a_point_light_beside_a_directional_one_gets_the_only_l_interpolator():
-    compiled = compile_scene(parse_scene(MIXED, name="mixed"), methods=["fig7"])
+    compiled = compile_scene(CompileRequest(parse_scene(MIXED, name="mixed"), methods=["fig7"]))
     config, instances = _instances(compiled)
     assert config.units[0].local_lights == (False, True)
     assert _kinds(instances, "lirp") == 2 and _kinds(instances, "normalize") == 2  # N and the point light
@@ -461,7 +463,7 @@ def test_a_design_with_a_counterexample_is_not_chosen(monkeypatch):
         out.counts = {"proven": int(not bad), "static": 0, "counterexample": int(bad), "unknown": 0}
         return out
     monkeypatch.setattr(proofs, "prove", fake)
-    compiled = compile_scene(_torus(), methods=["fig7", "conventional"], prove=True)
+    compiled = compile_scene(CompileRequest(_torus(), methods=["fig7", "conventional"], prove=True))
     assert sorted(tried) == ["conventional", "fig7"] and compiled.chosen == tried[1]
     assert compiled.results[tried[0]]["overflow_proof"]["counterexample"] == 1
     assert compiled.best["overflow_proof"]["proven"] == 1

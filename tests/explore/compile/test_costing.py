@@ -3,7 +3,8 @@ synthesized cost carries its part, seed and utilisation, and synthesis says wher
 
 import pytest
 
-from phongfx.explore.compile.compiler import compile_scene
+from phongfx.compiler.compile import compile_scene
+from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile.costing import TIE_MARGIN, costed, tie, utilisation
 from phongfx.explore.compile.run import build
 from phongfx.scene.file import parse_scene
@@ -31,7 +32,7 @@ def test_a_failed_synthesis_names_its_log_without_a_dangling_colon(monkeypatch):
     def broken(name, **options):
         raise synth_module.SynthError("nextpnr failed (exit code 1); log build/x/nextpnr.log:\nERROR: ...")
     monkeypatch.setattr(synth_module, "synth", broken)
-    scene = compile_scene(parse_scene(TORUS, name="tiny"), methods=["fig7"]).scene
+    scene = compile_scene(CompileRequest(parse_scene(TORUS, name="tiny"), methods=["fig7"])).scene
     got = costed("fig7", build("fig7", {"k": 4}, scene.analysis), True)
     assert got == {"cost": None, "why": "nextpnr failed (exit code 1)", "log": "build/x/nextpnr.log"}
 
@@ -53,8 +54,8 @@ def test_synthesis_reports_each_candidate_and_the_manifest_keys(monkeypatch):
                 "part": "LFE5U-25F", "placed": {"MULT18X18D": [2, 28]}}
     monkeypatch.setattr(synth_module, "synth", fake)
     lines = []
-    compiled = compile_scene(parse_scene(TORUS, name="tiny"), methods=["fig7", "conventional"], synth=True,
-                             seed=3, progress=lines.append, workers=1)
+    compiled = compile_scene(CompileRequest(parse_scene(TORUS, name="tiny"), methods=["fig7", "conventional"],
+                                            synth=True, seed=3, progress=lines.append, workers=1))
     # both methods' searched and default widths, at the one architecture of no speed asked,
     # synthesized together
     synth_lines = [line for line in lines if line.startswith("candidate")]

@@ -6,7 +6,8 @@ import json
 import pytest
 
 from phongfx.cli import main
-from phongfx.explore.compile.compiler import compile_scene
+from phongfx.compiler.compile import compile_scene
+from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile.measure import met_at
 from phongfx.scene.file import parse_scene
 
@@ -40,7 +41,7 @@ def _scene(n, size=24):
 
 def test_a_high_shininess_gets_a_k_past_four():
     # n = 1000 wants 2^k near n: at k = 4 (the old cap) even the widest formats miss
-    compiled = compile_scene(_scene(1000, size=48), methods=["fig7"])
+    compiled = compile_scene(CompileRequest(_scene(1000, size=48), methods=["fig7"]))
     assert compiled.chosen == "fig7" and compiled.best["params"]["k"] >= 5 and compiled.best["max"] <= 1
     widest = {**compiled.best["params"], "vec_frac": 16, "x2_frac": 20, "shape_t_frac": 24, "coef": 16,
               "order": 2, "k": 4}
@@ -49,7 +50,7 @@ def test_a_high_shininess_gets_a_k_past_four():
 
 @pytest.fixture(scope="module")
 def wide():
-    return compile_scene(_scene("[4, 128]"), methods=["fig7"])
+    return compile_scene(CompileRequest(_scene("[4, 128]"), methods=["fig7"]))
 
 
 def test_an_infeasible_method_reports_its_best_point_and_why(wide):
@@ -109,5 +110,5 @@ def test_an_infeasible_method_is_not_synthesized(monkeypatch):
     import phongfx.explore.synth.fpga as synth_module
     calls = []
     monkeypatch.setattr(synth_module, "synth", lambda *a, **k: calls.append(a) or {})
-    compiled = compile_scene(_scene("[4, 128]"), methods=["fig7"], synth=True)
+    compiled = compile_scene(CompileRequest(_scene("[4, 128]"), methods=["fig7"], synth=True))
     assert calls == [] and compiled.results["fig7"]["default"]["cost"]["model"] == "ecp5-proxy"

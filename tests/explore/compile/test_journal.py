@@ -1,9 +1,10 @@
 """A rerun of the same scene resumes from the journal of measured width points."""
 
+from phongfx.compiler.compile import compile_scene
+from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile import measure
-from phongfx.explore.compile.compiler import compile_scene
-from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.journal import Journal, scene_key
+from phongfx.explore.compile.measure import SceneEval
 from phongfx.scene.file import parse_scene
 from tests.explore.compile.test_costing import TORUS
 
@@ -22,10 +23,10 @@ def _counting(monkeypatch):
 def test_a_rerun_measures_nothing_again(tmp_path, monkeypatch):
     calls = _counting(monkeypatch)
     spec = parse_scene(TORUS, name="tiny")
-    first = compile_scene(spec, methods=["fig7"], journal=tmp_path)
+    first = compile_scene(CompileRequest(spec, methods=["fig7"], journal=tmp_path))
     measured = len(calls)
     assert measured > 5 and first.scene.resumed == 0
-    second = compile_scene(spec, methods=["fig7"], journal=tmp_path)
+    second = compile_scene(CompileRequest(spec, methods=["fig7"], journal=tmp_path))
     # a point first measured until it failed and later whole is measured twice but journalled once
     assert measured >= first.scene.points_measured > 5
     assert len(calls) == measured and second.scene.resumed == first.scene.points_measured

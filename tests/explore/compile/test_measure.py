@@ -7,8 +7,8 @@ import dataclasses
 import numpy as np
 import pytest
 
+from phongfx.compiler.compile import scene_domain
 from phongfx.explore.compile import run as runs
-from phongfx.explore.compile.compiler import scene_domain
 from phongfx.explore.compile.journal import scene_key
 from phongfx.explore.compile.measure import GUARD, SceneEval, meets, met_at
 from phongfx.explore.compile.points import DomainPoints, take

@@ -5,8 +5,8 @@ and the whole measurement still there when its numbers are asked for."""
 import numpy as np
 import pytest
 
+from phongfx.compiler.compile import scene_domain
 from phongfx.explore.compile import points as points_module
-from phongfx.explore.compile.compiler import scene_domain
 from phongfx.explore.compile.measure import SceneEval, meets
 from phongfx.explore.compile.points import DomainPoints, worst_index
 from phongfx.scene.file import parse_scene

@@ -10,8 +10,9 @@ import re
 import pytest
 
 from phongfx.cli import main
+from phongfx.compiler.compile import compile_scene
+from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile import run as runs
-from phongfx.explore.compile.compiler import compile_scene
 from phongfx.scene.file import parse_scene
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes")
@@ -69,7 +70,8 @@ def fake(monkeypatch):
 
 
 def _compile(speed="", **options):
-    return compile_scene(parse_scene(TWO_LIGHTS.format(speed=speed), name="pair"), methods=["fig7"], **options)
+    return compile_scene(CompileRequest(parse_scene(TWO_LIGHTS.format(speed=speed), name="pair"), methods=["fig7"],
+                                        **options))
 
 
 def test_the_rate_asked_picks_a_deeper_or_a_time_shared_architecture(fake):

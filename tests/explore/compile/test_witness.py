@@ -9,8 +9,9 @@ import os
 import numpy as np
 import pytest
 
+from phongfx.compiler.compile import compile_scene, scene_domain
+from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile.climb import inside, points, state_of
-from phongfx.explore.compile.compiler import compile_scene, scene_domain
 from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.witness import explore, geometry, replay, search
 from phongfx.scene.file import load_scene, parse_scene
@@ -79,7 +80,7 @@ def test_a_compiled_design_holds_on_views_never_compiled_smoke():
     """The done-when of the domain search, on a tiny scene: the chosen design's error on the torus
     turned about other axes (rendered only after the compile) meets the requirement."""
     spec = parse_scene(TORUS.format(error=1.0, against="phong"), name="tiny")
-    compiled = compile_scene(spec, methods=["fig7"])
+    compiled = compile_scene(CompileRequest(spec, methods=["fig7"]))
     assert compiled.witness["error_levels"] <= 1.0 and compiled.best["domain_points"] >= 2000
     for axis in ([1, 0, 0], [0, 0, 1]):
         turned = dataclasses.replace(spec, frames=dataclasses.replace(spec.frames, axis=tuple(axis), degrees=360.0,
@@ -92,7 +93,7 @@ def test_the_torus_design_holds_on_other_axes_and_in_between_angles():
     """scenes/torus.toml compiled (its domain at full size), then rendered about other axes, 32
     frames over 360° (in-between angles): within the requirement everywhere."""
     spec = load_scene(os.path.join(SCENES, "torus.toml"))
-    compiled = compile_scene(spec, methods=["fig7", "conventional"])
+    compiled = compile_scene(CompileRequest(spec, methods=["fig7", "conventional"]))
     params, required = compiled.best["params"], spec.requirement.max_error_levels
     assert compiled.witness["error_levels"] <= required and compiled.witness["samples"] == 10 ** 7
     for axis in ([1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0]):

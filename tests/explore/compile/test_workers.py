@@ -7,10 +7,10 @@ import os
 
 import pytest
 
+from phongfx.compiler.compile import scene_domain
 from phongfx.explore.compile import search as searches
 from phongfx.explore.compile import witness as witnesses
 from phongfx.explore.compile import workers
-from phongfx.explore.compile.compiler import scene_domain
 from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.points import DomainPoints
 from phongfx.explore.compile.workers import count, fork_map

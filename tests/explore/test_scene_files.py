@@ -1,8 +1,8 @@
-"""Scene files as sweep scenes (phongfx.explore.sweep.scene): frames and lights pooled."""
+"""Scene files as evaluation scenes (phongfx.explore.scene_files): frames and lights pooled."""
 
 import os
 
-from phongfx.explore.sweep.scene import file_views, is_scene_file, scene_label
+from phongfx.explore.scene_files import file_views, is_scene_file, scene_label
 
 
 def test_a_file_is_told_from_a_name_and_named_by_its_stem():
@@ -12,7 +12,7 @@ def test_a_file_is_told_from_a_name_and_named_by_its_stem():
 
 def test_the_example_torus_scene_pools_its_frames():
     from phongfx.explore.evaluate import METHODS, error_metrics, evaluate
-    here = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes", "torus.toml")
+    here = os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "torus.toml")
     label, views = file_views(here)
     assert (label, [v.frame for v in views]) == ("torus", [0, 1, 2, 3])
     pooled = evaluate("schlick", {"t_frac": 8}, scenes=(here,))["metrics"]

@@ -1,11 +1,11 @@
 """The scene compiler: the cheapest datapath whose error a scene's viewer cannot see.
 
-:func:`compile_scene` analyses the scene (:mod:`phongfx.explore.compile.analysis`), then for every
+:func:`compile_scene` takes a :class:`~phongfx.compiler.request.CompileRequest`, analyses the scene (:mod:`phongfx.explore.compile.analysis`), then for every
 method of :data:`phongfx.explore.methods.METHODS` either records why it cannot represent the
 scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
 
 1. start from the method's default widths; if they miss the requirement, from every
-   width at its range maximum and ``k`` at its best value there (:func:`widest`); if that
+   width at its range maximum and ``k`` at its best value there (:func:`~phongfx.explore.compile.search.widest`); if that
    misses too the method is infeasible, and
    :func:`~phongfx.explore.compile.infeasible.summary` reports its best measured point
    and why;
@@ -18,7 +18,7 @@ scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
 3. the **proof** of local minimality: for each width, the config with that width one
    lower and its measured max error (above the requirement), or "at range minimum".
 
-Widths are the method's :class:`~phongfx.explore.methods.MethodSpec` parameters except ``n``,
+Widths are the method's :class:`~phongfx.core.methods.Method` parameters except ``n``,
 ``k`` and ``lights``, plus, for Lyon's datapaths, the normalizers' ``order`` (2 = g2,
 1 = g1: g1 vs g2 is measured like a width) and, against true Phong, the shape
 function's ``k`` (fewer squarings is cheaper; ``2^k = n`` makes ``f_k`` Phong's power).
@@ -29,16 +29,21 @@ the domain, ``final_samples`` fresh points and a local search from the worst
 requirement makes the design unfit as it is: the witness and its neighbourhood join the
 domain sample as hard points (:meth:`~phongfx.explore.compile.measure.SceneEval.add_hard`),
 that method's widths are searched again, and the designs re-ranked, for at most
-:data:`ROUNDS` such rounds (:data:`METHOD_ROUNDS` per method; each recorded in
+:data:`~phongfx.explore.compile.choice.ROUNDS` such rounds
+(:data:`~phongfx.explore.compile.choice.METHOD_ROUNDS` per method; each recorded in
 :attr:`Compiled.rounds`); a design whose witness still misses is not chosen.  A quick local
 search from the width search's own worst points comes before each fresh sample (not in a
 certified compile, where the witness cannot miss).
 
-With ``certified`` (``phongfx compile``'s default) a width point must also meet the requirement
-by its certificate, methods without a bounding method are rejected unsearched, and the chosen
-design's full certificate is computed once (:mod:`phongfx.explore.compile.certified`).
+With ``certify="search"`` (``phongfx compile``'s default) a width point must also meet the
+requirement by its certificate (:func:`phongfx.certify.certify`, kept in the request's
+``certificates`` folder when given: :func:`phongfx.certify.remembered.remembering`), methods
+without a bounding method are rejected unsearched, and the chosen design's full certificate is
+computed once (:mod:`phongfx.explore.compile.certified`).  This layer sits above
+:mod:`phongfx.certify`, which bounds a design through the compile room's fitting of a method to
+a scene (:mod:`phongfx.explore.compile.run`, :mod:`~phongfx.explore.compile.analysis`).
 
-Cost (to choose among methods), on the ``target`` asked for: on an FPGA LUT-eq (``LUT4 +
+Cost (to choose among methods), on the request's ``target``: on an FPGA LUT-eq (``LUT4 +
 958·DSP``), on standard cells (``"asic"``) area in µm²; synthesized
 (:func:`phongfx.explore.synth.fpga.synth`, cached) with ``synth=True``, else the tool-free
 proxies :func:`phongfx.explore.synth.proxy.proxy_cost` (LUT-eq) and
@@ -55,21 +60,23 @@ fastest reaches.
 import dataclasses
 from dataclasses import dataclass, field
 
-from phongfx.explore.methods import METHODS
+from phongfx.certify import certify
+from phongfx.certify.remembered import remembering
+from phongfx.explore.compile import run as runs
+from phongfx.explore.compile.architecture import Speed, refusal
+from phongfx.explore.compile.certified import begin_full_certificate, certified_search, full_certificate, refusal_lines
+from phongfx.explore.compile.choice import begin_beside_witness, choose, for_chosen
+from phongfx.explore.compile.costing import price_designs
+from phongfx.explore.compile.infeasible import hint
+from phongfx.explore.compile.measure import SceneEval
+from phongfx.explore.compile.points import DomainPoints
+from phongfx.explore.compile.search import search_all, search_widths
+from phongfx.explore.compile.workers import MIN_POINTS, count
 
-from . import run as runs
-from .architecture import Speed, refusal
-from .certified import begin_full_certificate, certified_search, full_certificate, refusal_lines
-from .choice import HARD_POINTS, METHOD_ROUNDS, ROUNDS, begin_beside_witness, choose, for_chosen
-from .costing import COST_UNITS, price_designs
-from .infeasible import hint
-from .measure import SceneEval, meets
-from .points import DomainPoints
-from .search import search_all, search_widths, widest, width_params
-from .workers import MIN_POINTS, count
+from .request import check_samples
 
-__all__ = ["ROUNDS", "METHOD_ROUNDS", "HARD_POINTS", "Compiled", "compile_scene", "check_methods", "width_params",
-           "widest", "search_widths", "scene_domain", "meets"]
+__all__ = ["Compiled", "compile_scene", "certifier_of", "scene_domain"]
+
 
 @dataclass
 class Compiled:
@@ -109,92 +116,48 @@ def _designs(name, result, synth):
             for where in ((result["default"], result) if feasible else (result["default"],))]
 
 
-def check_methods(methods):
-    """``methods`` as a list (all of :data:`~phongfx.explore.methods.METHODS` for None), each checked."""
-    names = list(METHODS) if methods is None else list(methods)
-    for name in names:
-        if name not in METHODS:
-            raise ValueError(f"method must be one of {', '.join(METHODS)}, not {name!r}")
-    return names
-
-
 def scene_domain(spec, geometries, samples=None, final_samples=None):
     """The :class:`~phongfx.scene.domain.Domain` of ``spec`` with its ``samples`` and
     ``final_samples`` replaced when given (positive integers, checked)."""
     from phongfx.scene.domain import domain
 
     for name, value in (("samples", samples), ("final_samples", final_samples)):
-        if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < 1):
-            raise ValueError(f"{name} must be a positive integer, not {value!r}")
+        check_samples(name, value)
     found = domain(spec, geometries)
     changes = {k: v for k, v in (("samples", samples), ("final_samples", final_samples)) if v is not None}
     return dataclasses.replace(found, **changes) if changes else found
 
 
-def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None, freq=150, seed=1,
-                  progress=None, geometries=None, journal=None, prove=False, prove_timeout=600,
-                  samples=None, final_samples=None, certifier=None, certified=False, clock=None,
-                  scheduler=None, workers=None, prepare=None):
-    """Compile ``spec`` (a :class:`~phongfx.scene.file.SceneSpec`): see the module docstring.
+def certifier_of(request):
+    """What bounds a design for ``request``: None when it certifies nothing, else
+    :func:`phongfx.certify.certify`, its certificates kept in ``request.certificates`` when given
+    (:func:`~phongfx.certify.remembered.remembering`).  Called as ``certifier(method, params,
+    spec, domain, early=False, analysis=None[, max_boxes])``; ``max_boxes=0`` asks whether the
+    method is bounded at all (:func:`~phongfx.explore.compile.certified.certified_search`)."""
+    if request.certify == "none":
+        return None
+    return certify if request.certificates is None else remembering(request.certificates)
 
-    :param methods: keys of :data:`~phongfx.explore.methods.METHODS` to consider (default
-        all).
-    :param bool synth: cost by synthesis instead of the proxy.
-    :param target: what the cost is measured on: ``"ecp5"`` (LUT-eq), ``"ice40"`` or
-        ``"asic"`` (µm²); with ``device`` (the part, or the library on ``"asic"``, default
-        ``osu018``), ``freq`` (the clock given to the tools, MHz) and ``seed`` (nextpnr's
-        placement seed).
-    :param clock: the clock (MHz) the core will run at: the chosen architecture must reach it,
-        its pixel rate is ``clock / interval``, and synthesis is given it instead of ``freq``;
-        None: each design at its own Fmax.  The pixel rate asked is the scene's
-        ``requirement.mpixels_per_second`` (:func:`phongfx.scene.file.with_throughput`).
-    :param scheduler: where ``synth`` runs its candidates in parallel (a Dask scheduler
-        address; None: a local cluster of ``workers`` processes).  ``workers`` also bounds
-        the processes that search the methods' widths and the witness side by side
-        (:mod:`~phongfx.explore.compile.workers`; None: every core, 1: this process alone).
-    :param progress: called with a short description of each step; each synthesis as
-        "candidate i of N (label): stage, T s".
-    :param journal: a folder where every measured width point is kept, so that a rerun of
-        the same scene (and code) skips them (:mod:`phongfx.explore.compile.journal`).
-    :param prove: prove the chosen design's ``overflow="error"`` claims
-        (:mod:`phongfx.sim.prove`, ``prove_timeout`` seconds per claim); a design with a
-        counterexample is not chosen and the next cheapest is proven instead.
-    :param samples: domain points per measured width point, instead of the scene's
-        (``[domain] samples``); ``final_samples``: those of the witness search.
-    :param certifier: ``certifier(method, params, spec, domain, early=False, analysis=None[, max_boxes])``
-        gives a :class:`~phongfx.certify.certificate.Certificate` (:func:`phongfx.certify.certify`,
-        which sits above this wing and is passed in; ``max_boxes=0`` asks whether the method is
-        bounded at all, :func:`~phongfx.explore.compile.certified.certified_search`); without ``certified`` the chosen
-        design's is kept in :attr:`Compiled.certificate`, changing nothing.
-    :param certified: the certified search (:mod:`~phongfx.explore.compile.certified`; needs
-        ``certifier``): each method certifiable on the scene is searched once with its
-        certificate as a second test, the others are rejected with the certificate's why; the
-        chosen design's full certificate is :attr:`Compiled.certificate`.  When no method has
-        a certified design, nothing is chosen and :attr:`Compiled.refused` says why per method
-        (``"why": "certificate"``).
-    :param prepare: ``prepare(result, analysis)``, work the caller will need for the chosen
-        design (``result`` a search result), begun for the likeliest choice in a forked process
-        beside its witness search and waited for when that design is chosen (the command builds
-        its RTL check's simulator: :func:`~phongfx.explore.compile.emit.prepare_check`).
-    :returns: a :class:`Compiled`.
-    """
-    names = check_methods(methods)
-    if target not in COST_UNITS:
-        raise ValueError(f"target must be one of {', '.join(COST_UNITS)}, not {target!r}")
-    if certified and certifier is None:
-        raise ValueError("certified=True needs a certifier (phongfx.certify.certify)")
-    speed = Speed(spec.requirement.mpixels_per_second, clock)  # checked before the minutes of search
-    scene = SceneEval(spec, geometries, journal=journal)
-    domain = scene_domain(spec, scene.geometries, samples, final_samples)
+
+def compile_scene(request):
+    """Compile ``request.spec`` as ``request`` (a :class:`~phongfx.compiler.request.CompileRequest`)
+    asks: see the module docstring.  Returns a :class:`Compiled`."""
+    spec, progress, synth, workers = request.spec, request.progress, request.synth, request.workers
+    names = request.names
+    certified = request.certify == "search"
+    certifier = certifier_of(request)
+    speed = request.speed
+    scene = SceneEval(spec, request.geometries, journal=request.journal)
+    domain = scene_domain(spec, scene.geometries, request.samples, request.final_samples)
     if progress:
         progress(f"drawing {domain.samples:,} domain points")
     scene.measure_domain(DomainPoints(spec, domain))
-    freq = clock or freq
+    target = request.target
     out = Compiled(spec, scene.analysis, scene, f"{target}-synth" if synth else f"{target}-proxy", domain=domain,
                    speed=speed, certified=certified)
 
-    options = {"target": target, "device": device, "freq": freq, "seed": seed, "scheduler": scheduler,
-               "workers": workers, "progress": progress}
+    options = {"target": target, "device": request.device, "freq": request.clock or request.freq,
+               "seed": request.seed, "scheduler": request.scheduler, "workers": workers, "progress": progress}
 
     def search(name):
         found = ((search_widths(scene, name, progress), None) if not certified else
@@ -231,11 +194,11 @@ def compile_scene(spec, *, methods=None, synth=False, target="ecp5", device=None
     # the chosen design's full certificate and ``prepare``, begun beside its witness on a sample
     # worth forking for
     fork = scene.points.count >= MIN_POINTS and count(workers) > 1
-    pending = begin_full_certificate(out, certifier, fork) if certified and certifier is not None else None
-    prepared = (begin_beside_witness(out, lambda result: prepare(result, scene.analysis), fork)
-                if prepare is not None else None)
+    pending = begin_full_certificate(out, certifier, fork) if certified else None
+    prepared = (begin_beside_witness(out, lambda result: request.prepare(result, scene.analysis), fork)
+                if request.prepare is not None else None)
     try:
-        choose(out, scene, cost, prove, prove_timeout, progress, search)
+        choose(out, scene, cost, request.prove, request.prove_timeout, progress, search)
         if certified and out.rounds:  # a witness over the requirement on a design its certificate bounds
             step = out.rounds[0]
             raise AssertionError(f"internal error: {step['method']} at {step['params']} has a witness of "

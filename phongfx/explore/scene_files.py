@@ -1,4 +1,4 @@
-"""Scene files as sweep scenes: a user's own geometry beside the built-in torus and sphere.
+"""Scene files as evaluation scenes: a user's own geometry beside the built-in torus and sphere.
 
 A sweep measures every method on the pixels of a reference scene
 (:data:`phongfx.explore.methods.SCENES`).  A scene file (README "Scene files",
