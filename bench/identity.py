@@ -29,7 +29,7 @@ import shutil
 import subprocess
 import sys
 
-__all__ = ["capture", "compare", "normalize_verilog", "normalize_json"]
+__all__ = ["capture", "compare", "normalize_verilog", "normalize_json", "listed_blocks"]
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = ("lyon-balls", "torus", "local-mesh")
@@ -74,6 +74,12 @@ def normalize_json(value, root=None):
         value = FAILED.sub(r"/.\1.<random>/", value.replace(os.path.abspath(root), "<capture>"))
         return TEMPORARY.sub(r"\1.<random>/", value)
     return value
+
+
+def listed_blocks(text):
+    """The block names of ``phongfx blocks``'s output ``text``: the first word of each line
+    that gives a latency (a block's config wraps onto indented lines, a note follows)."""
+    return [match.group(1) for match in re.finditer(r"^(\S+) +latency\b", text, re.M)]
 
 
 def _run(python, env, cwd, args, log):
@@ -132,7 +138,7 @@ def capture(out, ref=None, synth_tables=False, parts=PARTS, synth_cache=None):
     if unknown:
         raise SystemExit(f"unknown part {unknown[0]!r}; parts: {', '.join(PARTS)}")
     if "verilog" in parts:
-        names = [line.split()[0] for line in run("blocks").splitlines() if line.strip()]
+        names = listed_blocks(run("blocks"))
         os.makedirs(os.path.join(out, "verilog"), exist_ok=True)
         for name in names:
             run("verilog", name, "-o", os.path.join(out, "verilog", f"{name}.v"))

@@ -1,8 +1,10 @@
 """The behaviour identity check compares what matters and only that."""
 
+import contextlib
+import io
 import json
 
-from bench.identity import compare, normalize_json, normalize_verilog
+from bench.identity import compare, listed_blocks, normalize_json, normalize_verilog
 
 
 def test_verilog_without_src_attributes():
@@ -62,3 +64,14 @@ def test_a_compiled_folder_s_report_page_is_a_view_not_compared(tmp_path):
     assert compare(str(a), str(b)) == (3, [])
     (a / "work" / "compile" / "torus" / "report.html").write_text("<p>certified in 9.1 s</p>")
     assert compare(str(a), str(b)) == (3, [])
+
+
+def test_the_blocks_are_read_from_phongfx_blocks_with_wrapped_configs():
+    from phongfx.cli import main
+    from phongfx.core.registry import REGISTRY
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["blocks"]) == 0
+    assert "\n  " in out.getvalue()  # some configs wrap onto a second line
+    assert listed_blocks(out.getvalue()) == list(REGISTRY)
