@@ -1,7 +1,7 @@
 """Certificates: sound upper bounds on a design's error over a scene's whole input domain.
 
 * :mod:`.certificate`: the :class:`~.certificate.Certificate` record;
-* :mod:`.bound`: :func:`~.bound.certify`, through the unit's bounding method (:mod:`.methods`);
+* :mod:`.bound`: :func:`~.bound.certify`, through the unit's bounding method (:mod:`.bounding`);
   :mod:`.figures`, the ``"interval"`` method of Lyon's datapaths: rounding error by interval
   arithmetic through the golden blocks (:mod:`.interval`, :mod:`.datapath`), the ideal
   datapath's distance from the reference (:mod:`.approximation`), both on boxes of the domain's

@@ -1,6 +1,6 @@
 """A sound bound on a compiled design's error over a scene's domain.
 
-:func:`certify` asks the unit's bounding method (:mod:`.methods`) whether it covers the design
+:func:`certify` asks the unit's bounding method (:mod:`.bounding`) whether it covers the design
 on the domain and, when it does, for its bound ``B`` on ``|out - (2^bits - 1)·I_ref|`` in display
 levels; the certificate meets the requirement when ``floor(B + 1/2)`` does
 (:func:`~phongfx.certify.certificate.meets`).  A unit without a bounding method, or a domain
@@ -16,7 +16,7 @@ from phongfx.explore.compile.analysis import analyse
 from phongfx.scene.geometry import frames
 
 from .certificate import Certificate, meets
-from .methods import bounding
+from .bounding import bounding
 from .regions import by_region
 
 __all__ = ["certify", "shader_config"]

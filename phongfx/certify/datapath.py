@@ -54,10 +54,7 @@ from .cones import at_infinity
 from .interval import Interval, rounding_error
 from .sphere import cover, frame, product, projection
 
-__all__ = ["UNITS", "SUB_CONES", "encoding_error", "lirp_error", "front", "interpolated", "constant", "shape", "magnitude", "root", "unit_terms"]
-
-#: The specular units bounded here (Lyon's Figures 7 and 8 and the halfway unit of Figure 5).
-UNITS = ("fig7", "fig8", "halfway")
+__all__ = ["SUB_CONES", "fig7_specular", "fig8_specular", "halfway_specular", "encoding_error", "lirp_error", "front", "interpolated", "constant", "shape", "magnitude", "root", "unit_terms"]
 
 #: sub-cones of a local L or V (:func:`interpolated`): cuts in the angle from the axis and about it
 SUB_CONES = (4, 16)
@@ -241,7 +238,7 @@ def _hull(x, count):
     return Interval(lo.min(axis=-1), hi.max(axis=-1), dev.max(axis=-1), x.fmt, x.faults)
 
 
-def _halfway_specular(config, normal, view, lights, shininess, hints):
+def halfway_specular(config, normal, view, lights, shininess, hints):
     scaled = shininess.shift(config.halfway_shift) if shininess is not None else None
     out = []
     for light in lights:
@@ -250,7 +247,7 @@ def _halfway_specular(config, normal, view, lights, shininess, hints):
     return out
 
 
-def _fig7_specular(config, normal, view, lights, shininess, hints):
+def fig7_specular(config, normal, view, lights, shininess, hints):
     # as phongfx.golden.datapath.fig7: R once, then per light 2x → shape
     r = _reflected(config, normal, view, hints)
     if hints is None:
@@ -260,20 +257,19 @@ def _fig7_specular(config, normal, view, lights, shininess, hints):
                               for light, span in zip(lights, hints["d"]))]
 
 
-def _fig8_specular(config, normal, view, lights, shininess, hints):
+def fig8_specular(config, normal, view, lights, shininess, hints):
     # as phongfx.golden.datapath.fig8: R once, then per light the root-shininess unit
     r = _reflected(config, normal, view, hints)
     m = shininess_input(config.root, shininess, len(r))
     return [root(config.root, r, light, m) for light in lights]
 
 
-_SPECULAR = {"fig7": _fig7_specular, "fig8": _fig8_specular, "halfway": _halfway_specular}
-
-
-def unit_terms(config, boxes, basis, lights, min_normal_length, cones=None):
+def unit_terms(config, specular, boxes, basis, lights, min_normal_length, cones=None):
     """``(spec, diff)``: per light the Intervals (B,) of the unit's ``spec<i>`` and ``diff<i>``
     over ``boxes`` (directional ``lights``: unit vectors; the viewer ``basis[0]``); ``cones``
-    (:class:`~.cones.Directions`), when given, says which are local instead."""
+    (:class:`~.cones.Directions`), when given, says which are local instead.  ``specular``:
+    the specular unit's own intervals after the normalizer (:func:`fig7_specular`,
+    :func:`fig8_specular`, :func:`halfway_specular`), named by its bounding method."""
     count = len(boxes)
     vec = config.normalize.fmt("out")
     cones = cones or at_infinity(basis, lights, -1.0)
@@ -294,6 +290,6 @@ def unit_terms(config, boxes, basis, lights, min_normal_length, cones=None):
             (lo, hi), delta = cones.difference(boxes, s, order, index)
             spans.append((np.maximum(lo - delta, 0.0), hi + delta))
         hints = {"r": cones.reflected(boxes, s, order), "d": spans}
-    spec = _SPECULAR[config.specular](config, normal, view, light_in, _shininess(config, boxes.n), hints)
+    spec = specular(config, normal, view, light_in, _shininess(config, boxes.n), hints)
     diff = [diffuse(config.diffuse, normal, light)["diff"] for light in light_in]
     return spec, diff

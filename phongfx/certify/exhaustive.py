@@ -65,15 +65,14 @@ def applicable(method, spec, domain):
         return "a point light changes L per pixel; enumeration needs every light directional"
     if spec.camera.kind != "infinity" or spec.frames.camera_path:
         return "a local or moving viewer changes V per pixel; enumeration needs the viewer at infinity"
-    if runs.is_datapath(method) or method in ("conventional", "blinn"):
+    if runs.hooks(method).normal_code:
         return None
     return f"the {method} unit is not fed a per-pixel normal code; enumeration covers those that are"
 
 
 def normal_format(method, config):
     """The format in which ``method``'s shader ``config`` takes the normal from the host."""
-    unit = config.units[0]
-    return unit.lirp.fmt("vec") if runs.is_datapath(method) else Format.parse(unit.vec)
+    return runs.hooks(method).normal_format(config.units[0])
 
 
 def _cells(fmt, xs):

@@ -11,11 +11,13 @@ import numpy as np
 
 from .branch import bound_boxes, cases
 from .cones import cone_why_not, directions
+from .datapath import fig7_specular, fig8_specular, halfway_specular
 from .outputs import box_errors
 from .regions import limits
 from .sphere import cover
 
-__all__ = ["LyonDatapaths", "LYON_DATAPATHS", "directional_why_not", "unit_directions_why_not"]
+__all__ = ["LyonDatapaths", "FIG7_BOUND", "FIG8_BOUND", "HALFWAY_BOUND", "directional_why_not",
+           "unit_directions_why_not"]
 
 
 def directional_why_not(domain):
@@ -34,12 +36,24 @@ def directional_why_not(domain):
 
 
 class LyonDatapaths:
-    """Bounds ``fig7``, ``fig8`` and ``halfway`` (its ``g2proj`` and ``d3`` variants)."""
+    """Bounds a specular unit of Lyon's datapath: ``fig7``, ``fig8`` and ``halfway`` (its
+    ``g2proj`` and ``d3`` variants), one instance each (their methods' ``certify`` face).
+
+    ``specular``: the unit's intervals after the normalizer
+    (:func:`~phongfx.certify.datapath.fig7_specular`...); ``k_field``: the sub-config whose
+    ``k`` is its shape's (``shape``; Figure 8's ``root``); ``halfway``: its form is taken at
+    ``N·H`` (Figure 5), bounded for the ``variants`` named and with directional lights and
+    the viewer at infinity only; ``gappa``: Gappa proves its chain (:mod:`.gappa`: Figure 7's).
+    """
 
     #: what the certificate names as its method
     name = "interval"
     #: what of a domain its bound reads: every limit (:func:`~phongfx.certify.regions.limits`)
     limits = staticmethod(limits)
+
+    def __init__(self, specular, k_field="shape", *, halfway=False, variants=(), gappa=False):
+        self.specular, self.k_field, self.halfway = specular, k_field, halfway
+        self.variants, self.gappa = variants, gappa
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
@@ -55,11 +69,11 @@ class LyonDatapaths:
                         f"{'interpolated' if unit.local_light(index) else 'as a constant'}")
         if unit.local_viewer != (domain.camera[0] == "point"):
             return f"the camera is {domain.camera[0]} but the datapath's local_viewer is {unit.local_viewer}"
-        if unit.specular == "halfway" and (unit.any_local):
+        if self.halfway and unit.any_local:
             return ("the halfway unit with point lights or a local viewer is not bounded yet (its form "
                     "against Phong's R·L takes N·H and R·L together, which the light and viewer cones "
                     "decouple in every box of normals)")
-        if unit.specular == "halfway" and unit.halfway.variant not in ("g2proj", "d3"):
+        if self.halfway and unit.halfway.variant not in self.variants:
             return f"the halfway unit's {unit.halfway.variant} variant is not bounded yet"
         return None
 
@@ -73,7 +87,7 @@ class LyonDatapaths:
             boxes = cover(cones.cover_cos_min, domain.min_normal_length, cases(domain))
 
         def errors(boxes, floor):  # one bound for every box: the floor saves nothing
-            return box_errors(shader, against, boxes, cones.basis, None, domain.min_normal_length, cones)
+            return box_errors(shader, self, against, boxes, cones.basis, None, domain.min_normal_length, cones)
 
         return bound_boxes(errors, domain, max_boxes=max_boxes, enough=enough, boxes=boxes, resume=resume,
                            separable=True)
@@ -89,4 +103,7 @@ def unit_directions_why_not(domain):
     return None
 
 
-LYON_DATAPATHS = LyonDatapaths()
+#: The ``certify`` faces of the methods ``fig7``, ``fig8`` and ``halfway``.
+FIG7_BOUND = LyonDatapaths(fig7_specular, gappa=True)
+FIG8_BOUND = LyonDatapaths(fig8_specular, "root")
+HALFWAY_BOUND = LyonDatapaths(halfway_specular, halfway=True, variants=("g2proj", "d3"))

@@ -35,6 +35,8 @@ import tempfile
 from fractions import Fraction
 from pathlib import Path
 
+from phongfx.config.shape import FIG7
+
 __all__ = ["GAPPA_MODES", "GappaError", "gappa_script", "run_gappa", "edge_bound", "gappa_bound", "specular_levels"]
 
 #: The golden model's rounding modes as Gappa's (module docstring: the same functions).
@@ -50,7 +52,7 @@ class GappaError(RuntimeError):
 def _unit(config):
     """The Figure 7 datapath config of ``config`` (a DatapathConfig or a ShaderConfig)."""
     unit = config.units[0] if hasattr(config, "units") else config
-    if getattr(unit, "specular", None) != "fig7":
+    if getattr(unit, "unit", None) is not FIG7:
         raise ValueError(f"the Gappa model is Figure 7's chain (specular fig7), not "
                          f"{getattr(unit, 'specular', type(unit).__name__)!r}")
     return unit

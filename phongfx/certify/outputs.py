@@ -107,15 +107,18 @@ def _halfway(against, unit, boxes, cones, i, s, c, n_hw, n, k):
                             n_hw * 2.0 ** unit.halfway_shift, n, k)
 
 
-def box_errors(shader, against, boxes, basis, lights, min_normal_length, cones=None):
+def box_errors(shader, unit_bound, against, boxes, basis, lights, min_normal_length, cones=None):
     """Per box and channel ``(rounding, approximation)`` arrays (B, 3), in levels, the unit's
     ``faults`` (quantizes that may overflow: :class:`~phongfx.certify.interval.Interval`) and per
     box ``gate``: 0 where the backside tests agree, else the ``|N·L|`` below which they may not.
-    ``cones`` (:class:`~phongfx.certify.cones.Directions`): point lights and a local viewer,
-    whose projections it widens; None: ``lights`` directional, the viewer ``basis[0]``."""
+    ``unit_bound``: what differs between Lyon's units (:class:`phongfx.certify.figures.LyonDatapaths`:
+    its ``specular`` intervals, the field whose ``k`` its shape takes, ``halfway`` for a unit
+    whose form is taken at ``N·H``).  ``cones`` (:class:`~phongfx.certify.cones.Directions`):
+    point lights and a local viewer, whose projections it widens; None: ``lights`` directional,
+    the viewer ``basis[0]``."""
     unit, blend = shader.units[0], shader.blend
     cones = cones or at_infinity(basis, lights, -1.0)
-    spec, diff = unit_terms(unit, boxes, cones.basis, None, min_normal_length, cones)
+    spec, diff = unit_terms(unit, unit_bound.specular, boxes, cones.basis, None, min_normal_length, cones)
     tables = coefficient_tables(blend)
     (ac, _, _), (ae, de, se) = tables
     m = boxes.material
@@ -123,7 +126,7 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length, cones=N
     p = cones.p(boxes)
     n = boxes.n.astype(np.float64)
     n_hw = _applied_n(unit, n)
-    k = unit.root.k if unit.specular == "fig8" else unit.shape.k
+    k = getattr(unit, unit_bound.k_field).k
     rounding = np.abs(ac - ae)[m].copy()
     approximation = np.zeros_like(rounding)
     faults, gate = set(), np.zeros(len(boxes))
@@ -137,7 +140,7 @@ def box_errors(shader, against, boxes, basis, lights, min_normal_length, cones=N
         add, off = light_rounding(tables, m, i, blend.levels, d.hi, d.dev, t.hi, t.dev, q, margin)
         rounding += add
         gate = np.maximum(gate, off)
-        if unit.specular == "halfway":
+        if unit_bound.halfway:
             shift = _halfway(against, unit, boxes, cones, i, s, c, n_hw, n, k)
         elif cones.local:  # N's scale and the ideal's own L and V against the reference's (:mod:`.cones`)
             shift = (bend_shift(*cones.difference(boxes, s, unit.direction_normalize.order, i), n_hw, k)

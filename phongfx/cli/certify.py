@@ -1,7 +1,7 @@
 """``phongfx certify``: a design's worst input (the witness) and a sound bound on its error
 over a scene's whole input domain (the certificate).
 
-Two kinds of target: a method of :data:`phongfx.explore.methods.METHODS` at widths given by
+Two kinds of target: a method of :data:`phongfx.core.methods.METHODS` at widths given by
 ``--set`` (``phongfx certify fig7 --set vec_frac=10 --scene scenes/torus.toml``), against the
 domain of ``--scene`` or, without one, of exact per-pixel normals of one ``--n`` under one
 directional light (a unit sphere's front, :data:`PER_PIXEL`); or a compiled output folder,
@@ -155,7 +155,7 @@ def _manifest(folder):
 
 def _target(args):
     """``(method, params, spec, manifest)`` of the command line's target."""
-    from phongfx.explore.methods import METHODS
+    from phongfx.core.methods import METHODS
     from phongfx.scene.file import load_scene
 
     if os.path.isdir(args.target):
@@ -258,6 +258,7 @@ def _replay(args, method, params, spec, data):
 
 
 def cmd_certify(args):
+    from phongfx.certify.bounding import bounding
     from phongfx.explore.compile.analysis import analyse
     from phongfx.explore.compile.witness import search
     from phongfx.scene.domain import domain as scene_domain
@@ -266,7 +267,7 @@ def cmd_certify(args):
 
     _check(args)
     method, params, spec, data = _target(args)
-    if args.gappa and method != "fig7":
+    if args.gappa and not getattr(bounding(method), "gappa", False):
         raise ValueError(f"--gappa proves Figure 7's chain (fig7), not {method}'s")
     if args.max_error is not None:
         spec = with_requirement(spec, args.max_error)

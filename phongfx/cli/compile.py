@@ -42,7 +42,7 @@ def add_arguments(p):
     p.add_argument("--seed", type=int, default=1, help="nextpnr's placement seed (default 1)")
     p.add_argument("--max-error", type=float, metavar="LEVELS",
                    help="instead of the scene's requirement.max_error_levels (display levels, > 0)")
-    from phongfx.explore.methods import METHODS
+    from phongfx.core.methods import METHODS
     p.add_argument("--methods",
                    help=f"comma-separated methods to consider: {', '.join(METHODS)} (default all)")
     p.add_argument("--no-check", action="store_true", help="skip the cycle-by-cycle RTL check")
@@ -210,6 +210,7 @@ def cmd_compile(args):
 
     from phongfx.compiler.compile import compile_scene
     from phongfx.compiler.request import CompileRequest, check_methods
+    from phongfx.core.methods import BASELINE
     from phongfx.explore.compile.emit import emit, prepare_check
     from phongfx.explore.compile.architecture import Speed
     from phongfx.explore.compile.workers import Pending
@@ -313,7 +314,7 @@ def cmd_compile(args):
     print(f"  against its default widths: max {_levels(default['max'])}, {_cost(default['cost'])}"
           + (" (the defaults miss the requirement)" if misses else _saving(data['cost'], default['cost'])))
     baseline = data["conventional_baseline"]
-    if data["chosen"] == "conventional":
+    if data["chosen"] == BASELINE:
         print("  the chosen design is conventional Phong itself")
     elif "why_not" in baseline:
         print(f"  against conventional Phong: {baseline['why_not']}")

@@ -1,7 +1,7 @@
 """The ``phongfx`` argument parser: subcommands, their options and help texts.
 
 Every list of accepted names in a help text is made from the names the code accepts
-(:data:`~phongfx.render.mesh.METHODS`, :data:`~phongfx.scene.span_inputs.UNITS`,
+(:data:`~phongfx.render.mesh.SHADED`, :data:`~phongfx.scene.span_inputs.UNITS`,
 :data:`~phongfx.explore.tables.TABLES` ...), not written out, so that a name added there
 is never missing here (hand-written lists had lost five).
 
@@ -18,7 +18,7 @@ from phongfx.explore.synth.netlist import NETLIST_TARGETS
 from phongfx.explore.synth.fpga import ALL_TARGETS
 from phongfx.explore.tables import TABLES
 from phongfx.hdl.dsp import DSP_TARGETS
-from phongfx.render.mesh import FLOAT_METHODS, RENAMED, UNIT_METHODS
+from phongfx.render.mesh import FLOAT_METHODS, RENAMED, SHADED_UNITS
 from phongfx.scene.span_inputs import UNITS
 from phongfx.sim.harness import BACKENDS
 
@@ -52,7 +52,7 @@ def _mesh_parser(p):
     renamed = ", ".join(f"{old} is now {new}" for old, new in RENAMED.items())
     p.add_argument("--method", default="phong",
                    help=f"float: {_names(FLOAT_METHODS)}; fixed point, the units as compile names them: "
-                        f"{_names(UNIT_METHODS)} (default phong; {renamed})")
+                        f"{_names(SHADED_UNITS)} (default phong; {renamed})")
     p.add_argument("--figure", choices=("14", "15"),
                    help="reproduce Szirmay-Kalos et al. Figure 14 (n = 5, 10, 20) or 15 (4- vs 6-bit ROM)")
     p.add_argument("--mesh", choices=("sphere", "torus"), default="torus")

@@ -1,7 +1,7 @@
 """The scene compiler: the cheapest datapath whose error a scene's viewer cannot see.
 
 :func:`compile_scene` takes a :class:`~phongfx.compiler.request.CompileRequest`, analyses the scene (:mod:`phongfx.explore.compile.analysis`), then for every
-method of :data:`phongfx.explore.methods.METHODS` either records why it cannot represent the
+method of :data:`phongfx.core.methods.METHODS` either records why it cannot represent the
 scene (:func:`phongfx.explore.compile.run.rejection`) or searches its widths:
 
 1. start from the method's default widths; if they miss the requirement, from every

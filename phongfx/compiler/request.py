@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 from phongfx.explore.compile.architecture import CLOCK_MAX, COST_UNITS, Speed
 from phongfx.explore.compile.workers import count
-from phongfx.explore.methods import METHODS
+from phongfx.core.methods import METHODS
 
 __all__ = ["CERTIFY", "CompileRequest", "check_methods", "check_samples"]
 
@@ -21,7 +21,7 @@ CERTIFY = ("none", "chosen", "search")
 
 
 def check_methods(methods):
-    """``methods`` as a list (all of :data:`~phongfx.explore.methods.METHODS` for None), each checked."""
+    """``methods`` as a list (all of :data:`~phongfx.core.methods.METHODS` for None), each checked."""
     names = list(METHODS) if methods is None else list(methods)
     for name in names:
         if name not in METHODS:
@@ -45,7 +45,7 @@ def _check_positive(name, value, hi, unit):
 class CompileRequest:
     """A scene to compile (``spec``, a :class:`~phongfx.scene.file.SceneSpec`) and how.
 
-    :ivar methods: keys of :data:`~phongfx.explore.methods.METHODS` to consider (None: all).
+    :ivar methods: keys of :data:`~phongfx.core.methods.METHODS` to consider (None: all).
     :ivar synth: cost by synthesis instead of the proxy.
     :ivar target: what the cost is measured on: ``"ecp5"`` (LUT-eq), ``"ice40"`` or
         ``"asic"`` (µm²); with ``device`` (the part, or the library on ``"asic"``, default

@@ -99,6 +99,10 @@ class BlockConfig:
     INPUTS = None
     #: Output ports, declared as :attr:`INPUTS`.
     OUTPUTS = None
+    #: The output ports a shading unit's picture is made of: part (``"diff"``, ``"spec"``) ->
+    #: output port, read as an intensity by :func:`phongfx.scene.span_inputs.decode`; empty
+    #: for a block that is not a whole unit.
+    SHADES = {}
     #: Sub-config fields whose ``pipeline`` is raised to at least this config's own.
     PIPELINED = ()
     #: Direction-vector format fields: name -> (scale, guard), set by :meth:`with_vec_frac`
@@ -199,6 +203,8 @@ class SpecularUnit:
     are those of a unit ending in difference → shape (Figures 7 and 5)."""
 
     parts = ()
+    #: Whether the specular is taken at the halfway vector ``H`` (Figure 5), not at ``R``.
+    bisector = False
 
     def links(self, config):
         """``(name, format, name, format)`` of every pair of formats the unit connects
@@ -230,6 +236,11 @@ class SpecularUnit:
     def top_n(self, shininess):
         """The ``n`` of a shininess of the port's terms (``m = √n`` ports square it)."""
         return shininess
+
+    def shininess_note(self, config):
+        """What the input contract adds to "the pixel's shininess n itself" (a unit that scales
+        its port itself says so)."""
+        return ""
 
     def applied_n(self, config, n):
         """The shininess the hardware applies for the scene's float ``n`` array (what its

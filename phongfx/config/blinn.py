@@ -54,6 +54,7 @@ class BlinnConfig(BlockConfig):
 
     INPUTS = {"normal": ("vec", 3), "light": ("vec", 3), "half": ("vec", 3), "n": ("n", 1)}
     OUTPUTS = {"diffuse": ("out", 1), "specular": ("out", 1)}
+    SHADES = {"diff": "diffuse", "spec": "specular"}
     #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
     #: takes it (:func:`phongfx.config.shader.unit_terms`)
     TERMS = ("diffuse", None, "specular")

@@ -27,6 +27,8 @@ class EulerConfig(BlockConfig):
 
     INPUTS = {"init": (Format(1, 0), 1), "p0": ("p", 1), "t0": ("t", 1), "ds": ("ds", 1)}
     OUTPUTS = {"p": ("p", 1), "level": ("out", 1)}
+    # one interpolated cosine: N·L when fed L, the base of the specular power when fed H
+    SHADES = {"diff": "p", "spec": "p"}
 
     def validate(self):
         check_step_formats(self, ("ds", "t", "p"))

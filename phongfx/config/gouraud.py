@@ -23,6 +23,8 @@ class GouraudConfig(BlockConfig):
 
     INPUTS = {"init": (Format(1, 0), 1), "p0": ("p", 1), "dp": ("dp", 1)}
     OUTPUTS = {"p": ("p", 1), "level": ("out", 1)}
+    # one interpolated cosine: N·L when fed L, the base of the specular power when fed H
+    SHADES = {"diff": "p", "spec": "p"}
 
     def validate(self):
         check_step_formats(self, ("dp", "p"))

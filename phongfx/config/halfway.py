@@ -80,6 +80,7 @@ class HalfwayUnit(SpecularUnit):
     (Figure 9 rows 7–10, as the appendix code scales ``n``)."""
 
     parts = ("halfway", "difference", "shape")
+    bisector = True
 
     def links(self, c):
         return [(*self.vec(c), "halfway.vec", c.halfway.vec),
@@ -100,6 +101,9 @@ class HalfwayUnit(SpecularUnit):
 
     def shininess_const(self, c):
         return c.difference.n_const >> c.halfway_shift
+
+    def shininess_note(self, c):
+        return " (the unit scales it by 2^halfway_shift itself)"
 
     def fit(self, config, n_hi, n_const):
         shift = config.halfway_shift

@@ -27,6 +27,7 @@ class SchlickConfig(BlockConfig):
 
     INPUTS = {"t": ("t", 1), "n": ("n", 1)}
     OUTPUTS = {"spec": ("out", 1)}
+    SHADES = {"spec": "spec"}  # Schlick's rational term is the specular alone
     #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
     #: takes it: no diffuse output (:func:`phongfx.config.shader.unit_terms`)
     TERMS = (None, None, "spec")

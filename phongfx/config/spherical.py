@@ -31,6 +31,7 @@ class SphericalConfig(BlockConfig):
     INPUTS = {"init": (Format(1, 0), 1), "b": ("theta", 1), "s": ("theta", 1), "c": ("c", 1),
               "bd": ("theta", 1), "sd": ("theta", 1), "cd": ("c", 3)}
     OUTPUTS = {"spec": ("out", 1), "diff": ("out", 3)}
+    SHADES = {"diff": "diff", "spec": "spec"}
     #: ``(diffuse port, lane, specular port)`` of the light it computes, as a shader's blend
     #: takes it: the ``diff`` vector's first lane (:func:`phongfx.config.shader.unit_terms`)
     TERMS = ("diff", 0, "spec")

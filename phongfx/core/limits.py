@@ -6,7 +6,9 @@ The configs validate their fields against these (:mod:`phongfx.config.base`,
 ask for a point the config refuses, nor the two drift apart.
 """
 
-__all__ = ["MAX_VEC_FRAC", "K_MAX", "LIMITS", "check_range"]
+from numbers import Integral
+
+__all__ = ["MAX_VEC_FRAC", "K_MAX", "LIMITS", "check_range", "check_param"]
 
 #: Widest vector width ``f`` of :meth:`~phongfx.config.BlockConfig.with_vec_frac`: at 24 the
 #: halfway datapath's exact ``4n·D·D`` (``17.2f``) no longer fits the golden model's int64.
@@ -25,3 +27,11 @@ def check_range(owner, name, lo, hi):
         top_lo, top_hi = LIMITS[name]
         if not top_lo <= lo <= hi <= top_hi:
             raise ValueError(f"{owner} range of {name} must lie in {top_lo}..{top_hi}, not {lo}..{hi}")
+
+
+def check_param(name, value, lo, hi):
+    """``value`` as an ``int`` if it is an integer in ``lo..hi`` (numpy's too; a bool is not),
+    else ValueError: a search parameter, which a sweep file or a numpy grid may give."""
+    if isinstance(value, bool) or not isinstance(value, Integral) or not lo <= value <= hi:
+        raise ValueError(f"{name} must be an integer in {lo}..{hi}, not {value!r}")
+    return int(value)

@@ -10,7 +10,8 @@ it.  ``get_block("shape", k=1)`` gives a :class:`Block`: the block with those co
 changed.  The CLI (``phongfx verilog``, ``phongfx sim``), the tables
 and the tests choose blocks from here.
 
-Adding a block is one line below plus its four files (and their tests).
+Adding a block is one entry below (the five paths, written out) plus its four files (and
+their tests).
 """
 
 import sys
@@ -54,22 +55,10 @@ class Entry:
     stimulus: str
     extremes: str
 
-    @classmethod
-    def of(cls, name, config, component, *, module=None, golden=None):
-        """The entry of a block whose four files are named ``module`` (default ``name``):
-        ``config`` and ``component`` are class names, ``golden`` the golden function's
-        name (default ``module``)."""
-        module = module or name
-        return cls(name, f"phongfx.config.{module}:{config}",
-                   f"phongfx.golden.{module}:{golden or module}",
-                   f"phongfx.hdl.{module}:{component}",
-                   f"phongfx.sim.stimulus.{module}:stimulus",
-                   f"phongfx.sim.stimulus.{module}:extremes")
-
     @property
     def module(self):
-        """The name of the block's files (``"root"``; ``"datapath"`` for the three datapaths),
-        as the naming rule of :meth:`of` puts it at the end of every path."""
+        """The name of the block's files (``"root"``; ``"datapath"`` for the three datapaths):
+        the end of its golden path, as of every other."""
         return self.golden.partition(":")[0].rpartition(".")[2]
 
     def load(self, face):
@@ -134,32 +123,127 @@ class Block:
         return self.extremes_function(self.name)
 
 
-_ = Entry.of
+# Every path is written out, one per line, so that grep, an IDE and tests/test_imports.py
+# follow a block to each of its files.
 #: name -> :class:`Entry`; the order is that of ``phongfx blocks`` and the tables.
 REGISTRY = {entry.name: entry for entry in (
-    _("lirp", "LirpConfig", "Lirp"),
-    _("normalize", "NormalizeConfig", "Normalize"),
-    _("reflect", "ReflectConfig", "Reflect"),
-    _("difference", "DifferenceConfig", "Difference"),
-    _("shape", "ShapeConfig", "Shape"),
-    _("diffuse", "DiffuseConfig", "Diffuse"),
-    _("root", "RootConfig", "Root"),
-    _("halfway", "HalfwayConfig", "Halfway"),
-    _("schlick", "SchlickConfig", "Schlick"),
-    _("spherical", "SphericalConfig", "Spherical"),
-    _("euler", "EulerConfig", "Euler"),
-    _("gouraud", "GouraudConfig", "Gouraud"),
-    _("blinn", "BlinnConfig", "Blinn"),
-    _("conventional", "ConventionalConfig", "Conventional"),
-    _("blend", "BlendConfig", "Blend"),
+    Entry("lirp",
+          config="phongfx.config.lirp:LirpConfig",
+          golden="phongfx.golden.lirp:lirp",
+          component="phongfx.hdl.lirp:Lirp",
+          stimulus="phongfx.sim.stimulus.lirp:stimulus",
+          extremes="phongfx.sim.stimulus.lirp:extremes"),
+    Entry("normalize",
+          config="phongfx.config.normalize:NormalizeConfig",
+          golden="phongfx.golden.normalize:normalize",
+          component="phongfx.hdl.normalize:Normalize",
+          stimulus="phongfx.sim.stimulus.normalize:stimulus",
+          extremes="phongfx.sim.stimulus.normalize:extremes"),
+    Entry("reflect",
+          config="phongfx.config.reflect:ReflectConfig",
+          golden="phongfx.golden.reflect:reflect",
+          component="phongfx.hdl.reflect:Reflect",
+          stimulus="phongfx.sim.stimulus.reflect:stimulus",
+          extremes="phongfx.sim.stimulus.reflect:extremes"),
+    Entry("difference",
+          config="phongfx.config.difference:DifferenceConfig",
+          golden="phongfx.golden.difference:difference",
+          component="phongfx.hdl.difference:Difference",
+          stimulus="phongfx.sim.stimulus.difference:stimulus",
+          extremes="phongfx.sim.stimulus.difference:extremes"),
+    Entry("shape",
+          config="phongfx.config.shape:ShapeConfig",
+          golden="phongfx.golden.shape:shape",
+          component="phongfx.hdl.shape:Shape",
+          stimulus="phongfx.sim.stimulus.shape:stimulus",
+          extremes="phongfx.sim.stimulus.shape:extremes"),
+    Entry("diffuse",
+          config="phongfx.config.diffuse:DiffuseConfig",
+          golden="phongfx.golden.diffuse:diffuse",
+          component="phongfx.hdl.diffuse:Diffuse",
+          stimulus="phongfx.sim.stimulus.diffuse:stimulus",
+          extremes="phongfx.sim.stimulus.diffuse:extremes"),
+    Entry("root",
+          config="phongfx.config.root:RootConfig",
+          golden="phongfx.golden.root:root",
+          component="phongfx.hdl.root:Root",
+          stimulus="phongfx.sim.stimulus.root:stimulus",
+          extremes="phongfx.sim.stimulus.root:extremes"),
+    Entry("halfway",
+          config="phongfx.config.halfway:HalfwayConfig",
+          golden="phongfx.golden.halfway:halfway",
+          component="phongfx.hdl.halfway:Halfway",
+          stimulus="phongfx.sim.stimulus.halfway:stimulus",
+          extremes="phongfx.sim.stimulus.halfway:extremes"),
+    Entry("schlick",
+          config="phongfx.config.schlick:SchlickConfig",
+          golden="phongfx.golden.schlick:schlick",
+          component="phongfx.hdl.schlick:Schlick",
+          stimulus="phongfx.sim.stimulus.schlick:stimulus",
+          extremes="phongfx.sim.stimulus.schlick:extremes"),
+    Entry("spherical",
+          config="phongfx.config.spherical:SphericalConfig",
+          golden="phongfx.golden.spherical:spherical",
+          component="phongfx.hdl.spherical:Spherical",
+          stimulus="phongfx.sim.stimulus.spherical:stimulus",
+          extremes="phongfx.sim.stimulus.spherical:extremes"),
+    Entry("euler",
+          config="phongfx.config.euler:EulerConfig",
+          golden="phongfx.golden.euler:euler",
+          component="phongfx.hdl.euler:Euler",
+          stimulus="phongfx.sim.stimulus.euler:stimulus",
+          extremes="phongfx.sim.stimulus.euler:extremes"),
+    Entry("gouraud",
+          config="phongfx.config.gouraud:GouraudConfig",
+          golden="phongfx.golden.gouraud:gouraud",
+          component="phongfx.hdl.gouraud:Gouraud",
+          stimulus="phongfx.sim.stimulus.gouraud:stimulus",
+          extremes="phongfx.sim.stimulus.gouraud:extremes"),
+    Entry("blinn",
+          config="phongfx.config.blinn:BlinnConfig",
+          golden="phongfx.golden.blinn:blinn",
+          component="phongfx.hdl.blinn:Blinn",
+          stimulus="phongfx.sim.stimulus.blinn:stimulus",
+          extremes="phongfx.sim.stimulus.blinn:extremes"),
+    Entry("conventional",
+          config="phongfx.config.conventional:ConventionalConfig",
+          golden="phongfx.golden.conventional:conventional",
+          component="phongfx.hdl.conventional:Conventional",
+          stimulus="phongfx.sim.stimulus.conventional:stimulus",
+          extremes="phongfx.sim.stimulus.conventional:extremes"),
+    Entry("blend",
+          config="phongfx.config.blend:BlendConfig",
+          golden="phongfx.golden.blend:blend",
+          component="phongfx.hdl.blend:Blend",
+          stimulus="phongfx.sim.stimulus.blend:stimulus",
+          extremes="phongfx.sim.stimulus.blend:extremes"),
     # the three datapaths of Lyon's Figures 7, 8 and 5: one component, three configs
-    _("fig7", "fig7_config", "Datapath", module="datapath"),
-    _("fig8", "fig8_config", "Datapath", module="datapath"),
-    _("halfway_datapath", "halfway_config", "Datapath", module="datapath"),
+    Entry("fig7",
+          config="phongfx.config.datapath:fig7_config",
+          golden="phongfx.golden.datapath:datapath",
+          component="phongfx.hdl.datapath:Datapath",
+          stimulus="phongfx.sim.stimulus.datapath:stimulus",
+          extremes="phongfx.sim.stimulus.datapath:extremes"),
+    Entry("fig8",
+          config="phongfx.config.datapath:fig8_config",
+          golden="phongfx.golden.datapath:datapath",
+          component="phongfx.hdl.datapath:Datapath",
+          stimulus="phongfx.sim.stimulus.datapath:stimulus",
+          extremes="phongfx.sim.stimulus.datapath:extremes"),
+    Entry("halfway_datapath",
+          config="phongfx.config.datapath:halfway_config",
+          golden="phongfx.golden.datapath:datapath",
+          component="phongfx.hdl.datapath:Datapath",
+          stimulus="phongfx.sim.stimulus.datapath:stimulus",
+          extremes="phongfx.sim.stimulus.datapath:extremes"),
     # a whole shader: a unit above (one copy, or one per light) and the blend to r, g, b
-    _("shader", "ShaderConfig", "Shader"),
+    Entry("shader",
+          config="phongfx.config.shader:ShaderConfig",
+          golden="phongfx.golden.shader:shader",
+          component="phongfx.hdl.shader:Shader",
+          stimulus="phongfx.sim.stimulus.shader:stimulus",
+          extremes="phongfx.sim.stimulus.shader:extremes"),
 )}
-del _
 
 
 def block_names():

@@ -15,8 +15,8 @@ into a design of their own.
 * :mod:`phongfx.deliver.component` — the compiled core as an Amaranth
   ``wiring.Component`` with ``lib.stream`` interfaces (``load_core`` of a compiled
   folder); :mod:`phongfx.deliver.manifest` reads the folder's ``manifest.json`` back.
-* :mod:`phongfx.deliver.report` — ``DIR/report.html``, the compiled folder on one
-  self-contained page (its pixel-rate section :mod:`~phongfx.deliver.front`, its charts
+* :mod:`phongfx.deliver.page` — ``DIR/report.html``, the compiled folder on one
+  self-contained page (its pixel-rate section :mod:`~phongfx.deliver.rates`, its charts
   :mod:`~phongfx.deliver.chart`, its HTML pieces :mod:`~phongfx.deliver.markup`).
 
 The layer sits above ``phongfx.render`` (it reads scene specs and configs, and may
@@ -32,7 +32,7 @@ _HOMES = {"input_contract": "phongfx.deliver.contract", "contract_lines": "phong
           "ShadingCore": "phongfx.deliver.component", "load_core": "phongfx.deliver.component",
           "ManifestError": "phongfx.deliver.manifest", "read_manifest": "phongfx.deliver.manifest",
           "clock_of": "phongfx.deliver.constraints", "write_constraints": "phongfx.deliver.constraints",
-          "write_flow": "phongfx.deliver.fusesoc", "write_report": "phongfx.deliver.report"}
+          "write_flow": "phongfx.deliver.fusesoc", "write_report": "phongfx.deliver.page"}
 __all__ = list(_HOMES)
 
 

@@ -1,4 +1,4 @@
-"""Scatter charts as inline SVG text, for the compile report page (:mod:`phongfx.deliver.report`).
+"""Scatter charts as inline SVG text, for the compile report page (:mod:`phongfx.deliver.page`).
 
 :func:`scatter` draws labelled points on linear axes with "nice" ticks (1, 2 or 5 times a
 power of ten), a title, axis titles, optional reference lines (a requirement: a horizontal

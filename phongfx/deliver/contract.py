@@ -29,7 +29,8 @@ the frames of :mod:`phongfx.scene.geometry`:
 :func:`contract_lines` prints it as the paragraphs of the top's header.
 """
 
-from phongfx.config import BlinnConfig, ConventionalConfig, DatapathConfig, ShaderConfig, SphericalConfig
+from phongfx.config import ConventionalConfig, DatapathConfig, ShaderConfig, SphericalConfig
+from phongfx.core.methods import METHODS, get_method
 
 __all__ = ["SPACE", "QUANTIZE", "input_contract", "contract_lines", "error_paragraph"]
 
@@ -75,8 +76,9 @@ def _end(which, target):
             f"{target}; the host normalizes it, the core interpolates it with a and normalizes per pixel")
 
 
-def _datapath(name, config, spec):
-    """The contract of input ``name`` of Lyon's datapath ``config``."""
+def datapath_entry(name, config, spec, light, n_scale):
+    """The contract of input ``name`` of Lyon's datapath ``config`` (the ``contract`` face of
+    ``fig7``, ``fig8`` and ``halfway``; one copy holds every light, fed ``n`` itself)."""
     if name in ("n0", "n1"):
         which = "first" if name == "n0" else "last"
         return _entry(name.upper(), f"the unit surface normal at the {which} pixel of the pixel's span (a mesh's "
@@ -91,8 +93,7 @@ def _datapath(name, config, spec):
     if name in ("n", "m"):
         _, _, top = config.shininess
         what = ("m = round(sqrt(n)) of the pixel's shininess n (Figure 8 takes m)" if name == "m" else
-                "the pixel's shininess n itself" + (" (the unit scales it by 2^halfway_shift itself)"
-                                                    if config.specular == "halfway" else ""))
+                "the pixel's shininess n itself" + config.unit.shininess_note(config))
         return _entry(name, f"{what}: an integer 1..{top}, from the pixel's material (lyon_spheres: its "
                       "sphere's)")
     if name == "v":
@@ -117,8 +118,9 @@ _INTERPOLATED = ("N' = (1-a)*N0 + a*N1, the pixel's normal interpolated along it
                  "normalizes it")
 
 
-def _per_pixel(name, config, spec, light, n_scale):
-    """The contract of input ``name`` of a conventional or Blinn unit computing ``light``."""
+def per_pixel_entry(name, config, spec, light, n_scale):
+    """The contract of input ``name`` of a conventional or Blinn unit computing ``light`` (their
+    methods' ``contract`` face), fed ``n' = n_scale*n``."""
     if name == "normal":
         return _entry("N'", _INTERPOLATED, space="eye", unit=False, by="core")
     target, local = _toward(spec, light) if light is not None else ("every light", False)
@@ -171,22 +173,22 @@ _SPHERICAL = {
 }
 
 
-def _spherical(name, light):
+def spherical_entry(name, config, spec, light, n_scale):
+    """The contract of input ``name`` of the spherical unit computing ``light`` (its method's
+    ``contract`` face; ``n' = 4n`` is folded into its span setup)."""
     quantity, meaning = _SPHERICAL[name]
     return _entry(quantity if name == "init" else f"{quantity}{light}", meaning,
                   rate="pixel" if name == "init" else "span setup", light=None if name == "init" else light)
 
 
-def _unit_entry(name, unit, config, spec, copy, n_scale):
-    """The contract of input ``name`` of the unit copy ``copy`` (its light; None: shared)."""
-    if isinstance(unit, DatapathConfig):
-        return _datapath(name, unit, spec)
-    if isinstance(unit, (ConventionalConfig, BlinnConfig)):
-        return _per_pixel(name, unit, spec, copy, n_scale)
-    if isinstance(unit, SphericalConfig):
-        return _spherical(name, copy)
-    raise ValueError(f"config.units[0] must be a unit the compiler ships (a datapath, conventional, blinn or "
-                     f"spherical), not {type(unit).__name__}")
+def _unit_entry(method, name, unit, spec, copy, n_scale):
+    """The contract of input ``name`` of the unit copy ``copy`` (its light; None: shared) of
+    ``method``: its ``contract`` face (:data:`phongfx.core.methods.METHODS`)."""
+    faces = get_method(method)
+    if not faces.has("contract"):
+        shipped = ", ".join(name for name, m in METHODS.items() if m.has("contract"))
+        raise ValueError(f"method must be one the compiler ships ({shipped}), not {method!r}")
+    return faces.load("contract")(name, unit, spec, copy, n_scale)
 
 
 def _materials(config, spec):
@@ -258,7 +260,7 @@ def input_contract(config, spec, method, *, n_scale, ports=None):
             entry = _entry("material", f"the index of the pixel's material in the scene file's order: {names}")
         else:
             name, unit, light = owners[field]
-            entry = _unit_entry(name, unit, config, spec, light, n_scale)
+            entry = _unit_entry(method, name, unit, spec, light, n_scale)
         inputs.append({"field": field, "ports": [p["name"] for p in ports if p["field"] == field
                                                   and p["direction"] == "input"],
                        "format": str(fmt), "lanes": lanes, **entry})

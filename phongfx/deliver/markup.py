@@ -1,4 +1,4 @@
-"""HTML pieces of the compile report page (:mod:`phongfx.deliver.report`): escaped text,
+"""HTML pieces of the compile report page (:mod:`phongfx.deliver.page`): escaped text,
 tables, a manifest's numbers, costs and widths in words, and PNGs as ``data:`` URIs.
 
 Every text that comes from a manifest reaches the page through :func:`esc`

@@ -39,10 +39,11 @@ independent copies), while :meth:`Method.config <phongfx.core.methods.Method.con
 
 import numpy as np
 
-from phongfx.explore.methods import METHODS, SCENES, Scene
+from phongfx.core.methods import METHODS
+from phongfx.explore.methods import SCENES, Scene
 from phongfx.explore.scene_files import file_views, is_scene_file
 
-__all__ = ["METHODS", "Scene", "SCENES", "STATS", "REFERENCES", "PIXEL_COEF", "COST_KEYS",
+__all__ = ["Scene", "SCENES", "STATS", "REFERENCES", "PIXEL_COEF", "COST_KEYS",
            "ASIC_COST_KEYS", "error_metrics", "pixel_metrics", "pixel_errors", "evaluate"]
 
 STATS = ("max", "mean", "psnr", "pct_over1")

@@ -1,22 +1,19 @@
 """The sweepable methods and the reference scenes of :mod:`phongfx.explore.evaluate`.
 
-A :class:`MethodSpec` names a method's block, its width parameters with defaults and
-ranges, how to build the block config from them, and how to run the golden model on a
-:class:`Scene` (the fixed-point result and its float references per pixel).  The
-quantities and references are described in :mod:`phongfx.explore.evaluate`.  The methods,
-their parameters and ranges are those of the method registry
-(:data:`phongfx.core.methods.METHODS`), whose ``build`` and ``run`` faces are the
-``build_NAME`` and ``run_NAME`` below.
+A method (:class:`phongfx.core.methods.Method`) names its block, its width parameters with
+defaults and ranges, how to build the block config from them (its ``build`` face) and how to
+run the golden model on a :class:`Scene` (its ``run`` face: the fixed-point result and its
+float references per pixel); the ``build_NAME`` and ``run_NAME`` below are those faces.  The
+quantities and references are described in :mod:`phongfx.explore.evaluate`.
 """
 
 
 import functools
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from phongfx.core.methods import METHODS as REGISTERED
+from phongfx.core.limits import check_param
 from phongfx.core.methods import get_method
 from phongfx.core.registry import REGISTRY, get_block
 from phongfx.golden import euler_setup
@@ -27,79 +24,33 @@ from phongfx.scene.span_inputs import (VIEWER, blinn_inputs, conventional_inputs
                                        gouraud_inputs, halfway, schlick_inputs, spherical_inputs)
 from phongfx.sim.stimulus.datapath import encode
 
-__all__ = ["MethodSpec", "METHODS", "Scene", "SCENES", "build_datapath", "run_datapath",
+__all__ = ["Scene", "SCENES", "run_datapath",
            "build_spherical", "run_spherical", "build_euler", "run_euler", "build_gouraud", "run_gouraud",
            "build_schlick", "run_schlick", "build_blinn", "run_blinn", "build_conventional", "run_conventional"]
-
-
-def _check_int(name, value, lo, hi):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not lo <= value <= hi:
-        raise ValueError(f"{name} must be an integer in {lo}..{hi}, not {value!r}")
-    return int(value)
-
-
-@dataclass(frozen=True)
-class MethodSpec:
-    """A sweepable method: its registry block, its parameters and how to build and run it.
-
-    ``params`` maps each parameter to its default, ``ranges`` to its ``(lo, hi)``
-    (inclusive; a builder may narrow a range from another parameter, e.g. Euler's
-    ``t_frac <= p_frac``).  The defaults build the registry's default config exactly.
-    """
-
-    name: str
-    block: str
-    params: dict
-    ranges: dict
-    build: object = field(repr=False, compare=False)
-    run: object = field(repr=False, compare=False)
-
-    def resolve(self, params):
-        """``params`` over the defaults, every value checked against its range."""
-        if not isinstance(params, dict):
-            raise ValueError(f"params must be a dict, not {type(params).__name__}")
-        unknown = sorted(set(params) - set(self.params))
-        if unknown:
-            raise ValueError(f"{unknown[0]} is not a parameter of {self.name}; "
-                             f"parameters: {', '.join(self.params)}")
-        merged = {**self.params, **params}
-        return {name: _check_int(name, merged[name], *self.ranges[name]) for name in self.params}
-
-    def config(self, params):
-        """The block config of ``params`` (missing ones at their defaults)."""
-        return self.build(self.resolve(params))
 
 
 # --- configs -----------------------------------------------------------------------------
 
 # The three Lyon datapaths take every direction-vector format from ``vec_frac`` through
-# DatapathConfig's derived setting, so a sweep point and ``--set vec_frac=F`` agree.  Every
-# other width is a field's fraction bits (``x2_frac``: ``x2``'s), its integer bits and sign
+# DatapathConfig's derived setting (Method.build), so a sweep point and ``--set vec_frac=F``
+# agree.  Every other width is a field's fraction bits (``x2_frac``: ``x2``'s), its integer bits and sign
 # those of the field's default (BlockConfig.frac_changes), never written here a second time.
 
-def build_datapath(block, p):
-    """The config of a datapath method (``block``) at a sweep point: every direction-vector
-    format from ``vec_frac``, ``lights``, then its unit's own parameters
-    (:meth:`~phongfx.config.base.SpecularUnit.sweep`)."""
-    base = REGISTRY[block].default_config().replace(vec_frac=p["vec_frac"], lights=p["lights"])
-    return base.unit.sweep(base, p)
-
-
 def build_spherical(p):
-    _check_int("addr_bits", p["addr_bits"], 2, min(p["theta_frac"] + 1, 16))
+    check_param("addr_bits", p["addr_bits"], 2, min(p["theta_frac"] + 1, 16))
     base = REGISTRY["spherical"].default_config()
     return base.replace(**base.frac_changes(theta=p["theta_frac"], rom=p["rom_bits"]), addr_bits=p["addr_bits"])
 
 
 def build_euler(p):
-    _check_int("t_frac", p["t_frac"], 8, p["p_frac"])
-    _check_int("ds_frac", p["ds_frac"], 8, p["t_frac"])
+    check_param("t_frac", p["t_frac"], 8, p["p_frac"])
+    check_param("ds_frac", p["ds_frac"], 8, p["t_frac"])
     base = REGISTRY["euler"].default_config()
     return base.replace(**base.frac_changes(p=p["p_frac"], t=p["t_frac"], ds=p["ds_frac"]))
 
 
 def build_gouraud(p):
-    _check_int("dp_frac", p["dp_frac"], 8, p["p_frac"])
+    check_param("dp_frac", p["dp_frac"], 8, p["p_frac"])
     base = REGISTRY["gouraud"].default_config()
     return base.replace(**base.frac_changes(p=p["p_frac"], dp=p["dp_frac"]))
 
@@ -200,7 +151,7 @@ def run_spherical(spec, config, p, scene):
     d = scene.data
     out = get_block("spherical", config=config).golden(spherical_inputs(d["spans"], d["light"], p["n"], config))
     self_ = shade(d["spans"], "cos2", light=d["light"], n=p["n"])[1]
-    return decode("spherical", out, config, "spec"), {"phong": _nh_phong(scene, p["n"]), "self": self_}, \
+    return decode(out, config, "spec"), {"phong": _nh_phong(scene, p["n"]), "self": self_}, \
         _terms(out, config.outputs, "diff", "spec", lane=0)
 
 
@@ -217,7 +168,7 @@ def _run_scanline(unit, feed, own):
         d = scene.data
         out = get_block(unit, config=config).golden(feed(d["spans"], d["light"], config))
         curves = _diffuse_curves(scene)
-        return decode(unit, out, config), {"phong": curves["phong"], "self": curves[own]}, None
+        return decode(out, config), {"phong": curves["phong"], "self": curves[own]}, None
     return run
 
 
@@ -225,7 +176,7 @@ def run_schlick(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("schlick", config=config).golden(schlick_inputs(d["spans"], d["light"], n, config))
     t = np.clip(d["normal"] @ d["h"], 0.0, 1.0)
-    return decode("schlick", out, config), {"phong": _nh_phong(scene, n), "self": t / (n - n * t + t)}, \
+    return decode(out, config), {"phong": _nh_phong(scene, n), "self": t / (n - n * t + t)}, \
         _terms(out, config.outputs, None, "spec")
 
 
@@ -233,7 +184,7 @@ def run_blinn(spec, config, p, scene):
     d, n = scene.data, p["n"]
     out = get_block("blinn", config=config).golden(blinn_inputs(d["spans"], d["light"], n, config))
     phong = _nh_phong(scene, n)
-    return decode("blinn", out, config, "spec"), {"phong": phong, "self": phong}, \
+    return decode(out, config, "spec"), {"phong": phong, "self": phong}, \
         _terms(out, config.outputs, "diffuse", "specular")
 
 
@@ -246,7 +197,7 @@ def run_conventional(spec, config, p, scene):
     out = get_block("conventional", config=config).golden(raw)
     phong = specular("phong", d["normal"], d["light"], VIEWER, n)
     own = np.where(d["normal"] @ d["light"] > 0, phong, 0.0)
-    return decode("conventional", out, config, "spec"), {"phong": phong, "self": own}, \
+    return decode(out, config, "spec"), {"phong": phong, "self": own}, \
         _terms(out, config.outputs, "diffuse", "specular")
 
 
@@ -255,25 +206,3 @@ run_euler = _run_scanline("euler", euler_inputs, "corrected")
 run_gouraud = _run_scanline("gouraud", gouraud_inputs, "gouraud")
 
 
-class _Catalog(Mapping):
-    """The methods of :data:`phongfx.core.methods.METHODS` as :class:`MethodSpec`, read from the
-    registry on every access, so a method registered at run time is sweepable at once."""
-
-    def __getitem__(self, name):
-        method = REGISTERED[name]
-        build = (method.load("build") if method.has("build")
-                 else functools.partial(build_datapath, method.block))
-        return MethodSpec(method.name, method.block, method.params, method.ranges, build, method.load("run"))
-
-    def __iter__(self):
-        return iter(REGISTERED)
-
-    def __len__(self):
-        return len(REGISTERED)
-
-    def __repr__(self):
-        return f"METHODS({', '.join(REGISTERED)})"
-
-
-#: name -> :class:`MethodSpec` of every registered method (:mod:`phongfx.core.methods`).
-METHODS = _Catalog()

@@ -24,7 +24,7 @@ import numpy as np
 
 from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
-from phongfx.scene.span_inputs import UNITS, decode, first_pixels, inputs
+from phongfx.scene.span_inputs import UNITS, check_unit, decode, first_pixels, inputs
 from phongfx.sim.harness import BACKENDS
 
 from .figure import frame_figure
@@ -75,22 +75,30 @@ def chunk_starts(first, count, chunk):
     return bounds
 
 
-#: What a unit's picture shows: the Euler and Gouraud units compute ``N·L`` alone, Schlick's
-#: the specular term alone, the others both, blended as :func:`phongfx.render.mesh.intensity`.
-SHOWN = {"euler": "N·L", "gouraud": "N·L", "schlick": "specular",
-         "spherical": "ambient + diffuse + specular", "blinn": "ambient + diffuse + specular",
-         "conventional": "ambient + diffuse + specular"}
+#: What a unit's picture shows, by the parts its config shades
+#: (:attr:`~phongfx.config.base.BlockConfig.SHADES`): a unit interpolating one cosine (Hast's
+#: Euler and Gouraud units, whose two parts are one port) shows ``N·L``, Schlick's the
+#: specular term alone, the others both, blended as :func:`phongfx.render.mesh.intensity`.
+SHOWN = {"one": "N·L", "spec": "specular", "both": "ambient + diffuse + specular"}
 
 
-def unit_picture(unit, spans, outputs, config):
-    """The (height, width) grey [0, 1] picture of ``unit``'s raw ``outputs`` on ``spans``
+def _shown(config):
+    """The key of :data:`SHOWN` for a unit of ``config``."""
+    shades = config.SHADES
+    if set(shades) == {"diff", "spec"}:
+        return "one" if shades["diff"] == shades["spec"] else "both"
+    return "spec"
+
+
+def unit_picture(spans, outputs, config):
+    """The (height, width) grey [0, 1] picture of a unit's raw ``outputs`` on ``spans``
     (:data:`SHOWN` says what it shows), black where no surface is visible."""
     from phongfx.scene import mesh as meshes
-    if unit in ("euler", "gouraud", "schlick"):
-        value = decode(unit, outputs, config)
+    if _shown(config) == "both":
+        diff = decode(outputs, config, "diff")
+        value = intensity(diff[:, 0] if diff.ndim == 2 else diff, decode(outputs, config, "spec"))
     else:
-        diff = decode(unit, outputs, config, "diff")
-        value = intensity(diff[:, 0] if diff.ndim == 2 else diff, decode(unit, outputs, config, "spec"))
+        value = decode(outputs, config)
     return meshes.image(spans, np.clip(value, 0.0, 1.0))
 
 
@@ -107,8 +115,7 @@ def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=
     ``mismatches`` must be 0.  With ``png`` (a path) the golden frame, which the RTL
     matched, is written there titled (:func:`unit_picture`), and the row names it.
     """
-    if unit not in UNITS:
-        raise ValueError(f"unit must be one of {', '.join(UNITS)}, not {unit!r}")
+    check_unit(unit)
     if backend not in BACKENDS:
         raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, not {backend!r}")
     start = time.perf_counter()
@@ -119,8 +126,8 @@ def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=
     bounds = chunk_starts(first, count, chunk)
     golden, stats = shade(block, raw, backend, progress=progress, bounds=bounds)
     if png is not None:
-        frame_figure(png, unit_picture(unit, spans, golden, block.config),
-                     f"{unit} unit, {SHOWN[unit]}: {mesh} {polygons} polygons, frame {frame}, "
+        frame_figure(png, unit_picture(spans, golden, block.config),
+                     f"{unit} unit, {SHOWN[_shown(block.config)]}: {mesh} {polygons} polygons, frame {frame}, "
                      f"{width}×{height}; RTL ({backend}) {stats['mismatches']} mismatches")
     return {"unit": unit, "backend": backend, "mesh": mesh, "polygons": polygons, "width": width,
             "height": height, "frame": frame, "pixels": count, "visible": int(np.sum(spans.visible)),
@@ -138,8 +145,7 @@ def run_all(out_dir="build/frames", units=UNITS, *, quiet=False, **options):
     from tqdm import tqdm
 
     for unit in units:
-        if unit not in UNITS:
-            raise ValueError(f"unit must be one of {', '.join(UNITS)}, not {unit!r}")
+        check_unit(unit)
     start, rows = time.perf_counter(), []
     for unit in units:
         with tqdm(unit="px", desc=f"{unit} RTL ({options.get('backend', 'verilator')})",

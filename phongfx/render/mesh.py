@@ -4,7 +4,7 @@ A frame of a rotating torus or UV sphere (:mod:`phongfx.scene.mesh`) is shaded p
 ``I = AMBIENT + KD·diffuse + KS·specular`` (Hast, Barrera & Bengtsson equation 1 plus
 an ambient floor), ``diffuse`` from ``N·L`` and ``specular`` from ``(N·H)^n`` with a
 directional light and the viewer at infinity (``H`` constant).  Methods, float
-(:data:`FLOAT_METHODS`) and fixed point (:data:`UNIT_METHODS`, named as the units of
+(:data:`FLOAT_METHODS`) and fixed point (:data:`SHADED_UNITS`, named as the units of
 ``phongfx compile``, so that ``euler`` is the same hardware everywhere):
 
 * ``phong``: the interpolated normal renormalized per pixel (Duff's exact ``p/√q``,
@@ -63,7 +63,7 @@ from phongfx.sim.stimulus.datapath import encode
 
 from .figure import error_figure, frame_figure
 
-__all__ = ["FLOAT_METHODS", "UNIT_METHODS", "METHODS", "RENAMED", "method_name", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
+__all__ = ["FLOAT_METHODS", "SHADED_UNITS", "SHADED", "RENAMED", "method_name", "MESHES", "LIGHT", "AMBIENT", "KD", "KS", "FIGURE_WEIGHTS", "build_mesh", "span_angles",
            "shade", "shade_euler", "shade_gouraud", "shade_blinn", "shade_conventional", "shade_spherical",
            "shade_datapath", "intensity", "error_8bit", "write_png", "run", "figure14", "figure15"]
 
@@ -93,8 +93,9 @@ class _Shaded(Sequence):
 
 #: The golden fixed-point units, by the names ``phongfx compile`` gives them (the
 #: registered methods that have a ``shade`` face).
-UNIT_METHODS = _Shaded()
-METHODS = _Shaded(FLOAT_METHODS)
+SHADED_UNITS = _Shaded()
+#: Every name ``phongfx render mesh`` shades: the float methods, then :data:`SHADED_UNITS`.
+SHADED = _Shaded(FLOAT_METHODS)
 #: Former name -> name: the fixed-point units were ``euler-unit`` and ``gouraud-unit``
 #: here while ``euler`` and ``gouraud`` named the float methods, unlike compile.
 RENAMED = {"euler-unit": "euler", "gouraud-unit": "gouraud"}
@@ -107,14 +108,14 @@ FIGURE_WEIGHTS = (0.05, 0.35, 0.6)
 
 
 def method_name(method):
-    """``method``'s name in :data:`METHODS`: itself, or for a former name (:data:`RENAMED`)
+    """``method``'s name in :data:`SHADED`: itself, or for a former name (:data:`RENAMED`)
     the new one, with a ``DeprecationWarning``; ValueError naming the methods otherwise."""
     if method in RENAMED:
         warnings.warn(f"method {method!r} is now called {RENAMED[method]!r} (the fixed-point unit, "
                       f"named as in phongfx compile)", DeprecationWarning, stacklevel=3)
         return RENAMED[method]
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {', '.join(METHODS)}, not {method!r}")
+    if method not in SHADED:
+        raise ValueError(f"method must be one of {', '.join(SHADED)}, not {method!r}")
     return method
 
 
@@ -189,7 +190,7 @@ def _scanline(feed):
     raised like the float methods."""
     def shade_unit(spans, method, *, light, h, n, **options):
         block = get_block(method)
-        curve = [decode(method, block.golden(feed(spans, v, block.config)), block.config) for v in (light, h)]
+        curve = [decode(block.golden(feed(spans, v, block.config)), block.config) for v in (light, h)]
         return curve[0], _power(curve[1], n)
     return shade_unit
 
@@ -200,7 +201,7 @@ def _tables(feed):
     def shade_unit(spans, method, *, light, h, n, **options):
         block = get_block(method)
         out = block.golden(feed(spans, light, n, block.config))
-        return decode(method, out, block.config, "diff"), decode(method, out, block.config, "spec")
+        return decode(out, block.config, "diff"), decode(out, block.config, "spec")
     return shade_unit
 
 
@@ -214,8 +215,7 @@ def shade_spherical(spans, method, *, light, h, n, addr_bits=6, rom_bits=6):
     block = get_block("spherical", addr_bits=addr_bits, rom=f"0.{rom_bits}")
     raw = spherical_inputs(spans, light, n, config)
     out = block.golden(raw)
-    return (decode("spherical", out, config, "diff")[:, 0],
-            decode("spherical", out, config, "spec"))
+    return decode(out, config, "diff")[:, 0], decode(out, config, "spec")
 
 
 def shade_datapath(spans, method, *, light, h, n, **options):
@@ -280,7 +280,9 @@ def run(method, *, mesh="torus", polygons=800, stacks=8, slices=16, n=20, addr_b
     shaded = _frame(spans, method, **options)
     reference = shaded if method == "phong" else _frame(spans, "phong", **options)
     size = f"{polygons}" if mesh == "torus" else f"{stacks}x{slices}"
-    bits = f"-a{addr_bits}d{rom_bits}" if method == "spherical" else ""
+    # the ROM sizes name the picture of a method that has them (Szirmay-Kalos's unit)
+    roms = method in REGISTERED and {"addr_bits", "rom_bits"} <= set(REGISTERED[method].params)
+    bits = f"-a{addr_bits}d{rom_bits}" if roms else ""
     name = f"{mesh}{size}-{method}{bits}-n{n:g}-f{frame}"
     kind = "float" if method in FLOAT_METHODS else "fixed point"
     rom = f", ROM of {addr_bits} address and {rom_bits} data bits"

@@ -27,18 +27,20 @@ import numpy as np
 
 from phongfx.config import (BlinnConfig, ConventionalConfig, EulerConfig, GouraudConfig, SchlickConfig,
                             SphericalConfig)
+from phongfx.core.methods import METHODS
+from phongfx.core.registry import get_block
 from phongfx.golden import euler_setup, spherical_setup
 from phongfx.golden.fixed import Fixed
 
 __all__ = ["VIEWER", "UNITS", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",
            "spherical_inputs", "schlick_inputs", "blinn_inputs", "blinn_codes", "conventional_inputs",
-           "conventional_codes", "inputs", "decode"]
+           "conventional_codes", "units", "check_unit", "inputs", "decode"]
 
 #: Viewer direction in eye space (orthographic view along -z, viewer at infinity).
 VIEWER = np.array([0.0, 0.0, 1.0])
 
-#: The units with a per-pixel input stream built here.
-UNITS = ("euler", "gouraud", "spherical", "schlick", "blinn", "conventional")
+#: The units with a per-pixel input stream built here: the methods with an ``inputs`` face.
+UNITS = tuple(name for name, method in METHODS.items() if method.has("inputs"))  # units() at import
 
 
 def _check_n(n, config):
@@ -95,12 +97,14 @@ def _per_span(spans, setup):
     return {name: np.array([row[name] for row in rows], dtype=np.int64) for name in names}
 
 
-def euler_inputs(spans, light, config=EulerConfig(), compensate=False):
+def euler_inputs(spans, light, config=EulerConfig(), compensate=False, *, n=None):
     """Raw inputs of the corrected Euler unit (Hast et al. equations 16–17) for a frame.
 
     Per span the float setup :func:`~phongfx.golden.euler_setup.span_setup` of the
     diffuse ``N·L`` curve, quantized by :func:`~phongfx.golden.euler_setup.quantize_setup`
     (``compensate`` as there).  Returns ``{init, p0, t0, ds}`` int64 arrays of ``P`` pixels.
+    ``n`` is not used: the unit interpolates ``N·L``, no power (every unit's stream is asked
+    for with its shininess).
     """
     light = _unit("light", light)
     loads = _per_span(spans, lambda a, b, n: euler_setup.quantize_setup(
@@ -108,9 +112,10 @@ def euler_inputs(spans, light, config=EulerConfig(), compensate=False):
     return _stream(spans, loads)
 
 
-def gouraud_inputs(spans, light, config=GouraudConfig()):
+def gouraud_inputs(spans, light, config=GouraudConfig(), *, n=None):
     """Raw inputs of the Gouraud unit: the chord from ``p_a = N_a·L`` to ``p_b = N_b·L``
-    (:func:`~phongfx.golden.euler_setup.quantize_gouraud`).  ``{init, p0, dp}``."""
+    (:func:`~phongfx.golden.euler_setup.quantize_gouraud`).  ``{init, p0, dp}``; ``n`` not
+    used, as for :func:`euler_inputs`."""
     light = _unit("light", light)
     loads = _per_span(spans, lambda a, b, n: euler_setup.quantize_gouraud(
         config, euler_setup.span_setup(a, b, light, n)))
@@ -216,39 +221,35 @@ def _codes(config, n, **vectors):
     return {**out, "n": np.asarray(n, dtype=np.int64)}
 
 
+def units():
+    """The names of the units with a stream built here, as the method registry has them now
+    (:data:`UNITS` is the list when this module was imported: a method registered since is
+    taken too)."""
+    return tuple(name for name, method in METHODS.items() if method.has("inputs"))
+
+
+def check_unit(unit):
+    """The :class:`~phongfx.core.methods.Method` of ``unit``; ValueError unless it is one of
+    :func:`units`."""
+    if unit not in units():
+        raise ValueError(f"unit must be one of {', '.join(units())}, not {unit!r}")
+    return METHODS[unit]
+
+
 def inputs(unit, spans, light, *, n=32, config=None):
-    """The stream of ``unit`` (one of :data:`UNITS`) with its default config, shininess ``n``."""
-    if unit == "euler":
-        return euler_inputs(spans, light, config or EulerConfig())
-    if unit == "gouraud":
-        return gouraud_inputs(spans, light, config or GouraudConfig())
-    if unit == "spherical":
-        return spherical_inputs(spans, light, n, config or SphericalConfig())
-    if unit == "schlick":
-        return schlick_inputs(spans, light, n, config or SchlickConfig())
-    if unit == "blinn":
-        return blinn_inputs(spans, light, n, config or BlinnConfig())
-    if unit == "conventional":
-        return conventional_inputs(spans, light, n, config or ConventionalConfig())
-    raise ValueError(f"unit must be one of {', '.join(UNITS)}, not {unit!r}")
+    """The stream of ``unit`` (one of :data:`UNITS`: a method with an ``inputs`` face) with
+    its block's default config, shininess ``n``."""
+    method = check_unit(unit)
+    return method.load("inputs")(spans, light, n=n, config=config or get_block(method.block).config)
 
 
-def decode(block_name, outputs, config, part="spec"):
-    """Float per-pixel intensity from raw outputs: ``p`` (Euler, Gouraud; negative
-    clamped to 0), ``spec`` (Schlick), ``spec`` or ``diff`` ``(P, 3)`` (spherical, ``part``),
-    ``specular`` or ``diffuse`` (blinn, conventional: ``part`` ``spec`` or ``diff``)."""
-    ports = config.outputs
-    if block_name in ("euler", "gouraud"):
-        return np.maximum(np.asarray(outputs["p"]) * ports["p"][0].lsb, 0.0)
-    if block_name == "schlick":
-        return np.asarray(outputs["spec"]) * ports["spec"][0].lsb
-    if block_name == "spherical":
-        if part not in ("spec", "diff"):
-            raise ValueError(f"part must be one of spec, diff, not {part!r}")
-        return np.asarray(outputs[part]) * ports[part][0].lsb
-    if block_name in ("blinn", "conventional"):
-        name = {"spec": "specular", "diff": "diffuse"}.get(part)
-        if name is None:
-            raise ValueError(f"part must be one of spec, diff, not {part!r}")
-        return np.asarray(outputs[name]) * ports[name][0].lsb
-    raise ValueError(f"block_name must be one of {', '.join(UNITS)}, not {block_name!r}")
+def decode(outputs, config, part="spec"):
+    """Float per-pixel intensity of ``part`` (``"spec"`` or ``"diff"``) from a unit's raw
+    ``outputs``: the port its config's :attr:`~phongfx.config.base.BlockConfig.SHADES` names
+    for it (``(P, 3)`` for the spherical unit's coloured diffuse); a signed cosine (Euler,
+    Gouraud) clamped to 0, as the shading formula clamps it."""
+    if part not in config.SHADES:
+        raise ValueError(f"part must be one of {', '.join(config.SHADES)}, not {part!r}")
+    fmt = config.outputs[config.SHADES[part]][0]
+    value = np.asarray(outputs[config.SHADES[part]]) * fmt.lsb
+    return np.maximum(value, 0.0) if fmt.signed else value

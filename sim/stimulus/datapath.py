@@ -8,6 +8,8 @@ hardware), ``v`` or ``v0``/``v1``, ``l<i>`` or ``l<i>_0``/``l<i>_1``.
 
 import numpy as np
 
+from phongfx.core.registry import REGISTRY
+
 from . import AXES, codes, concat, normalized, random_codes, rng, unit_vectors
 from .extreme import Extreme, equal
 
@@ -127,7 +129,7 @@ def extremes(block_name):
     ``halfway_datapath``): N = V = L, a zero-length N' at 180°, a grazing light, V = −L."""
     z, x = np.array([0.0, 0, 1]), np.array([1.0, 0, 0])
     # V = −L: D = R − L has |D| = 2, past 2^k, but the halfway vector H = (V + L)/2 is 0
-    halfway = block_name == "halfway_datapath"
+    halfway = REGISTRY[block_name].default_config().unit.bisector
     spec_vl = 1.0 if halfway else 0.0
     note = "H = (V+L)/2 = 0 gives D = 0: a full highlight, ungated by N·L < 0" if halfway else "|D| = 2: x ≥ 2^k"
     return (

@@ -14,6 +14,7 @@ from fractions import Fraction
 import numpy as np
 
 from phongfx.core.format import Format
+from phongfx.core.methods import METHODS
 from phongfx.core.registry import REGISTRY
 
 from . import rng
@@ -52,7 +53,7 @@ def stimulus(config, count=1000, seed=0):
 
 def _unit_row(config, name):
     """Raw shader inputs of the unit's extreme row called ``name`` (a Lyon datapath's)."""
-    if config.unit not in ("fig7", "fig8", "halfway_datapath"):
+    if config.unit not in {method.block for method in METHODS.values() if method.is_datapath}:
         raise ValueError(f"the shader's extreme rows need a Lyon datapath unit, not {config.unit!r}")
     rows = {row.name: row for row in REGISTRY[config.unit].load("extremes")(config.unit)}
     raw, count = _side_by_side(config, [rows[name].build(sub) for sub in config.units])

@@ -5,7 +5,7 @@ import pytest
 
 from phongfx.certify import branch
 from phongfx.certify.bound import shader_config
-from phongfx.certify.methods import bounding
+from phongfx.certify.bounding import bounding
 from phongfx.explore.compile import workers
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene

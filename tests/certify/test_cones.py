@@ -7,7 +7,7 @@ import numpy as np
 from phongfx.certify.bound import shader_config
 from phongfx.certify.cones import Direction, Directions, directions
 from phongfx.certify.datapath import interpolated
-from phongfx.certify.figures import LYON_DATAPATHS
+from phongfx.certify.figures import FIG7_BOUND
 from phongfx.certify.outputs import box_errors
 from phongfx.certify.sphere import cover, frame
 from phongfx.golden.fixed import Fixed
@@ -123,8 +123,8 @@ def test_directional_scenes_take_the_old_geometry():
     shader = shader_config("fig7", {}, spec)
     boxes = cover(dom.view_cos_min, dom.min_normal_length, [(16, 0), (40, 0)], 6, 12)
     lights = [np.asarray(v) for _, v, _ in dom.lights]
-    old = box_errors(shader, "phong", boxes, frame(dom.camera[1]), lights, dom.min_normal_length)
-    new = box_errors(shader, "phong", boxes, cones.basis, None, dom.min_normal_length, cones)
+    old = box_errors(shader, FIG7_BOUND, "phong", boxes, frame(dom.camera[1]), lights, dom.min_normal_length)
+    new = box_errors(shader, FIG7_BOUND, "phong", boxes, cones.basis, None, dom.min_normal_length, cones)
     for a, b in zip(old[:2] + old[3:], new[:2] + new[3:]):
         assert np.array_equal(a, b)
 
@@ -147,8 +147,8 @@ def test_a_light_inside_the_ball_or_a_constant_input_says_why_not():
     spec = load_scene("scenes/local-mesh.toml")
     dom = domain(spec)
     shader = shader_config("fig7", {}, spec)
-    assert LYON_DATAPATHS.why_not(shader, dom) is None
+    assert FIG7_BOUND.why_not(shader, dom) is None
     inside = replace(dom, lights=(("point", (0.0, 0.0, 0.5), (1.0, 1.0, 1.0)),))
-    assert LYON_DATAPATHS.why_not(shader, inside).startswith("the point light 0 lies inside the objects' bounding ball")
+    assert FIG7_BOUND.why_not(shader, inside).startswith("the point light 0 lies inside the objects' bounding ball")
     constant = replace(shader, units=(shader.units[0].replace(local_lights=False),))
-    assert LYON_DATAPATHS.why_not(constant, dom) == "light 0 is a point light but the datapath takes it as a constant"
+    assert FIG7_BOUND.why_not(constant, dom) == "light 0 is a point light but the datapath takes it as a constant"

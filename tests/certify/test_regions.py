@@ -10,7 +10,7 @@ import pytest
 from phongfx.certify import certify, figures
 from phongfx.certify.bound import shader_config
 from phongfx.certify.branch import Resume
-from phongfx.certify.methods import bounding
+from phongfx.certify.bounding import bounding
 from phongfx.explore.compile.measure import SceneEval
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene
@@ -112,9 +112,9 @@ def test_a_branch_and_bound_resumed_on_a_larger_budget_ends_where_a_fresh_one_do
     fresh branch and bound on that budget, for the boxes of the second run only."""
     bounded, errors = [], figures.box_errors
 
-    def counted(shader, against, boxes, *args):
+    def counted(shader, unit_bound, against, boxes, *args):
         bounded.append(len(boxes))
-        return errors(shader, against, boxes, *args)
+        return errors(shader, unit_bound, against, boxes, *args)
 
     monkeypatch.setattr(figures, "box_errors", counted)
     region = domain(SPEC).region(19)  # sphere 4, n = 256: the worst region, refined the longest

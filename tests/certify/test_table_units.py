@@ -8,7 +8,7 @@ import pytest
 
 from phongfx.certify import certify
 from phongfx.certify.bound import shader_config
-from phongfx.certify.methods import BOUNDING
+from phongfx.certify.bounding import bounding
 from phongfx.certify.sphere import Boxes, frame
 from phongfx.certify.codes import code_errors, code_ranges
 from phongfx.certify.cones import at_infinity
@@ -43,8 +43,8 @@ def _worse(shader, t):
 
 
 def test_both_units_have_a_bounding_method():
-    assert BOUNDING["conventional"].name == BOUNDING["blinn"].name == "interval+tables"
-    assert BOUNDING["blinn"].n_scale == 4 and BOUNDING["conventional"].n_scale == 1
+    assert bounding("conventional").name == bounding("blinn").name == "interval+tables"
+    assert bounding("blinn").n_scale == 4 and bounding("conventional").n_scale == 1
 
 
 def test_range_table_bounds_every_range_and_is_exact_on_aligned_blocks():
@@ -244,7 +244,7 @@ def test_codes_are_listed_only_above_the_floor():
     bound stays, at least as large (both hold); a floor of -inf lists every small box."""
     spec, dom = _scene("torus")
     shader = shader_config("conventional", TORUS, spec)
-    unit = BOUNDING["conventional"]
+    unit = bounding("conventional")
     basis = frame(dom.camera[1])
     lights = at_infinity(basis, [np.asarray(dom.lights[0][1])], dom.view_cos_min)
     # small boxes about the torus's largest error (as above), a few codes each

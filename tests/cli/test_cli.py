@@ -167,7 +167,7 @@ def test_tables_schlick_prints_figure1(tmp_path, capsys):
      r"phongfx: error: method must be one of phong, gouraud-float, euler-float, corrected-euler, cosn, "
      r"cos2, spherical, euler, gouraud, blinn, conventional, not 'nope'\n"),
     (["render", "frames", "--units", "euler", "nope", "--out", "OUT"],
-     r"phongfx: error: unit must be one of euler, gouraud, spherical, schlick, blinn, conventional, "
+     r"phongfx: error: unit must be one of spherical, euler, gouraud, schlick, blinn, conventional, "
      r"not 'nope'\n"),
 ])
 def test_render_targets_refuse_bad_names_and_write_nothing(argv, message, capsys, tmp_path):
@@ -187,12 +187,12 @@ def test_render_mesh_writes_a_png_and_reports_its_error(tmp_path, capsys):
 
 def _accepted_names():
     from phongfx.explore.synth.asic import LIBRARIES
-    from phongfx.explore.methods import METHODS as COMPILE_METHODS
+    from phongfx.core.methods import METHODS as COMPILE_METHODS
     from phongfx.explore.synth.fpga import ALL_TARGETS
     from phongfx.explore.tables import TABLES
-    from phongfx.render.mesh import METHODS, RENAMED
+    from phongfx.render.mesh import RENAMED, SHADED
     from phongfx.scene.span_inputs import UNITS
-    return [(["render", "mesh", "--help"], [*METHODS, *RENAMED]), (["render", "frames", "--help"], UNITS),
+    return [(["render", "mesh", "--help"], [*SHADED, *RENAMED]), (["render", "frames", "--help"], UNITS),
             (["render", "--help"], ["frames"]), (["tables", "--help"], TABLES), (["--help"], TABLES),
             (["synth", "--help"], [*ALL_TARGETS, *LIBRARIES]), (["compile", "--help"], COMPILE_METHODS)]
 

@@ -7,7 +7,7 @@ from phongfx.config import DatapathConfig, fig7_config, fig8_config, halfway_con
 from phongfx.config.base import MAX_VEC_FRAC
 from phongfx.core.format import Format
 from phongfx.core.registry import REGISTRY
-from phongfx.explore.methods import METHODS
+from phongfx.core.methods import METHODS
 from phongfx.explore.sweep.spec import expand
 
 FACTORIES = {"fig7": fig7_config, "fig8": fig8_config, "halfway": halfway_config}

@@ -88,7 +88,9 @@ def toy(monkeypatch):
         module = types.ModuleType(name)
         monkeypatch.setitem(sys.modules, name, module)
         exec(compile(textwrap.dedent(source), f"<{name}>", "exec"), module.__dict__)
-    monkeypatch.setitem(REGISTRY, "toy", Entry.of("toy", "ToyConfig", "Toy"))  # the one line
+    monkeypatch.setitem(REGISTRY, "toy", Entry(  # the one entry
+        "toy", "phongfx.config.toy:ToyConfig", "phongfx.golden.toy:toy", "phongfx.hdl.toy:Toy",
+        "phongfx.sim.stimulus.toy:stimulus", "phongfx.sim.stimulus.toy:extremes"))
     return get_block("toy")
 
 
@@ -204,7 +206,7 @@ def test_a_new_specular_unit_is_selectable_everywhere(toy_unit, tmp_path):
     from phongfx.compiler.compile import compile_scene
     from phongfx.compiler.request import CompileRequest, check_methods
     from phongfx.explore.evaluate import SCENES
-    from phongfx.explore.methods import METHODS
+    from phongfx.core.methods import METHODS
     from phongfx.explore.sweep.spec import load_spec
     from phongfx.render import mesh
     from phongfx.scene.file import load_scene
@@ -238,7 +240,7 @@ def test_a_new_specular_unit_is_selectable_everywhere(toy_unit, tmp_path):
     assert list(compiled.results) == ["toy"]
 
     # the renderer: render mesh's method list has it and shades with it
-    assert "toy" in mesh.METHODS and "toy" in mesh.UNIT_METHODS
+    assert "toy" in mesh.SHADED and "toy" in mesh.SHADED_UNITS
     spans = mesh.meshes.rasterize(mesh.build_mesh("torus", polygons=200), mesh.meshes.rotation(10), 32, 32)
     diffuse, specular = mesh.shade(spans, "toy")
     assert diffuse.shape == specular.shape == (spans.visible.shape[0],) and specular.max() > 0.9

@@ -3,6 +3,7 @@
 import dataclasses
 import importlib
 import os
+from pathlib import Path
 
 import pytest
 
@@ -68,12 +69,22 @@ def test_a_face_can_be_swapped_for_a_test():
     assert isinstance(swapped.component(), Other) and swapped.config is block.config
 
 
-def test_entry_of_follows_the_naming_rule():
-    entry = Entry.of("foo", "FooConfig", "Foo")
-    assert entry.golden == "phongfx.golden.foo:foo"
-    assert entry.component == "phongfx.hdl.foo:Foo"
-    assert entry.stimulus == "phongfx.sim.stimulus.foo:stimulus"
-    assert entry.extremes == "phongfx.sim.stimulus.foo:extremes"
-    assert entry.config.endswith(":FooConfig")
-    shared = Entry.of("bar", "bar_config", "Datapath", module="datapath")
-    assert shared.golden == "phongfx.golden.datapath:datapath"
+def test_every_face_is_written_out_where_it_is_registered():
+    """grep follows a block or a method to each of its objects: every path of the two
+    registries is a literal string of their source (no path assembled from a name), and
+    names an object that exists."""
+    from phongfx.core import methods, registry
+    from phongfx.core.methods import METHODS
+
+    text = Path(registry.__file__).read_text() + Path(methods.__file__).read_text()
+    paths = [getattr(entry, face) for entry in REGISTRY.values()
+             for face in ("config", "golden", "component", "stimulus", "extremes")]
+    paths += [path for method in METHODS.values() for path in method.faces.values()]
+    assert len(paths) == 5 * len(REGISTRY) + sum(len(m.faces) for m in METHODS.values()) > 150
+    assert [path for path in paths if f'"{path}"' not in text] == []
+    for entry in REGISTRY.values():
+        for face in ("config", "golden", "component", "stimulus", "extremes"):
+            assert callable(entry.load(face)), (entry.name, face)
+    for method in METHODS.values():
+        for face in method.faces:
+            assert method.load(face) is not None, (method.name, face)

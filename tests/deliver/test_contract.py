@@ -180,8 +180,8 @@ def test_only_a_compiled_shader_with_a_shipped_unit_has_a_contract():
     with pytest.raises(ValueError, match=r"^config must be a ShaderConfig \(a compiled shader\), not DatapathConfig$"):
         input_contract(config.units[0], spec, "fig7", n_scale=1)
     schlick = run.build("schlick", {}, analyse(spec, frames(spec)[:1]))
-    with pytest.raises(ValueError, match=r"^config.units\[0\] must be a unit the compiler ships \(a datapath, "
-                                         r"conventional, blinn or spherical\), not SchlickConfig$"):
+    with pytest.raises(ValueError, match=r"^method must be one the compiler ships \(fig7, fig8, halfway, "
+                                         r"spherical, blinn, conventional\), not 'schlick'$"):
         input_contract(schlick, spec, "schlick", n_scale=1)
 
 

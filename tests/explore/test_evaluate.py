@@ -5,7 +5,8 @@ import pytest
 
 import phongfx.explore.synth.fpga
 from phongfx.core.registry import REGISTRY, get_block
-from phongfx.explore.evaluate import COST_KEYS, METHODS, SCENES, error_metrics, evaluate
+from phongfx.core.methods import METHODS
+from phongfx.explore.evaluate import COST_KEYS, SCENES, error_metrics, evaluate
 from phongfx.explore.synth.fpga import SynthError
 
 NAMES = ("fig7", "fig8", "halfway", "spherical", "euler", "gouraud", "schlick", "blinn", "conventional")

@@ -11,7 +11,8 @@ def test_a_file_is_told_from_a_name_and_named_by_its_stem():
 
 
 def test_the_example_torus_scene_pools_its_frames():
-    from phongfx.explore.evaluate import METHODS, error_metrics, evaluate
+    from phongfx.core.methods import METHODS
+    from phongfx.explore.evaluate import error_metrics, evaluate
     here = os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "torus.toml")
     label, views = file_views(here)
     assert (label, [v.frame for v in views]) == ("torus", [0, 1, 2, 3])

@@ -66,7 +66,7 @@ def test_run_all_writes_the_table(tmp_path):
 
 
 def test_bad_names_are_refused():
-    with pytest.raises(ValueError, match=r"^unit must be one of euler, gouraud, spherical, schlick, blinn, "
+    with pytest.raises(ValueError, match=r"^unit must be one of spherical, euler, gouraud, schlick, blinn, "
                                          r"conventional, not 'phong'$"):
         rtl_frame("phong")
     with pytest.raises(ValueError, match=r"^backend must be one of amaranth, verilator, verilator-fast, not 'x'$"):

@@ -7,7 +7,7 @@ from PIL import Image
 from phongfx.golden import spherical_setup
 from phongfx.render import mesh as mesh_render
 from phongfx.render.figure import MARGIN, scale_for
-from phongfx.render.mesh import LIGHT, METHODS, error_8bit, figure14, figure15, run, shade, write_png
+from phongfx.render.mesh import LIGHT, SHADED, error_8bit, figure14, figure15, run, shade, write_png
 from phongfx.scene import mesh as meshes
 from phongfx.scene.span_inputs import halfway
 
@@ -25,7 +25,7 @@ def sphere_spans():
     return meshes.rasterize(meshes.uv_sphere(8, 16), meshes.rotation(20), 72, 72)
 
 
-@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("method", SHADED)
 def test_each_method_writes_a_frame_on_black(method, tmp_path):
     summary = run(method, mesh="torus", polygons=288, width=48, height=40, frame=37, out_dir=str(tmp_path))
     # the frame inside its figure: 8 PNG pixels a frame pixel, MARGIN from the bottom left

@@ -93,7 +93,7 @@ def test_spherical_diffuse_and_specular_against_float_phong(frame, n):
         assert raw[name].shape == ((int(frame.length.sum()), 3) if lanes == 3 else (int(frame.length.sum()),))
         assert _in_format(raw[name], fmt)
     out = block.golden(raw)
-    spec, diff = si.decode("spherical", out, config), si.decode("spherical", out, config, "diff")
+    spec, diff = si.decode(out, config), si.decode(out, config, "diff")
     first, last = _ends(frame)
     h = si.halfway(LIGHT)
     # θ: b and s each rounded to half an LSB (π·2^-12), s added length-1 times; then the
@@ -125,7 +125,7 @@ def test_schlick_is_rational_specular_of_the_renormalized_normal(frame):
     assert _in_format(raw["t"], block.config.fmt("t"))
     normals = _unit(frame.interpolated_normals())
     t = np.clip(normals @ si.halfway(LIGHT), 0, 1)
-    spec = si.decode("schlick", block.golden(raw), block.config)
+    spec = si.decode(block.golden(raw), block.config)
     # t is rounded by half an LSB (2^-16) and dS/dt = n/D² <= n; the divider floors (1 LSB)
     assert np.all(np.abs(spec - t / (n - n * t + t)) <= n * 2.0 ** -16 + 2.0 ** -15)
 
@@ -137,8 +137,8 @@ def test_blinn_is_exact_phong_to_sixteen_bits(frame):
     assert _in_format(raw["normal"], block.config.fmt("vec"))
     out = block.golden(raw)
     normals = _unit(frame.interpolated_normals())
-    diffuse = si.decode("blinn", out, block.config, "diff")
-    specular = si.decode("blinn", out, block.config)
+    diffuse = si.decode(out, block.config, "diff")
+    specular = si.decode(out, block.config)
     # S1.15 inputs (half an LSB per component), a 16-bit unit: a few LSB of 1.15, ×n for t^n
     assert np.max(np.abs(diffuse - np.maximum(normals @ LIGHT, 0))) < 8 * 2.0 ** -15
     assert np.max(np.abs(specular - np.maximum(normals @ si.halfway(LIGHT), 0) ** 8)) < 8 * 8 * 2.0 ** -15
@@ -152,8 +152,8 @@ def test_conventional_is_exact_phong_to_sixteen_bits(frame):
     assert np.all(raw["view"] == [0, 0, 1 << 15])  # V = (0, 0, 1): 1.0 exactly in S1.15
     out = block.golden(raw)
     normals = _unit(frame.interpolated_normals())
-    diffuse = si.decode("conventional", out, block.config, "diff")
-    specular = si.decode("conventional", out, block.config)
+    diffuse = si.decode(out, block.config, "diff")
+    specular = si.decode(out, block.config)
     nl = normals @ LIGHT
     r = 2 * nl[:, None] * normals - LIGHT
     phong = np.where(nl > 0, np.maximum(r @ si.VIEWER, 0) ** 8, 0)
@@ -175,7 +175,7 @@ def test_halfway_is_blinns_bisector():
 def test_decode_clamps_negative_intensity():
     config = get_block("euler").config
     p = np.array([-(1 << 29), 1 << 29])
-    assert si.decode("euler", {"p": p}, config).tolist() == [0.0, 0.5]
+    assert si.decode({"p": p}, config).tolist() == [0.0, 0.5]
 
 
 def test_bad_arguments_are_refused():
@@ -190,11 +190,13 @@ def test_bad_arguments_are_refused():
         si.spherical_inputs(spans, LIGHT, -1)
     with pytest.raises(ValueError, match=r"^n must be an integer in 1\.\.8000, not 8001$"):
         si.conventional_inputs(spans, LIGHT, 8001)
-    with pytest.raises(ValueError, match=r"^unit must be one of euler, gouraud, spherical, schlick, blinn, "
+    with pytest.raises(ValueError, match=r"^unit must be one of spherical, euler, gouraud, schlick, blinn, "
                                          r"conventional, not 'x'$"):
         si.inputs("x", spans, LIGHT)
-    with pytest.raises(ValueError, match=r"^block_name must be one of euler, gouraud, spherical, schlick"):
-        si.decode("x", {}, get_block("euler").config)
+    with pytest.raises(ValueError, match=r"^part must be one of diff, spec, not 'x'$"):
+        si.decode({}, get_block("euler").config, "x")
+    with pytest.raises(ValueError, match=r"^part must be one of spec, not 'diff'$"):
+        si.decode({}, get_block("schlick").config, "diff")
     empty = Spans(4, 4, *(np.zeros(0, dtype=np.int64),) * 3, np.zeros((0, 3)), np.zeros((0, 3)),
                   np.zeros(0, dtype=np.int64), np.zeros(0, dtype=bool))
     with pytest.raises(ValueError, match=r"^spans must hold at least one span, not 0$"):

@@ -24,7 +24,7 @@ of the RTL, the testbench and the constraints (:mod:`phongfx.deliver.fusesoc`).
 is one self-contained page of all of it: the requirement, the chosen design and why, every
 candidate on a cost/error chart, the pixel rates, the certificate and witness, the error
 maps and frames embedded, the RTL check, the ports and the input contract
-(:mod:`phongfx.deliver.report`).
+(:mod:`phongfx.deliver.page`).
 """
 
 import dataclasses
@@ -39,13 +39,14 @@ import numpy as np
 
 from phongfx.config import BlockConfig, DatapathConfig, ShaderConfig
 from phongfx.core.files import atomic_write, staged_folder
+from phongfx.core.methods import BASELINE
 from phongfx.core.format import Format
 from phongfx.core.words import levels, plural
 from phongfx.deliver.constraints import clock_of
 from phongfx.deliver.contract import contract_lines, error_paragraph, input_contract
 from phongfx.deliver.fusesoc import write_flow
 from phongfx.deliver.manifest import MANIFEST_VERSION
-from phongfx.deliver.report import REPORT_NAME, write_report
+from phongfx.deliver.page import REPORT_NAME, write_report
 from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 
 from . import run as runs
@@ -164,7 +165,7 @@ def manifest(compiled, module=None, instances=None, check=None, out_dir="."):
            "chosen": compiled.chosen, "tie": compiled.tie, "hint": compiled.hint, "refused": compiled.refused,
            "rejected": dict(compiled.rejected),
            "methods": {name: {k: r[k] for k in _METHOD_KEYS if k in r} for name, r in compiled.results.items()},
-           "conventional_baseline": _baseline(compiled, "conventional"),
+           "conventional_baseline": _baseline(compiled, BASELINE),
            "blinn_baseline": _baseline(compiled, "blinn")}
     if best is not None:
         block = design_block(best, compiled.analysis)

@@ -1,4 +1,4 @@
-"""How each method of :data:`phongfx.explore.methods.METHODS` shades a scene file's frame.
+"""How each method of :data:`phongfx.core.methods.METHODS` shades a scene file's frame.
 
 The compiler (:mod:`phongfx.compiler.compile`) asks, per method: can it represent the scene
 (:func:`rejection`), what is its whole shader at given widths (:func:`build`: the unit,
@@ -16,7 +16,7 @@ import numpy as np
 from phongfx.config import MAX_PIPELINE, BlendConfig, ShaderConfig
 from phongfx.config.shader import intervals, unit_terms
 from phongfx.core.methods import get_method
-from phongfx.explore.methods import METHODS
+from phongfx.core.methods import METHODS
 
 __all__ = ["EXTRA", "COEF_DEFAULT", "ARCHITECTURE", "hooks", "is_datapath", "per_pixel", "rejection", "unit_config",
            "build", "architectures",

@@ -10,7 +10,7 @@ minimality, one lower for every width.  :func:`search_all` searches several meth
 in a worker process of its own when the domain sample is large (:mod:`.workers`).
 """
 
-from phongfx.explore.methods import METHODS
+from phongfx.core.methods import METHODS
 
 from . import run as runs
 from .infeasible import summary

@@ -57,11 +57,15 @@ class Hooks:
     ``n' = n_scale·n`` (4 for the ``(N·H)^n'`` units standing for ``(R·L)^n``);
     ``extra``: parameters the compiler adds to the method's own (name -> (default, range));
     ``per_pixel``: the stream is one value per visible pixel, so a pixel can be fed alone
-    (a domain point, :mod:`phongfx.explore.compile.points`).
+    (a domain point, :mod:`phongfx.explore.compile.points`); ``normal_code``: the host feeds
+    it the pixel's normal as a code of :meth:`normal_format` (not a per-span setup, nor
+    cosines), so exhaustive enumeration can walk every normal
+    (:mod:`phongfx.certify.exhaustive`).
     """
 
     datapath = False
     per_pixel = True
+    normal_code = False
     n_scale = 1
     extra = {}
 
@@ -95,6 +99,11 @@ class Hooks:
         domain sample); None, not known (computed afresh each time)."""
         return None
 
+    def normal_format(self, config):
+        """The :class:`~phongfx.core.format.Format` of the pixel's normal code the host feeds
+        a copy of the unit (``config``: one copy's), for a unit with :attr:`normal_code`."""
+        raise NotImplementedError
+
 
 class Datapath(Hooks):
     """A specular unit of Lyon's datapath: span ends of N, of L and V when local
@@ -104,6 +113,7 @@ class Datapath(Hooks):
     why the ``n`` range ends, when it is the hardware's limit."""
 
     datapath = True
+    normal_code = True
     extra = {"order": (2, (1, 2))}
 
     def __init__(self, n_cap=None, phong_form="phong"):
@@ -140,6 +150,10 @@ class Datapath(Hooks):
         form = self.float_form(method, params)
         n = config.units[0].unit.applied_n(config.units[0], n)
         return np.stack([specular(form, geometry.normal, light, geometry.viewer, n) for light in geometry.light])
+
+    def normal_format(self, config):
+        """The span ends' normal format (a span of length 0 feeds one normal code)."""
+        return config.lirp.fmt("vec")
 
     def own_key(self, method, config, params, n):  # the form, at the shininess the hardware applies
         applied = np.ascontiguousarray(config.units[0].unit.applied_n(config.units[0], n), dtype=np.float64)
@@ -200,9 +214,14 @@ class _Schlick(Hooks):
 class _PerPixel(Hooks):
     """The table units fed, per visible pixel, the interpolated ``N`` and their own vectors."""
 
+    normal_code = True
+
     def fit(self, method, config, params, analysis, light):
         top = self.n_hi(analysis)
         return config.replace(n=f"{top.bit_length()}.0", n_max=top)
+
+    def normal_format(self, config):
+        return config.fmt("vec")
 
 
 class _Blinn(_PerPixel):

@@ -58,7 +58,7 @@ def _proxy(method, params, target):
     from phongfx.core.registry import get_block
 
     from phongfx.explore.synth.proxy import proxy_estimate
-    from phongfx.explore.methods import METHODS
+    from phongfx.core.methods import METHODS
 
     spec = METHODS[method]
     estimate = proxy_estimate(get_block(spec.block, spec.config(dict(params))), target)

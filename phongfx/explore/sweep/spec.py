@@ -27,7 +27,8 @@ class SweepSpecError(ValueError):
 
 def _catalog():
     """(methods, scene names) of :mod:`phongfx.explore.methods`, imported when first needed."""
-    from phongfx.explore.methods import METHODS, SCENES
+    from phongfx.core.methods import METHODS
+    from phongfx.explore.methods import SCENES
     return METHODS, tuple(SCENES)
 
 

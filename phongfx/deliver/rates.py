@@ -1,4 +1,4 @@
-"""The pixel-rate section of the compile report page (:mod:`phongfx.deliver.report`): what
+"""The pixel-rate section of the compile report page (:mod:`phongfx.deliver.page`): what
 the manifest records of each candidate's speed, as a table and a chart, and the chosen
 design's timing and fit to its part.
 

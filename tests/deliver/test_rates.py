@@ -3,9 +3,9 @@ at, its fastest beside it when that is another one, the chosen design's timing a
 
 import copy
 
-from phongfx.deliver.front import architecture_text, speed_points, speed_section
+from phongfx.deliver.rates import architecture_text, speed_points, speed_section
 
-from tests.deliver.test_report import MANIFEST
+from tests.deliver.test_page import MANIFEST
 
 
 def _slow_conventional(data):

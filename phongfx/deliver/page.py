@@ -31,10 +31,11 @@ import os
 import re
 
 from phongfx.core.files import atomic_write
+from phongfx.core.methods import BASELINE
 
 from .chart import Point, scatter
 from .contract import contract_lines
-from .front import speed_section
+from .rates import speed_section
 from .markup import Html, cost_text, esc, heading, levels, number, pairs, params_text, png_data_uri, table
 
 __all__ = ["REPORT_NAME", "report_html", "write_report", "candidate_points"]
@@ -121,7 +122,7 @@ def _requirement(data):
 def _chosen(data):
     if data.get("chosen") is None:
         return ""
-    error, timing, default = data.get("error") or {}, data.get("timing") or {}, data.get("default_widths") or {}
+    error, default = data.get("error") or {}, data.get("default_widths") or {}
     out = [heading("chosen", "The chosen design and why"), pairs([
         ("method", data["chosen"]), ("module", data.get("module")), ("block", data.get("block")),
         ("widths", params_text(data.get("widths"))), ("cost", cost_text(data.get("cost"))),
@@ -154,7 +155,7 @@ def _misses(default, data):
 
 
 def _baseline(data):
-    if data.get("chosen") == "conventional":
+    if data.get("chosen") == BASELINE:
         return "the chosen design is conventional Phong itself"
     baseline = data.get("conventional_baseline") or {}
     if "why_not" in baseline:

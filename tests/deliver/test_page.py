@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from phongfx.deliver.report import REPORT_NAME, candidate_points, report_html, write_report
+from phongfx.deliver.page import REPORT_NAME, candidate_points, report_html, write_report
 
 CONTRACT = {"method": "fig7", "scene": "tiny", "space": "eye space", "quantize": "round half up",
             "stream": "one vector per visible pixel",
@@ -171,7 +171,7 @@ def test_the_page_is_written_whole(tmp_path, monkeypatch):
     path = write_report(tmp_path / REPORT_NAME, MANIFEST)
     assert Path(path).read_text(encoding="utf-8") == report_html(MANIFEST)
     # a failure while building leaves the previous page as it was, and no temporary file
-    import phongfx.deliver.report as report
+    import phongfx.deliver.page as report
     monkeypatch.setattr(report, "report_html", lambda data, folder=None: 1 / 0)
     with pytest.raises(ZeroDivisionError):
         write_report(tmp_path / REPORT_NAME, MANIFEST)

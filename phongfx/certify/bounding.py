@@ -14,29 +14,19 @@ A bounding method is an object with
   or less): regions it reads as the whole domain are not bounded apart
   (:func:`~phongfx.certify.regions.like_whole`).
 
-Adding a unit's bounding method is one module and one line in :data:`BOUNDING`.  None is
-registered for ``euler`` and ``gouraud`` (Hast, Barrera & Bengtsson: the diffuse ``N·L`` alone,
+A method's bounding method is its ``certify`` face in the method registry
+(:data:`phongfx.core.methods.METHODS`): adding one is its object and that one line.  None is
+named for ``euler`` and ``gouraud`` (Hast, Barrera & Bengtsson: the diffuse ``N·L`` alone,
 no place in a shader and never compiled) nor for ``schlick`` (its compile hooks build no input
 stream): no compiled design is one of them (docs/certificate.rst).
 """
 
-from .figures import LYON_DATAPATHS
-from .spherical import SPHERICAL
-from .table_units import BLINN_BOUND, CONVENTIONAL_BOUND
+from phongfx.core.methods import get_method
 
-__all__ = ["BOUNDING", "bounding"]
-
-#: method name -> its bounding method
-BOUNDING = {
-    "fig7": LYON_DATAPATHS,
-    "fig8": LYON_DATAPATHS,
-    "halfway": LYON_DATAPATHS,
-    "spherical": SPHERICAL,
-    "conventional": CONVENTIONAL_BOUND,
-    "blinn": BLINN_BOUND,
-}
+__all__ = ["bounding"]
 
 
 def bounding(method):
     """The bounding method of ``method`` (None when it has none yet)."""
-    return BOUNDING.get(method)
+    method = get_method(method)
+    return method.load("certify") if method.has("certify") else None
