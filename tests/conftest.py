@@ -145,13 +145,13 @@ def sg13g2():
 
 @pytest.fixture(scope="session")
 def tiny_compiled(tmp_path_factory):
-    """One ``phongfx compile`` of the tiny torus (``tests/explore/compile/test_compiler.py``'s
+    """One ``phongfx compile`` of the tiny torus (``tests/compiler/test_compile.py``'s
     ``TORUS`` at 1 level against Phong; fig7 and blinn, ``--sampled``, with the RTL check),
     shared by the tests that read a compiled folder: a compile takes seconds to a minute, so
     the suite makes this one once.  ``.scene`` (the scene file), ``.out`` (the folder),
     ``.code`` (the exit code), ``.stdout``, ``.stderr``; the tests only read the folder."""
     from phongfx.cli import main
-    from tests.explore.compile.test_compiler import TORUS
+    from tests.compiler.test_compile import TORUS
 
     root = tmp_path_factory.mktemp("tiny-compiled")
     scene, out = root / "tiny.toml", root / "out"

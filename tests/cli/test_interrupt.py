@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.explore.compile.test_compiler import TORUS
+from tests.compiler.test_compile import TORUS
 
 
 def _interrupted(args, cwd, folder):

@@ -209,7 +209,7 @@ def test_a_compile_in_python_gives_the_core_of_its_manifest_and_of_its_folder(tm
     from phongfx.compiler.request import CompileRequest
     from phongfx.explore.compile.emit import emit
     from phongfx.scene.file import parse_scene
-    from tests.explore.compile.test_compiler import TORUS
+    from tests.compiler.test_compile import TORUS
 
     compiled = compile_scene(CompileRequest(parse_scene(TORUS.format(error=1.0, against="phong"), name="tiny"),
                                             methods=["conventional"]))

@@ -19,7 +19,7 @@ from phongfx.hdl.top import port_map, top_verilog
 from phongfx.sim.simulators import COROUTINES, VERILATOR_WARNINGS
 from phongfx.sim.testbench import write_testbench
 
-from tests.explore.compile.test_compiler import TORUS  # the compiler tests' tiny torus scene
+from tests.compiler.test_compile import TORUS  # the compiler tests' tiny torus scene
 
 MODULE = "tiny_fig7"
 VECTORS = 100

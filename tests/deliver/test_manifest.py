@@ -120,7 +120,7 @@ def test_the_folder_of_a_real_compile_that_chose_nothing_is_refused(tmp_path):
     from phongfx.compiler.request import CompileRequest
     from phongfx.explore.compile.emit import emit
     from phongfx.scene.file import parse_scene
-    from tests.explore.compile.test_compiler import TORUS
+    from tests.compiler.test_compile import TORUS
 
     compiled = compile_scene(CompileRequest(parse_scene(TORUS.format(error=0.001, against="phong"), name="tiny"), methods=["fig7"]))
     data = emit(compiled, tmp_path / "out", check=False)

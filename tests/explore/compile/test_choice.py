@@ -12,7 +12,7 @@ from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile.certified import uncertifiable
 from phongfx.scene.file import parse_scene
 
-from .test_compiler import TORUS
+from tests.compiler.test_compile import TORUS
 
 
 def _tiny():
@@ -96,18 +96,6 @@ def test_a_certificate_without_a_bound_only_for_an_overflow_does_not_make_a_meth
         "no bounding method for the x unit yet")
     assert uncertifiable(Certificate(False, None, "interval", {"faults": ["x2"]}, "x2 may overflow")) is None
     assert uncertifiable(Certificate(False, 3.0, "interval", why="the bound 3.000 levels rounds to 3")) is None
-
-
-@pytest.mark.parametrize("field, value, allowed", [
-    ("certify", "yes", r"one of none, chosen, search"), ("target", "xc7", r"one of ecp5, ice40, asic"),
-    ("method", "phong", r"one of fig7, .*, conventional"), ("samples", 0, r"a positive integer"),
-    ("final_samples", 2.5, r"a positive integer"), ("workers", 0, r"a positive integer"),
-    ("freq", -1, r"a number of MHz in \(0, 10000\]"), ("prove_timeout", 0, r"a number of seconds in \(0, inf\]"),
-    ("seed", "1", r"an integer"), ("clock", 1e6, r"a number of MHz in \(0, 10000\]")])
-def test_a_request_names_the_field_the_value_and_what_it_may_be(field, value, allowed):
-    options = {"methods": [value]} if field == "method" else {field: value}
-    with pytest.raises(ValueError, match=rf"^{field} must be {allowed}, not {value!r}$"):
-        CompileRequest(_tiny(), **options)
 
 
 def test_only_a_sampled_choice_has_a_quick_witness_search_first(monkeypatch):

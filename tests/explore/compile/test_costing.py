@@ -8,7 +8,7 @@ from phongfx.compiler.request import CompileRequest
 from phongfx.explore.compile.costing import TIE_MARGIN, costed, tie, utilisation
 from phongfx.explore.compile.run import build
 from phongfx.scene.file import parse_scene
-from tests.explore.compile.test_compiler import TORUS as TINY
+from tests.compiler.test_compile import TORUS as TINY
 
 TORUS = TINY.format(error=1.0, against="phong")
 

@@ -13,7 +13,7 @@ from phongfx.explore.compile.journal import scene_key
 from phongfx.explore.compile.measure import GUARD, SceneEval, meets, met_at
 from phongfx.explore.compile.points import DomainPoints, take
 from phongfx.scene.file import parse_scene
-from tests.explore.compile.test_compiler import TORUS
+from tests.compiler.test_compile import TORUS
 from tests.explore.compile.test_witness import NARROW, WIDE
 
 PASSING = {**WIDE, "vec_frac": 12, "x2_frac": 8, "shape_t_frac": 12, "coef": 4}

@@ -10,7 +10,7 @@ from phongfx.explore.compile import points as points_module
 from phongfx.explore.compile.measure import SceneEval, meets
 from phongfx.explore.compile.points import DomainPoints, worst_index
 from phongfx.scene.file import parse_scene
-from tests.explore.compile.test_compiler import TORUS
+from tests.compiler.test_compile import TORUS
 from tests.explore.compile.test_measure import PASSING
 
 

@@ -15,7 +15,7 @@ from phongfx.explore.compile.climb import inside, points, state_of
 from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.witness import explore, geometry, replay, search
 from phongfx.scene.file import load_scene, parse_scene
-from tests.explore.compile.test_compiler import TORUS
+from tests.compiler.test_compile import TORUS
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes")
 #: fig7 on the tiny torus: narrow enough that the domain holds points of 2 levels or more

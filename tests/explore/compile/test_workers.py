@@ -15,7 +15,7 @@ from phongfx.explore.compile.measure import SceneEval
 from phongfx.explore.compile.points import DomainPoints
 from phongfx.explore.compile.workers import count, fork_map
 from phongfx.scene.file import parse_scene
-from tests.explore.compile.test_compiler import TORUS
+from tests.compiler.test_compile import TORUS
 from tests.explore.compile.test_witness import NARROW
 from tests.explore.sweep.test_run import alive
 

@@ -23,7 +23,7 @@ from phongfx.scene.file import load_scene, parse_scene
 from phongfx.sim import fast_backend
 from phongfx.sim.stimulus import codes
 
-SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "..", "scenes")
+SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
 
 TORUS = """
 name = "tiny"
