@@ -51,6 +51,9 @@ TEMPORARY = re.compile(r"(/\.[0-9a-f]+)\.[A-Za-z0-9_]+/")
 #: the same run folder as the one above, under another name
 FAILED = re.compile(r"/failed/([0-9a-f]+)/")
 SRC = re.compile(r"\(\* src = \"[^\"]*\" \*\)\s*")
+#: the compile journal's file (``build/compile/<key>.jsonl``): its key hashes the package's
+#: source, so that a changed model never reuses a line, and any change of the code renames it
+JOURNAL = re.compile(r"/compile/[0-9a-f]+\.jsonl$")
 #: Output files that are views of other outputs, left out of a capture's files: a compiled
 #: folder's ``report.html`` is made from its manifest and PNGs (compared themselves) and shows
 #: seconds (the certificate's) that differ from run to run; a revision from before the page
@@ -72,7 +75,7 @@ def normalize_json(value, root=None):
         return [normalize_json(v, root) for v in value]
     if isinstance(value, str) and root:
         value = FAILED.sub(r"/.\1.<random>/", value.replace(os.path.abspath(root), "<capture>"))
-        return TEMPORARY.sub(r"\1.<random>/", value)
+        return JOURNAL.sub("/compile/<source key>.jsonl", TEMPORARY.sub(r"\1.<random>/", value))
     return value
 
 

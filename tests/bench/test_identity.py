@@ -75,3 +75,12 @@ def test_the_blocks_are_read_from_phongfx_blocks_with_wrapped_configs():
         assert main(["blocks"]) == 0
     assert "\n  " in out.getvalue()  # some configs wrap onto a second line
     assert listed_blocks(out.getvalue()) == list(REGISTRY)
+
+
+def test_the_compile_journal_s_source_key_is_not_a_difference():
+    # the key hashes the package's source: every change of the code renames the file
+    a = {"evaluation": {"journal": "/cap/a/work/build/compile/c3a40cb7ae698de9f5a4.jsonl"}}
+    b = {"evaluation": {"journal": "/cap/b/work/build/compile/313c2688006ececf15af.jsonl"}}
+    assert normalize_json(a, "/cap/a") == normalize_json(b, "/cap/b") == {
+        "evaluation": {"journal": "<capture>/work/build/compile/<source key>.jsonl"}}
+    assert normalize_json({"p": "/cap/a/x/compile/notes.jsonl"}, "/cap/a") == {"p": "<capture>/x/compile/notes.jsonl"}
