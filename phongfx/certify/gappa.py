@@ -98,7 +98,7 @@ def gappa_script(config, ranges, part="chain"):
     rd, rs = _mode(diff.rounding, "difference.rounding"), _mode(shape.rounding, "shape.rounding")
     dd_max = Fraction(dd.max_raw, dd.one)
     lo_dd, hi_dd = ranges.get("dd", (0, dd_max))
-    lines = [f"# Lyon 1993, Figure 7c-d between its quantizes: hardware (lower case) and exact (upper)",
+    lines = ["# Lyon 1993, Figure 7c-d between its quantizes: hardware (lower case) and exact (upper)",
              f"# difference {diff.rounding} -> {rd}, shape {shape.rounding} -> {rs} (same functions)",
              f"@rdd = fixed<{-dd.frac_bits},{rd}>;", f"@rx2 = fixed<{-x2.frac_bits},{rd}>;",
              f"@rt = fixed<{-t.frac_bits},{rs}>;"]

@@ -8,7 +8,6 @@ import pytest
 
 from phongfx.certify import Certificate, certify
 from phongfx.certify.bound import shader_config
-from phongfx.explore.compile import run as runs
 from phongfx.explore.compile.measure import SceneEval
 from phongfx.scene.domain import domain
 from phongfx.scene.file import load_scene

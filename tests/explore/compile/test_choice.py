@@ -3,8 +3,6 @@
 so that the rule is tested apart from any bounding method; :mod:`tests.certify` tests the real
 ones)."""
 
-import pytest
-
 from phongfx.certify.certificate import Certificate
 from phongfx.compiler import compile as compiling
 from phongfx.compiler.compile import certifier_of, compile_scene
