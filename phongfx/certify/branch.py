@@ -31,10 +31,16 @@ from phongfx.explore.compile.workers import Twin, spare_core
 
 from .sphere import Boxes, cover
 
-__all__ = ["TWIN_BOXES", "Resume", "bound_boxes", "cases", "first_boxes"]
+__all__ = ["TWIN_BOXES", "SECONDS", "Resume", "bound_boxes", "cases", "first_boxes"]
 
 #: Boxes from which a round is worth halving between this process and its twin.
 TWIN_BOXES = 4096
+#: Wall-clock seconds after which a branch and bound stops: a guard against a hang, not a budget.
+#: The budget is ``max_boxes``, the same on every machine; at 60 s a loaded machine's compile of
+#: the local mesh shipped a bound of 1.422 levels (166,688 boxes) where an idle one's is 1.398
+#: (317,610 boxes), so the time stop sits far above what any certificate takes (2.5–6 s on the
+#: example scenes), and a certificate it cut says so (``parts["timed_out"]``).
+SECONDS = 900.0
 
 
 def cases(domain):
@@ -57,7 +63,7 @@ class Resume:
         self.stop = None
 
 
-def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60.0, batch=2048,
+def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=None, batch=2048,
                 max_batch=65536, enough=None, boxes=None, patience=4, resume=None, separable=False):
     """Branch and bound (module docstring): ``(bound, parts)``, ``bound`` inf when some box
     cannot be bounded (``parts["faults"]`` then names the quantizes that may overflow).
@@ -67,7 +73,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
     stops when the largest has fallen by under 0.2 % over ``patience`` rounds that split every box
     near it (a box with more sides needs more halvings before its children's bounds fall), or once
     ``max_boxes`` boxes have been bounded (the budget that makes the result the same on every
-    machine), or at ``seconds``, or as soon as the largest is below ``enough`` (a width search
+    machine), or at ``seconds`` (a hang guard, :data:`SECONDS`; ``parts["timed_out"]`` then), or as
+    soon as the largest is below ``enough`` (a width search
     needs no tighter bound).  With ``enough``, it also stops once the largest, falling at its
     pace per box of the last ``patience - 1`` rounds that split every box near it, would still not be
     below ``enough`` when the budget is spent (``parts["abandoned"]``): the bounds of a branch and
@@ -75,6 +82,7 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
     search's failing designs, the most of its certificates, cost a fraction of the budget.
     ``separable``: each box's bound depends on that box alone, so that a round's boxes may be
     bounded in halves (module docstring)."""
+    seconds = SECONDS if seconds is None else seconds
     with _Halves(errors, separable) as errors:
         start, faults, history, spent, abandoned = time.perf_counter(), set(), [], [], False
 
@@ -105,7 +113,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
                     and all(w for _, w in history[-patience:])):
                 pace = (history[-patience][0] - top) / max(evaluated - spent[-patience], 1)
                 abandoned = top - pace * (max_boxes - evaluated) >= enough
-            if met or settled or abandoned or time.perf_counter() - start > seconds or evaluated > max_boxes:
+            timed_out = time.perf_counter() - start > seconds
+            if met or settled or abandoned or timed_out or evaluated > max_boxes:
                 break
             count = min(max(np.count_nonzero(near), batch), max_batch, len(total))
             pick = np.zeros(len(total), dtype=bool)
@@ -123,6 +132,8 @@ def bound_boxes(errors, domain, *, tolerance=0.02, max_boxes=300_000, seconds=60
         parts.update(boxes=int(evaluated), rounds=len(history))
         if abandoned:
             parts["abandoned"] = True
+        if timed_out and not (met or settled or abandoned or evaluated > max_boxes):
+            parts["timed_out"] = True
         if faults:
             parts["faults"] = sorted(faults)
         return bound, parts

@@ -10,7 +10,8 @@ the domain (not its sample), the scene's requirement and output, and how far the
 refined (``early``, ``max_boxes``).  The blend's coefficients enter by their values, not their
 width (:func:`~phongfx.certify.outputs.fewest_coefficient_bits`): a width search lowering
 ``coef`` where the codes only lose trailing zeros bounds the same outputs once.  A probe that
-refines nothing (``max_boxes=0``) is not kept: it costs less than reading it back.
+refines nothing (``max_boxes=0``) is not kept: it costs less than reading it back; nor is one the
+branch and bound's hang guard cut (``parts["timed_out"]``), which another run would refine further.
 """
 
 import dataclasses
@@ -52,6 +53,8 @@ def remembering(folder):
         except (OSError, ValueError, TypeError):
             pass  # not kept yet, or torn: bound it again
         found = certify(method, params, spec, domain, shader=shader, max_boxes=max_boxes, early=early)
+        if (found.parts or {}).get("timed_out"):
+            return found  # cut by the clock, not the budget: this machine's, not the key's, bound
         try:
             text = json.dumps(found.as_dict(), default=float)
         except TypeError:

@@ -46,3 +46,17 @@ def test_a_unit_that_lists_codes_across_boxes_is_bounded_whole(monkeypatch):
     bound, parts = how.bound(shader_config("conventional", {"vec_frac": 11, "rsqrt_addr": 8, "table_addr": 5,
                                                             "coef": 0}, spec), spec, domain(spec), max_boxes=5_000)
     assert parts["boxes"] > branch.TWIN_BOXES and bound < float("inf")
+
+
+def test_the_clock_only_guards_against_a_hang_and_a_cut_certificate_says_so(monkeypatch):
+    """The box budget decides where a branch and bound stops, so that a loaded machine ships the
+    bound an idle one does; the clock stops only a hang, and a bound it cut is marked."""
+    spec = load_scene("scenes/lyon-balls.toml")
+    where = domain(spec).region(19)
+    shader, how = shader_config("fig7", LYON, spec), bounding("fig7")
+    assert branch.SECONDS >= 600
+    bound, parts = how.bound(shader, spec, where, max_boxes=4_000)
+    assert "timed_out" not in parts and parts["rounds"] > 1
+    monkeypatch.setattr(branch, "SECONDS", 0.0)
+    cut, cut_parts = how.bound(shader, spec, where, max_boxes=4_000)
+    assert cut_parts["timed_out"] and cut_parts["rounds"] == 1 and cut >= bound

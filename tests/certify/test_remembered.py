@@ -1,5 +1,5 @@
 """Certificates kept in the cache: a second ask reads the first's back, a changed design or
-refinement bounds again, and a probe is never kept."""
+refinement bounds again, and a probe, or a bound the clock cut, is never kept."""
 
 import json
 
@@ -81,3 +81,19 @@ def test_coefficient_widths_of_the_same_values_share_a_certificate():
         assert remembered.certificate_key("fig7", same, spec, domain, False, 2000) == key
     other = dataclasses.replace(shader, blend=dataclasses.replace(shader.blend, ambient=((0.1, 0.1, 0.1),)))
     assert remembered.certificate_key("fig7", other, spec, domain, False, 2000) != key
+
+
+
+def test_a_certificate_the_clock_cut_is_not_kept(tmp_path, monkeypatch):
+    """A bound cut by the branch and bound's hang guard is this machine's on this run: it is
+    returned, not kept, so that a later run refines it to the budget's bound."""
+    from phongfx.certify import branch
+
+    spec, domain, analysis = _scene()
+    monkeypatch.setattr(branch, "SECONDS", 0.0)
+    certifier = remembered.remembering(tmp_path)
+    cut = certifier("fig7", {"vec_frac": 9, "k": 4}, spec, domain, analysis=analysis, max_boxes=2000)
+    assert cut.parts["timed_out"] and list(tmp_path.iterdir()) == []
+    monkeypatch.setattr(branch, "SECONDS", 900.0)
+    kept = certifier("fig7", {"vec_frac": 9, "k": 4}, spec, domain, analysis=analysis, max_boxes=2000)
+    assert "timed_out" not in kept.parts and len(list(tmp_path.iterdir())) == 1
