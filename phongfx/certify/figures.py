@@ -41,9 +41,10 @@ class LyonDatapaths:
 
     ``specular``: the unit's intervals after the normalizer
     (:func:`~phongfx.certify.datapath.fig7_specular`...); ``k_field``: the sub-config whose
-    ``k`` is its shape's (``shape``; Figure 8's ``root``); ``halfway``: its form is taken at
-    ``N·H`` (Figure 5), bounded for the ``variants`` named and with directional lights and
-    the viewer at infinity only; ``gappa``: Gappa proves its chain (:mod:`.gappa`: Figure 7's).
+    ``k`` is its shape's (``shape``; Figure 8's ``root``); ``variants``: those bounded of a unit
+    whose form is taken at ``N·H`` (Figure 5's, :attr:`~phongfx.config.base.SpecularUnit.bisector`),
+    which is bounded with directional lights and the viewer at infinity only; ``gappa``: Gappa
+    proves its chain (:mod:`.gappa`: Figure 7's).
     """
 
     #: what the certificate names as its method
@@ -51,9 +52,8 @@ class LyonDatapaths:
     #: what of a domain its bound reads: every limit (:func:`~phongfx.certify.regions.limits`)
     limits = staticmethod(limits)
 
-    def __init__(self, specular, k_field="shape", *, halfway=False, variants=(), gappa=False):
-        self.specular, self.k_field, self.halfway = specular, k_field, halfway
-        self.variants, self.gappa = variants, gappa
+    def __init__(self, specular, k_field="shape", *, variants=(), gappa=False):
+        self.specular, self.k_field, self.variants, self.gappa = specular, k_field, variants, gappa
 
     def why_not(self, shader, domain):
         """None when this method bounds ``shader`` on ``domain``, else one sentence why not."""
@@ -69,11 +69,11 @@ class LyonDatapaths:
                         f"{'interpolated' if unit.local_light(index) else 'as a constant'}")
         if unit.local_viewer != (domain.camera[0] == "point"):
             return f"the camera is {domain.camera[0]} but the datapath's local_viewer is {unit.local_viewer}"
-        if self.halfway and unit.any_local:
+        if unit.unit.bisector and unit.any_local:
             return ("the halfway unit with point lights or a local viewer is not bounded yet (its form "
                     "against Phong's R·L takes N·H and R·L together, which the light and viewer cones "
                     "decouple in every box of normals)")
-        if self.halfway and unit.halfway.variant not in self.variants:
+        if unit.unit.bisector and unit.halfway.variant not in self.variants:
             return f"the halfway unit's {unit.halfway.variant} variant is not bounded yet"
         return None
 
@@ -106,4 +106,4 @@ def unit_directions_why_not(domain):
 #: The ``certify`` faces of the methods ``fig7``, ``fig8`` and ``halfway``.
 FIG7_BOUND = LyonDatapaths(fig7_specular, gappa=True)
 FIG8_BOUND = LyonDatapaths(fig8_specular, "root")
-HALFWAY_BOUND = LyonDatapaths(halfway_specular, halfway=True, variants=("g2proj", "d3"))
+HALFWAY_BOUND = LyonDatapaths(halfway_specular, variants=("g2proj", "d3"))

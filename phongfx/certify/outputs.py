@@ -112,8 +112,8 @@ def box_errors(shader, unit_bound, against, boxes, basis, lights, min_normal_len
     ``faults`` (quantizes that may overflow: :class:`~phongfx.certify.interval.Interval`) and per
     box ``gate``: 0 where the backside tests agree, else the ``|N·L|`` below which they may not.
     ``unit_bound``: what differs between Lyon's units (:class:`phongfx.certify.figures.LyonDatapaths`:
-    its ``specular`` intervals, the field whose ``k`` its shape takes, ``halfway`` for a unit
-    whose form is taken at ``N·H``).  ``cones`` (:class:`~phongfx.certify.cones.Directions`):
+    its ``specular`` intervals and the field whose ``k`` its shape takes; a unit whose form is
+    taken at ``N·H`` says so itself, :attr:`~phongfx.config.base.SpecularUnit.bisector`).  ``cones`` (:class:`~phongfx.certify.cones.Directions`):
     point lights and a local viewer, whose projections it widens; None: ``lights`` directional,
     the viewer ``basis[0]``."""
     unit, blend = shader.units[0], shader.blend
@@ -140,7 +140,7 @@ def box_errors(shader, unit_bound, against, boxes, basis, lights, min_normal_len
         add, off = light_rounding(tables, m, i, blend.levels, d.hi, d.dev, t.hi, t.dev, q, margin)
         rounding += add
         gate = np.maximum(gate, off)
-        if unit_bound.halfway:
+        if unit.unit.bisector:
             shift = _halfway(against, unit, boxes, cones, i, s, c, n_hw, n, k)
         elif cones.local:  # N's scale and the ideal's own L and V against the reference's (:mod:`.cones`)
             shift = (bend_shift(*cones.difference(boxes, s, unit.direction_normalize.order, i), n_hw, k)

@@ -238,10 +238,10 @@ def cmd_render_mesh(args):
 
 
 def cmd_render_frames(args):
-    from phongfx.render.frames import UNITS, markdown, run_all
+    from phongfx.render.frames import markdown, run_all
     _check_size(args.size)
     check_folder(args.frames_out)
-    result = run_all(out_dir=args.frames_out, units=args.units or UNITS, quiet=args.quiet,
+    result = run_all(out_dir=args.frames_out, units=args.units, quiet=args.quiet,
                      backend=args.frames_backend, polygons=args.polygons, width=args.size,
                      height=args.size, frame=args.frame)
     print(markdown(result))

@@ -1,7 +1,7 @@
 """The ``phongfx`` argument parser: subcommands, their options and help texts.
 
 Every list of accepted names in a help text is made from the names the code accepts
-(:data:`~phongfx.render.mesh.SHADED`, :data:`~phongfx.scene.span_inputs.UNITS`,
+(:data:`~phongfx.render.mesh.SHADED`, :func:`~phongfx.scene.span_inputs.units`,
 :data:`~phongfx.explore.tables.TABLES` ...), not written out, so that a name added there
 is never missing here (hand-written lists had lost five).
 
@@ -19,7 +19,7 @@ from phongfx.explore.synth.fpga import ALL_TARGETS
 from phongfx.explore.tables import TABLES
 from phongfx.hdl.dsp import DSP_TARGETS
 from phongfx.render.mesh import FLOAT_METHODS, RENAMED, SHADED_UNITS
-from phongfx.scene.span_inputs import UNITS
+from phongfx.scene.span_inputs import units
 from phongfx.sim.harness import BACKENDS
 
 from . import blocks as blocks_command
@@ -68,7 +68,7 @@ def _mesh_parser(p):
 
 
 def _frames_parser(p):
-    p.add_argument("--units", nargs="+", metavar="UNIT", help=f"any of {' '.join(UNITS)} (default all)")
+    p.add_argument("--units", nargs="+", metavar="UNIT", help=f"any of {' '.join(units())} (default all)")
     p.add_argument("--backend", dest="frames_backend", choices=BACKENDS,
                    help="default: render's --backend, else verilator-fast")
     p.add_argument("--polygons", type=int, default=800, help="torus polygons")
@@ -200,7 +200,7 @@ def build_parser():
                                help="instead of Lyon's scene: a triangle mesh, or RTL full frames")
     _mesh_parser(targets.add_parser("mesh", help="shade a tessellated sphere or torus by method (PNG)"))
     _frames_parser(targets.add_parser(
-        "frames", help=f"one full torus frame through the RTL of the units {_names(UNITS)} (PNG per unit)"))
+        "frames", help=f"one full torus frame through the RTL of the units {_names(units())} (PNG per unit)"))
 
     p = sub.add_parser("figure9", help="Lyon's Figure 9: float rows and fixed-point rows, RTL-checked")
     p.add_argument("--out", default="build/figure9", help="output folder")

@@ -24,7 +24,7 @@ import numpy as np
 
 from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
-from phongfx.scene.span_inputs import UNITS, check_unit, decode, first_pixels, inputs
+from phongfx.scene.span_inputs import check_unit, decode, first_pixels, inputs, units as stream_units
 from phongfx.sim.harness import BACKENDS
 
 from .figure import frame_figure
@@ -138,12 +138,14 @@ def rtl_frame(unit, *, mesh="torus", polygons=800, width=256, height=256, frame=
             **({"png": os.fspath(png)} if png is not None else {})}
 
 
-def run_all(out_dir="build/frames", units=UNITS, *, quiet=False, **options):
-    """:func:`rtl_frame` for each of ``units`` on the same frame; writes each unit's
+def run_all(out_dir="build/frames", units=None, *, quiet=False, **options):
+    """:func:`rtl_frame` for each of ``units`` (None: every unit with a stream,
+    :func:`~phongfx.scene.span_inputs.units`) on the same frame; writes each unit's
     picture to ``out_dir/<unit>.png`` and ``out_dir/frames.json``, atomically, and returns ``{"frames": [...], "mismatches",
     "wall_seconds"}``.  ``options`` go to :func:`rtl_frame`."""
     from tqdm import tqdm
 
+    units = stream_units() if units is None else units
     for unit in units:
         check_unit(unit)
     start, rows = time.perf_counter(), []

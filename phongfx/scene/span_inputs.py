@@ -32,15 +32,13 @@ from phongfx.core.registry import get_block
 from phongfx.golden import euler_setup, spherical_setup
 from phongfx.golden.fixed import Fixed
 
-__all__ = ["VIEWER", "UNITS", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",
+__all__ = ["VIEWER", "halfway", "first_pixels", "euler_inputs", "gouraud_inputs",
            "spherical_inputs", "schlick_inputs", "blinn_inputs", "blinn_codes", "conventional_inputs",
            "conventional_codes", "units", "check_unit", "inputs", "decode"]
 
 #: Viewer direction in eye space (orthographic view along -z, viewer at infinity).
 VIEWER = np.array([0.0, 0.0, 1.0])
 
-#: The units with a per-pixel input stream built here: the methods with an ``inputs`` face.
-UNITS = tuple(name for name, method in METHODS.items() if method.has("inputs"))  # units() at import
 
 
 def _check_n(n, config):
@@ -222,22 +220,22 @@ def _codes(config, n, **vectors):
 
 
 def units():
-    """The names of the units with a stream built here, as the method registry has them now
-    (:data:`UNITS` is the list when this module was imported: a method registered since is
-    taken too)."""
+    """The names of the units with a stream built here: the methods with an ``inputs`` face,
+    as the registry has them now (a method registered at run time too)."""
     return tuple(name for name, method in METHODS.items() if method.has("inputs"))
 
 
 def check_unit(unit):
     """The :class:`~phongfx.core.methods.Method` of ``unit``; ValueError unless it is one of
     :func:`units`."""
-    if unit not in units():
-        raise ValueError(f"unit must be one of {', '.join(units())}, not {unit!r}")
+    names = units()
+    if unit not in names:
+        raise ValueError(f"unit must be one of {', '.join(names)}, not {unit!r}")
     return METHODS[unit]
 
 
 def inputs(unit, spans, light, *, n=32, config=None):
-    """The stream of ``unit`` (one of :data:`UNITS`: a method with an ``inputs`` face) with
+    """The stream of ``unit`` (one of :func:`units`) with
     its block's default config, shininess ``n``."""
     method = check_unit(unit)
     return method.load("inputs")(spans, light, n=n, config=config or get_block(method.block).config)
@@ -248,8 +246,9 @@ def decode(outputs, config, part="spec"):
     ``outputs``: the port its config's :attr:`~phongfx.config.base.BlockConfig.SHADES` names
     for it (``(P, 3)`` for the spherical unit's coloured diffuse); a signed cosine (Euler,
     Gouraud) clamped to 0, as the shading formula clamps it."""
-    if part not in config.SHADES:
+    port = config.SHADES.get(part)
+    if port is None:
         raise ValueError(f"part must be one of {', '.join(config.SHADES)}, not {part!r}")
-    fmt = config.outputs[config.SHADES[part]][0]
-    value = np.asarray(outputs[config.SHADES[part]]) * fmt.lsb
+    fmt = config.outputs[port][0]
+    value = np.asarray(outputs[port]) * fmt.lsb
     return np.maximum(value, 0.0) if fmt.signed else value

@@ -191,8 +191,8 @@ def _accepted_names():
     from phongfx.explore.synth.fpga import ALL_TARGETS
     from phongfx.explore.tables import TABLES
     from phongfx.render.mesh import RENAMED, SHADED
-    from phongfx.scene.span_inputs import UNITS
-    return [(["render", "mesh", "--help"], [*SHADED, *RENAMED]), (["render", "frames", "--help"], UNITS),
+    from phongfx.scene.span_inputs import units
+    return [(["render", "mesh", "--help"], [*SHADED, *RENAMED]), (["render", "frames", "--help"], units()),
             (["render", "--help"], ["frames"]), (["tables", "--help"], TABLES), (["--help"], TABLES),
             (["synth", "--help"], [*ALL_TARGETS, *LIBRARIES]), (["compile", "--help"], COMPILE_METHODS)]
 

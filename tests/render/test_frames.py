@@ -5,11 +5,11 @@ import pytest
 
 from phongfx.core.registry import get_block
 from phongfx.render.frames import chunk_starts, frame_spans, markdown, rtl_frame, run_all
-from phongfx.scene.span_inputs import UNITS
+from phongfx.scene.span_inputs import units
 
 
 @pytest.mark.needs_verilator
-@pytest.mark.parametrize("unit", UNITS)
+@pytest.mark.parametrize("unit", units())
 def test_small_frame_is_bit_identical_on_verilator(unit):
     # verilator-fast: the cocotb back end checks the same Verilog (tests/conftest.py COCOTB_TESTS)
     result = rtl_frame(unit, width=48, height=48, frame=30, backend="verilator-fast")
