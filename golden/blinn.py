@@ -59,8 +59,9 @@ from phongfx.core.format import Format
 
 from .fixed import Fixed, check_range
 
-__all__ = ["blinn", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift",
-           "reciprocal_sqrt", "inverse_length", "cosine", "clamp_one", "log2_t", "pow2", "power"]
+__all__ = ["blinn", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift", "shifted",
+           "reciprocal_sqrt", "inverse_length", "inverse_root", "unclamped_cosine", "cosine", "clamp_one",
+           "log2_t", "pow2", "power"]
 
 
 def rsqrt_table(config):
@@ -121,11 +122,17 @@ def reciprocal_sqrt(config, m):
 
 
 def inverse_length(config, vector, op):
-    """``(j, y1)`` of ``vector`` (count, 3): :func:`even_shift` and :func:`reciprocal_sqrt` of
-    its exact ``q = X·X`` (``op`` names the quantize to ``config.q``), so ``1/|X| ~
-    2^(j-h)·y1``: the normalization of ``N`` before Blinn's (1977) ``N·H``, and of ``N`` and a
-    local ``L`` or ``V`` before Phong's (1975) ``R·V`` (:mod:`phongfx.golden.conventional`)."""
-    q = vector.dot(vector).quantize(config.q, "truncate", "error", op=op)
+    """``(j, y1)`` of ``vector`` (count, 3): :func:`inverse_root` of its exact ``X·X``, so
+    ``1/|X| ~ 2^(j-h)·y1``: the normalization of ``N`` before Blinn's (1977) ``N·H``, and of
+    ``N`` and a local ``L`` or ``V`` before Phong's (1975) ``R·V``
+    (:mod:`phongfx.golden.conventional`)."""
+    return inverse_root(config, vector.dot(vector), op)
+
+
+def inverse_root(config, square, op):
+    """``(j, y1)`` of an exact squared length ``square``: :func:`even_shift` and
+    :func:`reciprocal_sqrt` of it rounded to ``q = config.q`` (``op`` names that quantize)."""
+    q = square.quantize(config.q, "truncate", "error", op=op)
     j, m = even_shift(config, q)
     return j, reciprocal_sqrt(config, m)
 
@@ -136,16 +143,28 @@ def clamp_one(value):
     return value.where(value < 1, Fixed.const(1, value.fmt))
 
 
-def cosine(config, d, j, y1, fmt):
-    """``max(d, 0)/sqrt(q)`` clamped to 1 in an unsigned ``fmt`` (``d/sqrt(q)`` clamped to 1 in
-    a signed one: the conventional unit's cosines and unit vectors): ``d·2^(j-h)`` rounded to
-    ``config.dot``, times ``y1``."""
+def shifted(config, d, j):
+    """``d·2^(j-h)``, exact: the dot product ``d`` shifted by :func:`even_shift`'s ``j``."""
     cfg = config
     shift = cfg.q.width // 2 - 1
     wide = Format.covering(d.fmt.min_raw << shift, d.fmt.max_raw << shift,
                            d.fmt.frac_bits + cfg.q.int_bits // 2)
-    scaled = Fixed(d.raw << j, wide).quantize(cfg.dot, cfg.rounding, "saturate", op="blinn d'")
-    return clamp_one((scaled * y1).quantize(fmt, cfg.rounding, "saturate", op="blinn cosine"))
+    return Fixed(d.raw << j, wide)
+
+
+def unclamped_cosine(config, d, j, y1, fmt):
+    """:func:`cosine` before its clamp to 1: :func:`shifted` rounded to ``config.dot``, times
+    ``y1``, rounded to ``fmt``."""
+    cfg = config
+    scaled = shifted(cfg, d, j).quantize(cfg.dot, cfg.rounding, "saturate", op="blinn d'")
+    return (scaled * y1).quantize(fmt, cfg.rounding, "saturate", op="blinn cosine")
+
+
+def cosine(config, d, j, y1, fmt):
+    """``max(d, 0)/sqrt(q)`` clamped to 1 in an unsigned ``fmt`` (``d/sqrt(q)`` clamped to 1 in
+    a signed one: the conventional unit's cosines and unit vectors): :func:`unclamped_cosine`
+    clamped to 1."""
+    return clamp_one(unclamped_cosine(config, d, j, y1, fmt))
 
 
 def log2_t(config, t):

@@ -23,7 +23,9 @@ matters, at the highlight: ``L·R_V = V·R_L = t``, Phong's ``R·V`` itself, so 
 along ``L`` and across it, ``|δL·R_V| <= |δL·L|·|t| + |δL|·√(1 - t²)`` (``R_V - tL`` is
 ``R_V``'s part across ``L``, of length ``√(1 - t²)``); at ``t`` near 1, where ``t^n`` is steep,
 only the part along ``L`` counts, and the normalizer has taken the host's rounding out of it
-(:func:`_along`: what is left is its table's and its own roundings').  The power's bound takes
+(:func:`_along`: what is left is its table's and its own roundings'), or, tighter where the
+unit rounds once, :func:`along_by_length`: the host's code already lies on the output's grid,
+so the unit moves it by whole steps only, tied to the code's length.  The power's bound takes
 ``t``'s deviation per band of ``t`` (:mod:`.table_units`).  Symbols per
 component of ``δL`` would cancel the same way only where the coefficient vectors were known;
 over a cone of ``V`` they range widely and the interval products lose the cancellation.
@@ -35,9 +37,13 @@ unit length by a constant gives vectors shorter than 1, whose rounding this boun
 """
 
 import functools
+import itertools
 from dataclasses import dataclass
 
 import numpy as np
+
+from phongfx.golden.blinn import inverse_root, shifted, unclamped_cosine
+from phongfx.golden.fixed import Fixed
 
 from .cones import spread
 from .datapath import SUB_CONES
@@ -45,7 +51,7 @@ from .interval import Interval
 from .normalizer import clamp, cosine, direction, inverse_length, length_cases, normal_codes, squared_length
 from .sphere import cover, frame
 
-__all__ = ["Deviation", "EXACT", "local_vector", "geometry_error"]
+__all__ = ["Deviation", "EXACT", "local_vector", "along_by_length", "geometry_error"]
 
 
 @dataclass(frozen=True)
@@ -90,8 +96,59 @@ def _normalized(unit, cone):
         delta = max(delta, float(np.max(whole)))
         along = max(along, float(np.max(_along(parts, pieces, basis, whole))))
     grow = 1 + 1e-12
+    by_length = along_by_length(unit, cone)
+    if by_length is not None:
+        along = min(along, by_length)
     return (tuple(lo), tuple(hi), Deviation(delta * grow, min(along, delta) * grow), tuple(devs * grow),
             frozenset(faults))
+
+
+def along_by_length(unit, cone):
+    """A bound on ``|δL·L|`` over ``cone`` from the squared lengths the host's codes can have;
+    None where some length's shift (:func:`~phongfx.golden.blinn.shifted`) is not exact.
+
+    The host rounds ``2^f·L`` to the code ``c = 2^f·L + η`` (``|η_i| <= 1/2``), and the unit gives
+    ``L̂ = (c + k)·2^-f``: each component ``min(U(c_i), 2^f)``, ``U`` one rounding of
+    ``c_i·y1·2^(j-h)`` (where the shift is exact) for the ``j``, ``y1`` of ``Q = |c|²``, so that
+    ``k_i = U(c_i) - c_i`` is a rounding of ``c_i`` times a constant: monotone in ``c_i``, its
+    range over the cone's codes given by its two ends (the clamp can only lower it, to ``2^f -
+    c_i``).  Then ``2^f·δL·L = L·η + L·k`` with ``L·η = (Q - 4^f - |η|²)/2^(f+1)`` exactly
+    (``|L| = 1``): per ``Q`` (every integer of ``(2^f ± √3/2)²``) an interval, and ``L·k`` by the
+    components' ranges.  The interval bound adds the unit's rounding of each component as if
+    it were free; here it is tied to the length: ``c`` is already on the output's grid, so
+    ``L̂`` moves off it by whole steps only, and only where ``|c_i·(y1·2^(j-h) - 1)|`` reaches
+    a half (local mesh, 14 bits: 5.6e-5 for ``L`` where the interval bound is 8.2e-5)."""
+    vec = unit.fmt("vec")
+    f = vec.frac_bits
+    size = 1 << f
+    half = np.sqrt(3) / 2
+    squares = np.arange(int(np.ceil((size - half) ** 2)), int(np.floor((size + half) ** 2)) + 1, dtype=np.int64)
+    one = Fixed(np.zeros((1, 3), dtype=np.int64), vec)
+    j, y1 = inverse_root(unit, Fixed(squares, one.dot(one).fmt), "certify |c|²")
+    axis = np.asarray(cone.axis, dtype=np.float64)
+    low, high = [], []
+    for i in range(3):
+        lo, hi = spread((axis[i], axis[i]), cone.half)
+        ends = (int(np.ceil(size * lo - 0.5)), int(np.floor(size * hi + 0.5)))
+        odd = ends[0] | 1 if (ends[0] | 1) <= ends[1] else ends[0]
+        for c in {*ends, odd}:  # an odd code has j trailing zeros only: a shift that drops bits shows
+            exact = shifted(unit, Fixed(np.full(len(squares), c, dtype=np.int64), vec), j)
+            dot = exact.quantize(unit.fmt("dot"), unit.rounding, "saturate")
+            if np.any(dot.raw * 2.0 ** -dot.fmt.frac_bits != exact.raw * 2.0 ** -exact.fmt.frac_bits):
+                return None
+        k_lo, k_hi = (unclamped_cosine(unit, Fixed(np.full(len(squares), c, dtype=np.int64), vec), j, y1, vec).raw - c
+                      for c in ends)
+        low.append(np.minimum(np.minimum(k_lo, k_hi), size - ends[1]))
+        high.append(np.maximum(k_lo, k_hi))
+    # L·k is linear in k: its extremes over the box of k's ranges are at a corner, and over the
+    # cone's L, for a corner u, at the support of the cap: |u|·cos(max(0, angle(u, axis) - half))
+    corners = [np.stack([(high if pick else low)[i] for i, pick in enumerate(corner)], -1).astype(np.float64)
+               for corner in itertools.product((0, 1), repeat=3)]
+    top = np.max([_support(u, axis, cone.half) for u in corners], axis=0)
+    bottom = -np.max([_support(-u, axis, cone.half) for u in corners], axis=0)
+    along = np.maximum(top + (squares - size * size) / (2.0 * size),
+                       -(bottom + (squares - size * size - 0.75) / (2.0 * size)))
+    return float(along.max()) / size
 
 
 def _length(parts):
@@ -138,6 +195,13 @@ def local_vector(unit, cone, count, symbols, cells=None):
         hi = np.minimum(np.stack([p[1] for p in parts], -1) + devs, hi)
     return Interval(np.broadcast_to(lo, wide), np.broadcast_to(hi, wide), 0.0, unit.fmt("vec"), faults,
                     np.zeros(wide + (symbols,))), deviation
+
+
+def _support(u, axis, half):
+    """(Q,) the largest ``u·L`` over unit ``L`` within ``half`` of ``axis`` (``u`` (Q, 3))."""
+    length = np.linalg.norm(u, axis=-1)
+    angle = np.arccos(np.clip(u @ axis / np.maximum(length, 1e-300), -1.0, 1.0))
+    return length * np.cos(np.clip(angle - half, 0.0, np.pi)) * (1 + 1e-12)
 
 
 def geometry_error(light, view, t=1.0, sine=1.0):
