@@ -125,6 +125,9 @@ def along_by_length(unit, cone):
     squares = np.arange(int(np.ceil((size - half) ** 2)), int(np.floor((size + half) ** 2)) + 1, dtype=np.int64)
     one = Fixed(np.zeros((1, 3), dtype=np.int64), vec)
     j, y1 = inverse_root(unit, Fixed(squares, one.dot(one).fmt), "certify |c|²")
+    # k depends on a length through its (j, y1) alone, which few lengths tell apart
+    _, first, which = np.unique(j * (1 << 48) + y1.raw, return_index=True, return_inverse=True)
+    j, y1 = j[first], Fixed(y1.raw[first], y1.fmt)
     axis = np.asarray(cone.axis, dtype=np.float64)
     low, high = [], []
     for i in range(3):
@@ -132,11 +135,11 @@ def along_by_length(unit, cone):
         ends = (int(np.ceil(size * lo - 0.5)), int(np.floor(size * hi + 0.5)))
         odd = ends[0] | 1 if (ends[0] | 1) <= ends[1] else ends[0]
         for c in {*ends, odd}:  # an odd code has j trailing zeros only: a shift that drops bits shows
-            exact = shifted(unit, Fixed(np.full(len(squares), c, dtype=np.int64), vec), j)
+            exact = shifted(unit, Fixed(np.full(len(j), c, dtype=np.int64), vec), j)
             dot = exact.quantize(unit.fmt("dot"), unit.rounding, "saturate")
             if np.any(dot.raw * 2.0 ** -dot.fmt.frac_bits != exact.raw * 2.0 ** -exact.fmt.frac_bits):
                 return None
-        k_lo, k_hi = (unclamped_cosine(unit, Fixed(np.full(len(squares), c, dtype=np.int64), vec), j, y1, vec).raw - c
+        k_lo, k_hi = (unclamped_cosine(unit, Fixed(np.full(len(j), c, dtype=np.int64), vec), j, y1, vec).raw - c
                       for c in ends)
         low.append(np.minimum(np.minimum(k_lo, k_hi), size - ends[1]))
         high.append(np.maximum(k_lo, k_hi))
@@ -144,8 +147,8 @@ def along_by_length(unit, cone):
     # cone's L, for a corner u, at the support of the cap: |u|·cos(max(0, angle(u, axis) - half))
     corners = [np.stack([(high if pick else low)[i] for i, pick in enumerate(corner)], -1).astype(np.float64)
                for corner in itertools.product((0, 1), repeat=3)]
-    top = np.max([_support(u, axis, cone.half) for u in corners], axis=0)
-    bottom = -np.max([_support(-u, axis, cone.half) for u in corners], axis=0)
+    top = np.max([_support(u, axis, cone.half) for u in corners], axis=0)[which]
+    bottom = -np.max([_support(-u, axis, cone.half) for u in corners], axis=0)[which]
     along = np.maximum(top + (squares - size * size) / (2.0 * size),
                        -(bottom + (squares - size * size - 0.75) / (2.0 * size)))
     return float(along.max()) / size
