@@ -51,7 +51,7 @@ against = "phong"
 def add_arguments(p):
     """``phongfx certify``'s arguments, on its subparser ``p``."""
     p.add_argument("target", metavar="METHOD|DIR",
-                   help="a method (fig7, fig8, conventional, ...) or a compiled output folder (its manifest.json)")
+                   help="a method (fig7, fig8, conventional, ...), a compiled output folder or its manifest.json")
     p.add_argument("--set", action="append", metavar="WIDTH=VALUE",
                    help="a width of METHOD, as the compiler names them (vec_frac=10, x2_frac, shape_t_frac, k, "
                         "order, coef ...); the others at the method's defaults")
@@ -266,6 +266,8 @@ def cmd_certify(args):
     from phongfx.scene.geometry import frames
 
     _check(args)
+    if os.path.basename(args.target) == "manifest.json" and os.path.isfile(args.target):
+        args.target = os.path.dirname(args.target) or "."  # the folder the manifest describes
     method, params, spec, data = _target(args)
     if args.gappa and not getattr(bounding(method), "gappa", False):
         raise ValueError(f"--gappa proves Figure 7's chain (fig7), not {method}'s")

@@ -117,6 +117,12 @@ def test_a_compiled_folder_certifies_from_any_working_directory(capsys, compiled
     code, out, _ = run(capsys, "certify", "../../out", "--quiet", "--json")
     assert code == 0 and json.loads(out)["scene"] == "../../ball.toml"  # the manifest's path, from here
     assert run(capsys, "certify", "../../out", "--replay")[0] == 0
+    # or named by its manifest, from its own folder too
+    code, out, _ = run(capsys, "certify", "../../out/manifest.json", "--quiet", "--json")
+    assert code == 0 and json.loads(out)["scene"] == "../../ball.toml"
+    monkeypatch.chdir(compiled)
+    code, out, _ = run(capsys, "certify", "manifest.json", "--quiet", "--json")
+    assert code == 0 and json.loads(out)["scene"] == "../ball.toml" and json.loads(out)["method"] == "fig7"
 
 
 def test_a_manifest_of_another_version_or_without_its_scene_file_is_refused(capsys, compiled, tmp_path):
