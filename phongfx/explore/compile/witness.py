@@ -38,8 +38,8 @@ from .measure import point_errors, shade_points, worst_per_point
 from .points import concat, pose_frames, posed_frame, take, worst_index
 from .workers import MIN_POINTS, count, fork_imap
 
-__all__ = ["STARTS", "SCAN_SHARE", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore", "climb_rounds", "replay",
-           "geometry"]
+__all__ = ["STARTS", "SCAN_SHARE", "ROUNDS", "CLIMBS", "REPLAY", "SEED_OFFSET", "search", "explore",
+           "climb_rounds", "replay", "geometry"]
 
 #: How many of the worst sampled points the local search starts from.  Many starts on a
 #: smaller fresh sample find more than few on a larger one: on the four example scenes' chosen
