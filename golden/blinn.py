@@ -59,7 +59,7 @@ from phongfx.core.format import Format
 
 from .fixed import Fixed, check_range
 
-__all__ = ["blinn", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift", "shifted",
+__all__ = ["blinn", "rsqrt_table", "log2_tables", "exp2_tables", "even_shift", "shifted", "scaled",
            "reciprocal_sqrt", "inverse_length", "inverse_root", "unclamped_cosine", "cosine", "clamp_one",
            "log2_t", "pow2", "power"]
 
@@ -152,12 +152,14 @@ def shifted(config, d, j):
     return Fixed(d.raw << j, wide)
 
 
+def scaled(config, d, j):
+    """:func:`shifted` rounded to ``config.dot``."""
+    return shifted(config, d, j).quantize(config.dot, config.rounding, "saturate", op="blinn d'")
+
+
 def unclamped_cosine(config, d, j, y1, fmt):
-    """:func:`cosine` before its clamp to 1: :func:`shifted` rounded to ``config.dot``, times
-    ``y1``, rounded to ``fmt``."""
-    cfg = config
-    scaled = shifted(cfg, d, j).quantize(cfg.dot, cfg.rounding, "saturate", op="blinn d'")
-    return (scaled * y1).quantize(fmt, cfg.rounding, "saturate", op="blinn cosine")
+    """:func:`cosine` before its clamp to 1: :func:`scaled` times ``y1``, rounded to ``fmt``."""
+    return (scaled(config, d, j) * y1).quantize(fmt, config.rounding, "saturate", op="blinn cosine")
 
 
 def cosine(config, d, j, y1, fmt):

@@ -42,7 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from phongfx.golden.blinn import inverse_root, shifted, unclamped_cosine
+from phongfx.golden.blinn import inverse_root, scaled, shifted, unclamped_cosine
 from phongfx.golden.fixed import Fixed
 
 from .cones import spread
@@ -136,8 +136,8 @@ def along_by_length(unit, cone):
         ends = (int(np.ceil(size * lo - 0.5)), int(np.floor(size * hi + 0.5)))
         odd = ends[0] | 1 if (ends[0] | 1) <= ends[1] else ends[0]
         for c in {*ends, odd}:  # an odd code has j trailing zeros only: a shift that drops bits shows
-            exact = shifted(unit, Fixed(np.full(len(j), c, dtype=np.int64), vec), j)
-            dot = exact.quantize(unit.fmt("dot"), unit.rounding, "saturate")
+            d = Fixed(np.full(len(j), c, dtype=np.int64), vec)
+            exact, dot = shifted(unit, d, j), scaled(unit, d, j)
             if np.any(dot.raw * 2.0 ** -dot.fmt.frac_bits != exact.raw * 2.0 ** -exact.fmt.frac_bits):
                 return None
         k_lo, k_hi = (unclamped_cosine(unit, Fixed(np.full(len(j), c, dtype=np.int64), vec), j, y1, vec).raw - c

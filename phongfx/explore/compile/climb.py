@@ -26,8 +26,9 @@ import numpy as np
 from phongfx.scene.geometry import FrameGeometry
 from phongfx.scene.mesh import unit
 from phongfx.scene.regions import holds
+from phongfx.scene.sampling import CHUNK
 
-__all__ = ["State", "state_of", "points", "inside", "perturb", "climb", "neighbourhood"]
+__all__ = ["State", "state_of", "points", "inside", "errors", "perturb", "climb", "neighbourhood"]
 
 
 @dataclass
@@ -144,6 +145,20 @@ def inside(s, g, domain):
     return ok & (np.linalg.norm(s.d, axis=-1) <= domain.max_span_length)
 
 
+def errors(evaluate, s, domain, rgb, bits):
+    """``(levels, unrounded)`` (K,) each of the state ``s`` by ``evaluate`` (``g -> (levels,
+    unrounded)``), a chunk of points at a time; ``unrounded`` is ``-inf`` where a point lies
+    outside the domain (:func:`inside`)."""
+    levels, unrounded = [], []
+    for lo in range(0, len(s), CHUNK):
+        part = s.rows(np.arange(lo, min(lo + CHUNK, len(s))))
+        g = points(part, domain, rgb, bits)
+        e, u = evaluate(g)
+        levels.append(e)
+        unrounded.append(np.where(inside(part, g, domain), u, -np.inf))
+    return np.concatenate(levels), np.concatenate(unrounded)
+
+
 def perturb(s, sigma, rng, domain):
     """A random neighbour of each row of ``s``, at relative step ``sigma`` (K,)."""
     k, step = len(s), sigma[:, None]
@@ -168,22 +183,17 @@ def climb(evaluate, start, domain, rgb, bits, rng, *, rounds=40, batch=32, sigma
         where each start's climb ended ``(levels, unrounded, state)`` (one row each) and how
         many points were evaluated.
     """
-    g = points(start, domain, rgb, bits)
-    cur_e, cur_u = evaluate(g)
-    ok = inside(start, g, domain)
-    cur_u = np.where(ok, cur_u, -np.inf)
-    best = _best(start, cur_e, cur_u, ok)
+    cur_e, cur_u = errors(evaluate, start, domain, rgb, bits)
+    best = _best(start, cur_e, cur_u, cur_u > -np.inf)
     steps, evaluated, count = np.full(len(start), float(sigma)), len(start), len(start)
     current, every = start, np.arange(len(start))
     for _ in range(rounds):
         rows = np.repeat(every, batch)
         candidates = perturb(current.rows(rows), steps[rows], rng, domain)
-        g = points(candidates, domain, rgb, bits)
-        e, u = evaluate(g)
-        ok = inside(candidates, g, domain)
+        e, u = errors(evaluate, candidates, domain, rgb, bits)
         evaluated += len(rows)
-        best = max(best, _best(candidates, e, u, ok), key=lambda b: b[:2])
-        u = np.where(ok, u, -np.inf).reshape(count, batch)
+        best = max(best, _best(candidates, e, u, u > -np.inf), key=lambda b: b[:2])
+        u = u.reshape(count, batch)
         pick = np.argmax(u, axis=1)
         gain = u[every, pick] > cur_u
         chosen = every * batch + pick
