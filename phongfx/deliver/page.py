@@ -142,10 +142,19 @@ def _chosen(data):
     proof = data.get("minimality_proof") or {}
     if proof:
         out.append("<h3>Minimality: each width one lower</h3>" + table(
-            [[name, p.get("value"), p.get("lower"), levels(p.get("max_error")), p.get("why", "misses the requirement")]
+            [[name, p.get("value"), p.get("lower"), _lower_error(p), p.get("why", "misses the requirement")]
              for name, p in proof.items() if isinstance(p, dict)],
-            ["width", "chosen", "one lower", "its max error", "why not lower"]))
+            ["width", "chosen", "one lower", "its error", "why not lower"]))
     return "\n".join(out)
+
+
+def _lower_error(entry):
+    """A proof entry's error one lower: measured (``max_error``), or its certificate's bound."""
+    if entry.get("max_error") is not None:
+        return f"max {levels(entry['max_error'])}"
+    if entry.get("bound_levels") is not None:
+        return f"bound {levels(entry['bound_levels'])}"
+    return "—"
 
 
 def _misses(default, data):

@@ -253,22 +253,52 @@ class SceneEval:
             if self.journal is not None:
                 self.journal.add(key, {"partial": True})
 
-    def _error(self, method, params, complete=False, limit=None):
-        """:meth:`error` measured; with ``limit``, None as soon as part of the domain sample
-        is past it (:meth:`~phongfx.explore.compile.points.DomainPoints.error`)."""
-        inf = float("inf")
+    def _frames(self, method, params):
+        """``(config, error on the frames)`` of ``method`` at ``params``; ``(None, error)``
+        with ``max = inf`` and ``"why"`` for a config that cannot be built or overflows."""
+        inf = math.inf
         try:
             config = runs.build(method, params, self.analysis)
             renders = [self.render(method, config, params, i)[:2] for i in range(len(self.renders))]
         except (ValueError, OverflowError) as error:
-            return {"max": inf, "mean": inf, "max_unrounded": inf, "why": str(error)}
+            return None, {"max": inf, "mean": inf, "max_unrounded": inf, "why": str(error)}
         each = [point_errors(codes, ref, self.bits) for codes, ref in renders]
         e = np.concatenate([levels.ravel() for levels, _ in each])
         out = {"max": float(e.max(initial=0.0)), "mean": float(e.mean()) if e.size else 0.0,
                "max_unrounded": float(max(raw.max(initial=0.0) for _, raw in each)),
                "per_render": [float(levels.max(initial=0.0)) for levels, _ in each]}
         out["frames_max"] = out["max"]
-        if self.points is None:
+        return config, out
+
+    def fails_screen(self, method, params):
+        """Whether ``method`` at ``params`` is past the requirement on the frames or on the
+        domain sample's screen (:meth:`~phongfx.explore.compile.points.DomainPoints.screened_out`:
+        the worst points of the method's earlier measurements, and the hard points): an
+        integer error over it, or a continuous one of at least ``required + 1/2``, which no
+        certificate of the requirement allows.  The certified search asks this before a
+        certificate, in place of measuring the whole sample, which a sound certificate
+        answers; a point found past it fails :meth:`passes` too, and is kept as failed."""
+        required = self.spec.requirement.max_error_levels
+        key = (method, tuple(sorted(params.items())))
+        if key in self.cache:
+            return self.cache[key]["max"] > required
+        if key in self.failed:
+            return True
+        config, out = self._frames(method, params)
+        past = out["max"] > required
+        if not past and self.points is not None and runs.per_pixel(method):
+            past = self.points.screened_out(method, config, params, (required, required + 0.5))
+        if past:
+            self.failed.add(key)
+            if self.journal is not None:
+                self.journal.add(key, {"partial": True})
+        return past
+
+    def _error(self, method, params, complete=False, limit=None):
+        """:meth:`error` measured; with ``limit``, None as soon as part of the domain sample
+        is past it (:meth:`~phongfx.explore.compile.points.DomainPoints.error`)."""
+        config, out = self._frames(method, params)
+        if config is None or self.points is None:
             return out
         out.update(domain_max=None, domain_points=0)
         if out["max"] > self.spec.requirement.max_error_levels and not complete:
@@ -276,7 +306,7 @@ class SceneEval:
         try:
             measured = self.points.error(method, config, params, limit)
         except (ValueError, OverflowError) as error:
-            return {**out, "max": inf, "domain_max": inf, "why": f"on the domain: {error}"}
+            return {**out, "max": math.inf, "domain_max": math.inf, "why": f"on the domain: {error}"}
         if measured is None:
             return None
         out.update(domain_max=measured["max"], domain_mean=measured["mean"], domain_points=measured["points"],

@@ -199,7 +199,7 @@ class DomainPoints:
         per_pixel = runs.per_pixel(method)
         parts = self.chunks if per_pixel else self.poses()
         against = self.spec.requirement.against
-        if limit is not None and per_pixel and self._screened_out(method, config, params, limit):
+        if limit is not None and per_pixel and self.screened_out(method, config, params, limit):
             return None
         worst = worst_raw = total = 0.0
         points, kept = 0, []
@@ -278,9 +278,9 @@ class DomainPoints:
         """Keep the domain points ``g`` (worst of a measurement) in ``method``'s screen."""
         self._screens[method] = [*self._screens.get(method, ())[1 - SCREENS:], g]
 
-    def _screened_out(self, method, config, params, limit):
+    def screened_out(self, method, config, params, limit):
         """Whether a point of ``method``'s screen or a hard point is past ``limit`` (each a
-        point of the sample: then so is the sample).  A screen that cannot be measured (an
+        point of the sample: then so is the sample); a unit fed per pixel.  A screen that cannot be measured (an
         overflow) decides nothing: the sample's measurement says what it says."""
         parts = [(g, np.round(g.n).astype(np.int64), None) for g in self._screens.get(method, ())]
         parts += self.chunks[len(self.chunks) - len(self.hard):]

@@ -4,8 +4,8 @@
 docstring): from the method's default widths, or from the widest (:func:`widest`), lower
 each width by binary search (after the first pass, only when one lower passes) while a width
 point ``passes`` (its error measured by
-:class:`~phongfx.explore.compile.measure.SceneEval` meets the requirement, or that and a
-certificate for a certified choice), until no single width can drop; then the proof of local
+:class:`~phongfx.explore.compile.measure.SceneEval` meets the requirement, or for a
+certified choice its certificate does, :mod:`.certified`), until no single width can drop; then the proof of local
 minimality, one lower for every width.  :func:`search_all` searches several methods, each
 in a worker process of its own when the domain sample is large (:mod:`.workers`).
 """
@@ -14,10 +14,9 @@ from phongfx.core.methods import METHODS
 
 from . import run as runs
 from .infeasible import summary
-from .measure import meets
 from .workers import MIN_POINTS, count, fork_map
 
-__all__ = ["width_params", "widest", "search_widths", "measured_passes", "search_all"]
+__all__ = ["width_params", "widest", "search_widths", "measured_passes", "MeasuredTest", "search_all"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -38,6 +37,23 @@ def width_params(method, against="phong"):
 def measured_passes(scene, method, params):
     """Whether ``method`` at ``params`` meets the requirement as measured (frames and domain)."""
     return scene.passes(method, params)
+
+
+class MeasuredTest:
+    """``test(params)``: whether ``method`` at ``params`` meets the requirement as measured
+    (:func:`measured_passes`); ``test.failure(params)``: what the proof of minimality says of a
+    point it failed, its error measured on the whole sample (``max_error``, and ``why`` when it
+    cannot be built or overflows).  :func:`search_widths` asks any test these two questions."""
+
+    def __init__(self, scene, method):
+        self.scene, self.method = scene, method
+
+    def __call__(self, params):
+        return measured_passes(self.scene, self.method, params)
+
+    def failure(self, params):
+        measured = self.scene.error(self.method, params)
+        return {"max_error": measured["max"], **({"why": measured["why"]} if "why" in measured else {})}
 
 
 def _lowest(passes, params, name, lo):
@@ -73,11 +89,12 @@ def widest(scene, method, widths):
 def search_widths(scene, method, progress=None, passes=None):
     """The width search of the module docstring; returns a result dict (an infeasible
     method's is :func:`~phongfx.explore.compile.infeasible.summary`).  ``passes(params)``:
-    whether a width point is good enough (default: its measured error meets the requirement;
-    :func:`~phongfx.compiler.compile.compile_scene`'s ``certify="search"`` asks for a certificate too)."""
+    whether a width point is good enough, and ``passes.failure(params)`` what the proof of
+    minimality says of one that is not (default: :class:`MeasuredTest`, its measured error;
+    :func:`~phongfx.compiler.compile.compile_scene`'s ``certify="search"`` asks for a certificate,
+    :class:`~phongfx.explore.compile.certified.CertifiedTest`)."""
     if passes is None:
-        def passes(params):
-            return measured_passes(scene, method, params)
+        passes = MeasuredTest(scene, method)
     widths = width_params(method, scene.spec.requirement.against)
     default = {k: v for k, (v, _) in widths.items()}
     # measured whole first: the result quotes the defaults' numbers, which passes() alone may not measure
@@ -105,15 +122,10 @@ def search_widths(scene, method, progress=None, passes=None):
                     proof[name] = {"value": params[name], "lower": None, "why": "at range minimum"}
                     continue
                 lower = {**params, name: params[name] - 1}
-                measured = scene.error(method, lower)
                 if passes(lower):
                     params, changed = lower, True
                     break
-                proof[name] = {"value": params[name], "lower": params[name] - 1,
-                               **{k: measured[k] for k in ("max", "why") if k in measured}}
-                if meets(measured, scene.spec.requirement.max_error_levels):
-                    proof[name]["why"] = "its certificate's bound misses the requirement"
-                proof[name]["max_error"] = proof[name].pop("max")
+                proof[name] = {"value": params[name], "lower": params[name] - 1, **passes.failure(lower)}
     return {**result, "feasible": True, "params": params, **scene.measured(method, params), "proof": proof}
 
 
