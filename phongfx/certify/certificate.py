@@ -43,6 +43,12 @@ class Certificate:
     why: str = ""
     seconds: float = 0.0
 
+    @classmethod
+    def from_dict(cls, data):
+        """The certificate :meth:`as_dict` gave (other keys ignored)."""
+        return cls(data["certified"], data["bound_levels"], data["method"], dict(data.get("parts") or {}),
+                   data.get("why", ""), data.get("seconds", 0.0))
+
     def as_dict(self):
         """JSON-able: what the manifest and ``phongfx certify --json`` write."""
         return {"certified": self.certified, "bound_levels": self.bound_levels, "method": self.method,

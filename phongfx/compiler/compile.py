@@ -38,8 +38,8 @@ certified compile, where the witness cannot miss).
 With ``certify="search"`` (``phongfx compile``'s default) a width point must also meet the
 requirement by its certificate (:func:`phongfx.certify.certify`, kept in the request's
 ``certificates`` folder when given: :func:`phongfx.certify.remembered.remembering`), methods
-without a bounding method are rejected unsearched, and the chosen design's full certificate is
-computed once (:mod:`phongfx.explore.compile.certified`).  This layer sits above
+without a bounding method are rejected unsearched, and the chosen design ships with the
+certificate its search passed it by (:mod:`phongfx.explore.compile.certified`).  This layer sits above
 :mod:`phongfx.certify`, which bounds a design through the compile room's fitting of a method to
 a scene (:mod:`phongfx.explore.compile.run`, :mod:`~phongfx.explore.compile.analysis`).
 
@@ -61,10 +61,11 @@ import dataclasses
 from dataclasses import dataclass, field
 
 from phongfx.certify import certify
+from phongfx.certify.certificate import Certificate
 from phongfx.certify.remembered import remembering
 from phongfx.explore.compile import run as runs
 from phongfx.explore.compile.architecture import Speed, refusal
-from phongfx.explore.compile.certified import begin_full_certificate, certified_search, full_certificate, refusal_lines
+from phongfx.explore.compile.certified import certified_search, refusal_lines
 from phongfx.explore.compile.choice import begin_beside_witness, choose, for_chosen
 from phongfx.explore.compile.costing import price_designs
 from phongfx.explore.compile.infeasible import hint
@@ -191,10 +192,8 @@ def compile_scene(request):
     def cost(name, params, by_synth):
         return price_designs([(name, params, by_synth and synth)], scene.analysis, speed, **options)[0]
 
-    # the chosen design's full certificate and ``prepare``, begun beside its witness on a sample
-    # worth forking for
+    # the chosen design's ``prepare``, begun beside its witness on a sample worth forking for
     fork = scene.points.count >= MIN_POINTS and count(workers) > 1
-    pending = begin_full_certificate(out, certifier, fork) if certified else None
     prepared = (begin_beside_witness(out, lambda result: request.prepare(result, scene.analysis), fork)
                 if request.prepare is not None else None)
     try:
@@ -204,17 +203,17 @@ def compile_scene(request):
             raise AssertionError(f"internal error: {step['method']} at {step['params']} has a witness of "
                                  f"{step['witness_levels']} levels over the requirement its certificate "
                                  f"meets: the bound is not sound")
-        if certifier is not None and out.chosen is not None:
+        if certified and out.chosen is not None:  # the certificate its search passed it by
+            out.certificate = Certificate.from_dict(out.best["certificate"])
+        elif certifier is not None and out.chosen is not None:
             if progress:
                 progress(f"certifying {out.chosen}")
-            out.certificate = (full_certificate(out, certifier, pending) if certified else
-                               certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis))
+            out.certificate = certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis)
         if for_chosen(out, prepared):
             prepared[2].result()
     finally:  # not taken (another design chosen, or none), or interrupted
-        for begun in (pending, prepared):
-            if begun is not None:
-                begun[2].cancel()
+        if prepared is not None:
+            prepared[2].cancel()
     out.refused = refusal(out)
     if certified and out.chosen is None and out.refused is None:
         out.refused = {"why": "certificate", "text": refusal_lines(out)}

@@ -13,7 +13,7 @@ How many workers: ``workers`` as given, else the cores this process may run on
 samples) is not worth a fork: the callers go parallel only from :data:`MIN_POINTS` points.
 
 :class:`Pending` is one piece of work begun in a forked process now and waited for later,
-while this process does another (the chosen design's full certificate during its witness);
+while this process does another (the chosen design's RTL check simulator during its witness);
 once this process waits for it, it has a spare core.
 :class:`Twin` is a copy of a worker that shares its work item by item while a core is idle
 (:func:`spare_core`): the last width search running alone bounds half of each round's boxes
