@@ -29,13 +29,15 @@ def shader_config(method, params, spec, analysis=None):
     return runs.build(method, params, analysis)
 
 
-def certify(method, params, spec, domain, *, shader=None, analysis=None, max_boxes=300_000, early=False):
+def certify(method, params, spec, domain, *, shader=None, analysis=None, max_boxes=300_000, early=False,
+            regions_first=False):
     """A :class:`~phongfx.certify.certificate.Certificate` for ``method`` at ``params`` (the
     compiler's, :func:`shader_config`) on the scene ``spec`` over ``domain``
     (:class:`phongfx.scene.domain.Domain`); ``shader``: the ShaderConfig when already built;
     ``max_boxes``: the branch and bound's budget (:func:`~phongfx.certify.branch.bound_boxes`);
     ``early``: stop refining as soon as the bound meets the requirement (for a width search,
-    which asks only that)."""
+    which asks only that); ``regions_first``: with ``early``, a domain's regions without its
+    whole (:func:`~phongfx.certify.regions.by_region`)."""
     start = time.perf_counter()
     how = bounding(method)
 
@@ -54,7 +56,7 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
     # floor(B + 1/2) <= need exactly when B < floor(need) + 1/2
     target = np.floor(need) + 0.5
     bound, parts = by_region(how, shader, spec, domain, max_boxes=max_boxes, enough=target if early else None,
-                             target=target)
+                             target=target, regions_first=regions_first)
     if not np.isfinite(bound):
         faults = ", ".join(parts.get("faults", [])) or "a quantize"
         return done(False, None, parts, f"{faults} may overflow or wrap somewhere in the domain")
@@ -63,6 +65,8 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
                          f"required {need:g}")
     if not ok and "region" in parts:
         why += f"; by region, largest in {parts['region']}"
+        if "region_bound" in parts and parts["region_bound"] < bound:
+            why += f" at {parts['region_bound']:.3f} levels there"
         if parts.get("unbounded_regions"):
             why += f" (which stays over it: {len(parts['unbounded_regions'])} regions not bounded)"
     if not ok and "backside" in parts:

@@ -78,7 +78,7 @@ def _close(a, b):
     return bool(np.all(a == b)) if isinstance(a, np.ndarray) or isinstance(b, np.ndarray) else a == b
 
 
-def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None):
+def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None, regions_first=False):
     """``(bound_levels, parts)`` of the bounding method ``how`` over ``domain`` (module
     docstring): the whole domain's bound, and when it is not below ``target`` and the domain
     has regions, the largest over the regions if smaller.  Then ``parts["regions"]`` gives per
@@ -87,28 +87,42 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None)
     which asks only whether the bound is below it) a region is refined only until it is below,
     and the first region that stays above ends the search (``parts["unbounded_regions"]``
     names the others not yet below; the bound is then the whole domain's).  With no
-    ``max_boxes`` only the whole domain is bounded."""
+    ``max_boxes`` only the whole domain is bounded.
+
+    ``regions_first`` (with ``enough``: a width search whose certificate at wider widths needed
+    its regions, where the whole domain, bounded first, would miss again): the regions without
+    the whole, unless one of them is like it; the bound is then the largest over the regions
+    (each region's bound holds over it, and they cover the domain), ``parts["whole_bound"]``
+    None."""
     regions = getattr(domain, "regions", ())
-    bound, parts = how.bound(shader, spec, replace(domain, regions=()) if regions else domain,
-                             max_boxes=max_boxes, enough=enough)
-    # no budget (whether the domain can be bounded at all): the regions could only refine it
-    if not regions or target is None or not max_boxes or bound < target or not np.isfinite(bound):
-        return bound, parts
-    same = like_whole(how, domain)
-    if same:  # the regions cannot beat the whole (module docstring)
-        return bound, dict(parts, like_whole=regions[same[0]].name)
+    skip = bool(regions_first and regions and enough is not None and target is not None and max_boxes)
+    same = like_whole(how, domain) if skip else []
+    if skip and not same:
+        bound, parts = np.inf, {"boxes": 0}
+    else:
+        bound, parts = how.bound(shader, spec, replace(domain, regions=()) if regions else domain,
+                                 max_boxes=max_boxes, enough=enough)
+        # no budget (whether the domain can be bounded at all): the regions could only refine it
+        if not regions or target is None or not max_boxes or bound < target or not np.isfinite(bound):
+            return bound, parts
+        same = same or like_whole(how, domain)
+        if same:  # the regions cannot beat the whole (module docstring)
+            return bound, dict(parts, like_whole=regions[same[0]].name)
     found, failed, spent = _regions(how, shader, spec, domain, max_boxes, enough, target)
     names = [r.name for r in domain.regions]
     worst = int(np.argmax([b for b, *_ in found])) if failed is None else failed
     listed = [{"name": name, "bound_levels": float(b), "where": p.get("where")} for name, (b, p, *_) in
               zip(names, found)]
-    extra = {"regions": listed, "region": names[worst], "whole_bound": float(bound),
+    extra = {"regions": listed, "region": names[worst], "whole_bound": float(bound) if np.isfinite(bound) else None,
              "boxes": int(parts.get("boxes", 0) + spent)}
     if failed is not None:
         extra["unbounded_regions"] = [name for i, (name, f) in enumerate(zip(names, found))
                                       if i != failed and not f[0] < enough]
+        extra["region_bound"] = float(found[failed][0])  # the region that stayed above, alone
     if failed is None and found[worst][0] < bound:
         bound, parts = found[worst][:2]
+    elif not np.isfinite(bound):  # no whole bound (regions_first): the regions' largest
+        bound, parts = found[int(np.argmax([b for b, *_ in found]))][:2]
     return bound, dict(parts, **extra)
 
 

@@ -71,6 +71,30 @@ def test_early_stops_at_the_first_region_that_fails():
     assert f"(which stays over it: {len(over)} regions not bounded)" in got.why
 
 
+def test_regions_first_skips_the_whole_domain_and_bounds_by_the_largest_region():
+    """A width search whose wider certificate needed the regions asks for them first: the same
+    answer without the whole domain's branch and bound, the bound the largest over the regions
+    (sound: they cover the domain), the failing region's own bound named in why."""
+    d = domain(SPEC)
+    both = [certify("fig7", LYON, SPEC, d, max_boxes=20_000, early=True, regions_first=first) for first in (False, True)]
+    whole_first, regions_first = both
+    assert not regions_first.certified and regions_first.parts["whole_bound"] is None
+    assert regions_first.parts["region"] == whole_first.parts["region"]
+    listed = [r["bound_levels"] for r in regions_first.parts["regions"]]
+    assert regions_first.bound_levels == max(listed) and len(listed) == len(d.regions)
+    assert regions_first.parts["boxes"] < whole_first.parts["boxes"]
+    alone = regions_first.parts["region_bound"]
+    assert alone == whole_first.parts["region_bound"] <= regions_first.bound_levels
+    # named apart where another region's first share is higher than the one that stayed over
+    assert (f"at {alone:.3f} levels there" in regions_first.why) == (alone < regions_first.bound_levels)
+    # a domain whose whole meets the requirement is still bounded whole when its regions are asked
+    # for on one without regions
+    torus = load_scene("scenes/torus.toml")
+    wide = {"vec_frac": 14, "x2_frac": 14, "shape_t_frac": 18, "coef": 8, "order": 2, "k": 4}
+    plain = dataclasses.replace(domain(torus), regions=())
+    assert certify("fig7", wide, torus, plain, early=True, regions_first=True).certified
+
+
 def test_a_whole_domain_that_meets_the_requirement_needs_no_regions():
     spec = load_scene("scenes/torus.toml")
     wide = {"vec_frac": 14, "x2_frac": 14, "shape_t_frac": 18, "coef": 8, "order": 2, "k": 4}

@@ -47,6 +47,23 @@ def test_the_domain_is_skipped_where_the_frames_miss_unless_asked(tiny):
     assert scene.error("fig7", NARROW) is complete  # the cache now holds the complete measurement
 
 
+def test_the_screen_fails_a_point_by_its_frames_or_earlier_worst_points_without_the_whole_sample(tiny):
+    spec, _, domain = tiny
+    scene = SceneEval(spec)
+    scene.measure_domain(DomainPoints(spec, domain))
+    narrow = {**NARROW, "k": 3}  # fails on the frames: no domain point measured, kept as failed
+    assert scene.fails_screen("fig7", narrow) and ("fig7", tuple(sorted(narrow.items()))) in scene.failed
+    assert not scene.passes("fig7", narrow) and not scene.cache
+    assert not scene.fails_screen("fig7", PASSING) and not scene.cache  # passes: nothing measured whole
+    whole = scene.error("fig7", PASSING)  # now the screen holds this measurement's worst points
+    assert not scene.fails_screen("fig7", PASSING) and whole["max"] <= 1.0
+    # a point whose frames pass but which some of those worst points fail (the whole sample: 2 levels)
+    worse = {**PASSING, "vec_frac": 9}
+    assert SceneEval(spec).error("fig7", worse)["frames_max"] <= 1.0
+    assert scene.fails_screen("fig7", worse) and ("fig7", tuple(sorted(worse.items()))) in scene.failed
+    assert scene.error("fig7", worse)["max"] == 2.0
+
+
 def test_the_guard_on_the_domain_s_continuous_error():
     assert meets({"max": 1.0, "domain_unrounded": 1.5 - GUARD}, 1.0)
     assert not meets({"max": 1.0, "domain_unrounded": 1.5 - GUARD + 1e-6}, 1.0)
