@@ -36,8 +36,15 @@ def test_the_certificate_is_asked_only_past_the_screen_once_per_point_and_region
     test = CertifiedTest(scene, "fig7", None, _certifier(calls, needs_regions_under=13))
     assert test({"vec_frac": 14}) and test({"vec_frac": 12}) and not test({"vec_frac": 9})
     assert not test({"vec_frac": 7}) and test({"vec_frac": 12})  # 7: the screen alone; 12 again: kept
-    # 14 needed no regions, 12 did: from then on the regions first
+    # 14 needed no regions, 12 passed by them: from then on the regions first
     assert calls == [(14, False), (12, False), (9, True)]
+
+
+def test_a_failing_point_that_needed_the_regions_does_not_put_them_first():
+    calls = []
+    test = CertifiedTest(Screen(floor=8), "fig7", None, _certifier(calls, needs_regions_under=10))
+    assert not test({"vec_frac": 9}) and test({"vec_frac": 11}) and test({"vec_frac": 10})
+    assert calls == [(9, False), (11, False), (10, False)]
 
 
 def test_a_failed_point_is_explained_by_its_screen_or_its_certificate():
