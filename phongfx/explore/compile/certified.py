@@ -108,7 +108,7 @@ def certified_search(scene, method, domain, certifier, progress=None):
         tried = [(p, c) for p, c in test.certificates.values() if c.bound_levels is not None]
         best = min(tried, key=lambda pc: pc[1].bound_levels, default=None)
         result.setdefault("why", []).append(
-            "no width point is both measured and certified within the requirement"
+            "no width point is certified within the requirement"
             + (f"; the lowest bound found is {best[1].bound_levels:.3f} levels at {best[0]}" if best else ""))
     return result, None
 

@@ -79,14 +79,14 @@ def test_certified_rejects_an_uncertifiable_method_unsearched_and_refuses_with_e
     assert "conventional" not in out.results  # not searched at all
     assert out.rejected["conventional"] == "not certifiable: no bounding method for the conventional unit yet"
     why = out.results["fig7"]["why"][-1]
-    lead = ("no width point is both measured and certified within the requirement; the lowest bound found is "
+    lead = ("no width point is certified within the requirement; the lowest bound found is "
             "3.000 levels at ")
     assert why.startswith(lead) and why[len(lead):] == str(fake.calls[0][1])  # all 3.0: the first asked
     refused = out.refused
     assert refused["why"] == "certificate" and out.hint is None
     assert refused["text"][0] == "no design of tiny is certified within 1 level against phong:"
     assert refused["text"][1] == "  conventional: not certifiable: no bounding method for the conventional unit yet"
-    assert refused["text"][2].startswith("  fig7: no width point is both measured and certified")
+    assert refused["text"][2].startswith("  fig7: no width point is certified within")
     assert refused["text"][-1] == ("--sampled chooses by the measured error alone (certified: false): "
                                    "phongfx compile tiny.toml -o DIR --sampled")
 
