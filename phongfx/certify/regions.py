@@ -27,6 +27,11 @@ whatever the others give, and the worst region gets one more budget, for the bou
 region that starts highest is most often the one that stays above: taken first, it ends a
 failing width point's certificate before the others are refined.
 
+A width search whose certificate at wider widths needed the regions asks for them first
+(``regions_first``): its whole domain would miss again, and bounding it first took a third of each
+of the halfway unit's certificates on Lyon's spheres; the bound is then the largest over the
+regions, none being the whole's.
+
 A region whose limits are the whole domain's as the bounding method reads them
 (:func:`like_whole`: on the torus, the patch whose normals reach every N·V of the whole; for the
 table units about a local viewer's cone, whose cover is the cone's whatever a region's N·V) is

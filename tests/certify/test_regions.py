@@ -76,8 +76,8 @@ def test_regions_first_skips_the_whole_domain_and_bounds_by_the_largest_region()
     answer without the whole domain's branch and bound, the bound the largest over the regions
     (sound: they cover the domain), the failing region's own bound named in why."""
     d = domain(SPEC)
-    both = [certify("fig7", LYON, SPEC, d, max_boxes=20_000, early=True, regions_first=first) for first in (False, True)]
-    whole_first, regions_first = both
+    whole_first, regions_first = (certify("fig7", LYON, SPEC, d, max_boxes=20_000, early=True, regions_first=first)
+                                  for first in (False, True))
     assert not regions_first.certified and regions_first.parts["whole_bound"] is None
     assert regions_first.parts["region"] == whole_first.parts["region"]
     listed = [r["bound_levels"] for r in regions_first.parts["regions"]]
