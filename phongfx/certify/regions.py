@@ -100,9 +100,8 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None,
     (each region's bound holds over it, and they cover the domain), ``parts["whole_bound"]``
     None."""
     regions = getattr(domain, "regions", ())
-    skip = bool(regions_first and regions and enough is not None and target is not None and max_boxes)
-    same = like_whole(how, domain) if skip else []
-    if skip and not same:
+    if (regions_first and regions and enough is not None and target is not None and max_boxes
+            and not like_whole(how, domain)):
         bound, parts = np.inf, {"boxes": 0}
     else:
         bound, parts = how.bound(shader, spec, replace(domain, regions=()) if regions else domain,
@@ -110,7 +109,7 @@ def by_region(how, shader, spec, domain, *, max_boxes, enough=None, target=None,
         # no budget (whether the domain can be bounded at all): the regions could only refine it
         if not regions or target is None or not max_boxes or bound < target or not np.isfinite(bound):
             return bound, parts
-        same = same or like_whole(how, domain)
+        same = like_whole(how, domain)
         if same:  # the regions cannot beat the whole (module docstring)
             return bound, dict(parts, like_whole=regions[same[0]].name)
     found, failed, spent = _regions(how, shader, spec, domain, max_boxes, enough, target)

@@ -122,6 +122,11 @@ def worst_per_point(method, config, params, against, g, n, phong=None, own=None)
     return levels.max(axis=-1), raw.max(axis=-1)
 
 
+def _key(method, params):
+    """A width point's key in the cache, the journal and :attr:`SceneEval.failed`."""
+    return method, tuple(sorted(params.items()))
+
+
 class SceneEval:
     """The scene's renders (frames × shininess variants) and their Phong references; with
     ``domain``, :class:`~phongfx.explore.compile.points.DomainPoints` of it (module docstring)."""
@@ -210,7 +215,7 @@ class SceneEval:
         (cached; module docstring); a config that cannot be built or overflows has ``max =
         inf`` and says why in ``"why"``.  ``complete``: measure the domain even where the
         frames miss (an infeasible method's best point, which a hint quotes)."""
-        key = (method, tuple(sorted(params.items())))
+        key = _key(method, params)
         cached = self.cache.get(key)
         if cached is None or (complete and self.points is not None and cached.get("domain_max") is None
                               and math.isfinite(cached["max"])):
@@ -225,16 +230,14 @@ class SceneEval:
         ``meets(self.error(method, params), ...)``, with a point that fails on the domain
         measured only until it does (module docstring)."""
         required = self.spec.requirement.max_error_levels
-        key = (method, tuple(sorted(params.items())))
+        key = _key(method, params)
         if key in self.cache:
             return meets(self.cache[key], required)
         if key in self.failed:
             return False
         found = self._error(method, params, limit=(required, required + 0.5 - GUARD))
-        if found is None:  # journalled as such: a rerun knows it fails without measuring it
-            self.failed.add(key)
-            if self.journal is not None:
-                self.journal.add(key, {"partial": True})
+        if found is None:
+            self._failed(key)
             return False
         self.cache[key] = found
         if self.journal is not None:
@@ -279,7 +282,7 @@ class SceneEval:
         certificate, in place of measuring the whole sample, which a sound certificate
         answers; a point found past it fails :meth:`passes` too, and is kept as failed."""
         required = self.spec.requirement.max_error_levels
-        key = (method, tuple(sorted(params.items())))
+        key = _key(method, params)
         if key in self.cache:
             return self.cache[key]["max"] > required
         if key in self.failed:
@@ -289,10 +292,15 @@ class SceneEval:
         if not past and self.points is not None and runs.per_pixel(method):
             past = self.points.screened_out(method, config, params, (required, required + 0.5))
         if past:
-            self.failed.add(key)
-            if self.journal is not None:
-                self.journal.add(key, {"partial": True})
+            self._failed(key)
         return past
+
+    def _failed(self, key):
+        """Keep ``key`` as failing on part of the domain, journalled as such: a rerun knows it
+        fails without measuring it."""
+        self.failed.add(key)
+        if self.journal is not None:
+            self.journal.add(key, {"partial": True})
 
     def _error(self, method, params, complete=False, limit=None):
         """:meth:`error` measured; with ``limit``, None as soon as part of the domain sample

@@ -16,7 +16,7 @@ from . import run as runs
 from .infeasible import summary
 from .workers import MIN_POINTS, count, fork_map
 
-__all__ = ["width_params", "widest", "search_widths", "measured_passes", "MeasuredTest", "search_all"]
+__all__ = ["width_params", "widest", "search_widths", "MeasuredTest", "search_all"]
 
 _FIXED = ("n", "k", "lights")
 
@@ -34,22 +34,18 @@ def width_params(method, against="phong"):
     return out
 
 
-def measured_passes(scene, method, params):
-    """Whether ``method`` at ``params`` meets the requirement as measured (frames and domain)."""
-    return scene.passes(method, params)
-
-
 class MeasuredTest:
     """``test(params)``: whether ``method`` at ``params`` meets the requirement as measured
-    (:func:`measured_passes`); ``test.failure(params)``: what the proof of minimality says of a
-    point it failed, its error measured on the whole sample (``max_error``, and ``why`` when it
-    cannot be built or overflows).  :func:`search_widths` asks any test these two questions."""
+    (frames and domain, :meth:`~phongfx.explore.compile.measure.SceneEval.passes`);
+    ``test.failure(params)``: what the proof of minimality says of a point it failed, its error
+    measured on the whole sample (``max_error``, and ``why`` when it cannot be built or
+    overflows).  :func:`search_widths` asks any test these two questions."""
 
     def __init__(self, scene, method):
         self.scene, self.method = scene, method
 
     def __call__(self, params):
-        return measured_passes(self.scene, self.method, params)
+        return self.scene.passes(self.method, params)
 
     def failure(self, params):
         measured = self.scene.error(self.method, params)
