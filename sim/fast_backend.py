@@ -60,6 +60,10 @@ _VERILATOR_ARGS = ["--cc", "--exe", "--prefix", "Vtop", "-O3", "--x-assign", "fa
 # for a frame's check (a shader: 7.8 s against 1.0 s to build, 11084 vectors in 0.02 s against
 # 0.07 s).  The run-time objects are built with OPT_GLOBAL: the same for both.
 _MAKE_ARGS = {True: ["OPT_FAST=-O2"], False: ["OPT_FAST=-O0"]}
+# Unoptimized, Verilator's merge of conditionals is skipped too: on a shader inside its handshake
+# it was 4.5 of 5.8 s of verilation (Lyon's halfway unit), for a run of a frame's vectors that it
+# hardly speeds.  It changes no run-time object, so the run time's key leaves it out.
+_FLAVOUR_ARGS = {True: [], False: ["-fno-merge-cond"]}
 
 
 def pack_words(ports, raw, valid=True):
@@ -124,7 +128,7 @@ def build(component, *, build_dir=None, design=None, trace=False, optimize=True)
     main = MAIN.read_text()
     verilator_args = [*_VERILATOR_ARGS, "--trace"] if trace else _VERILATOR_ARGS
     runtime = ("fast", *verilator_args)
-    flavour = (*runtime, *_MAKE_ARGS[optimize])
+    flavour = (*runtime, *_FLAVOUR_ARGS[optimize], *_MAKE_ARGS[optimize])
     # the key covers everything the executable depends on beyond the design
     top_text = (wrapper(module, *payload_widths(component), stream=is_stream(component)) + "/*\n"
                 + "\n".join(flavour) + main + "*/\n")
@@ -136,8 +140,8 @@ def build(component, *, build_dir=None, design=None, trace=False, optimize=True)
         with runtime_lock(root, trace, runtime), open(log, "w") as out:
             seeded = seed_runtime(root, work, trace, runtime)
             run_ = dict(cwd=work, stdout=out, stderr=subprocess.STDOUT, check=True)
-            subprocess.run([str(verilator), *verilator_args, *BUILD_ARGS, "--top-module", top,
-                            "--Mdir", str(work), str(source), str(work / MAIN.name)], **run_)
+            subprocess.run([str(verilator), *verilator_args, *_FLAVOUR_ARGS[optimize], *BUILD_ARGS,
+                            "--top-module", top, "--Mdir", str(work), str(source), str(work / MAIN.name)], **run_)
             # make rebuilds objects older than Vtop.mk, just written: refresh the seeded ones
             if seeded:
                 subprocess.run(["touch", "-c", *map(str, seeded)], **run_)

@@ -119,3 +119,17 @@ def test_write_verilog_leaves_old_file_on_failure(tmp_path, monkeypatch):
         write_verilog(component, "lirp", path)
     assert path.read_text() == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["lirp.v"]
+
+
+def test_verilog_from_the_callers_rtlil_is_amaranths_own():
+    # the build cache hands over the RTLIL it hashed for its key: the text Yosys writes from it
+    # must be the one Amaranth's back end writes of the component, Amaranth's passes and all
+    from amaranth.back import rtlil
+
+    text = rtlil.convert(get_block("lirp").component(), name="lirp", emit_src=False)
+    own = verilog(get_block("lirp").component(), "lirp", emit_src=False)
+    assert verilog(get_block("lirp").component(), "lirp", emit_src=False, rtlil=text) == own
+    assert "module lirp" in own
+    # and a different design's RTLIL gives that design, not the component's
+    other = rtlil.convert(get_block("fig7").component(), name="lirp", emit_src=False)
+    assert verilog(get_block("lirp").component(), "lirp", emit_src=False, rtlil=other) != own

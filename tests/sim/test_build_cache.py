@@ -62,6 +62,29 @@ def test_a_source_edit_keys_the_design_afresh(conversions, tmp_path, monkeypatch
     assert changed.directory != first.directory and changed.built
 
 
+def test_a_cold_build_writes_its_verilog_from_the_rtlil_its_key_hashed(conversions, tmp_path, monkeypatch):
+    # converting a shader to RTLIL is three of the four seconds of its Verilog: a cold build
+    # converts it once, for its key, and Yosys writes that text
+    from phongfx.hdl.emit import verilog
+
+    fragments, sources = [], []
+    convert_fragment = rtlil.convert_fragment
+
+    def counted(*args, **kwargs):
+        fragments.append(1)
+        return convert_fragment(*args, **kwargs)
+
+    def compile_(work, source, log):
+        sources.append(source.read_text())
+        _fake_compile(work, source, log)
+
+    monkeypatch.setattr(rtlil, "convert_fragment", counted)
+    built = cached_build(get_block("lirp").component(), "lirp", "top", "// top\n", compile_,
+                         root=tmp_path / "builds")
+    assert built.built and conversions == ["lirp"] and fragments == [1]
+    assert sources == [verilog(get_block("lirp").component(), "lirp", emit_src=False) + "// top\n"]
+
+
 def _wait_for_lock(root, started, done):
     from phongfx.sim.build_cache import runtime_lock
 

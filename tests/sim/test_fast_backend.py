@@ -90,8 +90,9 @@ def test_mismatch_count_exceeds_the_detailed_report():
 
 
 def test_an_unoptimized_build_checks_the_same_and_is_kept_apart(tmp_path):
-    """``optimize=False`` (the compile's one-frame RTL check) builds at -O0 in its own cache
-    entry, sharing the run-time objects, and finds the same mismatches."""
+    """``optimize=False`` (the compile's one-frame RTL check) builds at -O0 without Verilator's
+    merge of conditionals in its own cache entry, sharing the run-time objects, and finds the
+    same mismatches."""
     block = get_block("shape")
     inputs, _, expected = _corrupt(block, 100, 1, "spec", [3, 10, 40])
     found = [check(block, inputs, expected=expected, backend="verilator-fast", bubbles=0.2, seed=2,
@@ -101,6 +102,10 @@ def test_an_unoptimized_build_checks_the_same_and_is_kept_apart(tmp_path):
     flags = sorted(line.split()[1] for path in tmp_path.glob("*/build.log")
                    for line in path.read_text().splitlines() if "-o Vtop__ALL.o" in line)
     assert flags == ["-O0", "-O2"]
+    # unoptimized, Verilator skips its merge of conditionals (most of a shader's verilation)
+    merged = sorted("-fno-merge-cond" in path.read_text().splitlines()[1]
+                    for path in tmp_path.glob("*/Vtop__verFiles.dat"))
+    assert merged == [False, True]
     assert len(list(tmp_path.glob("runtime-*"))) == 1
 
 
