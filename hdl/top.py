@@ -254,7 +254,7 @@ def _wrap(text, width=96):
 BLOCK_PATH = "handshake.block"
 
 
-def top_verilog(block_component, name, *, overflow=False, timing=None, contract=()):
+def top_verilog(block_component, name, *, overflow=False, timing=None, contract=(), module=None):
     """Verilog of the shipped top of ``block_component``: module ``<name>_top``, header first.
 
     Parameters
@@ -274,6 +274,9 @@ def top_verilog(block_component, name, *, overflow=False, timing=None, contract=
     contract : sequence of str, optional
         The header's closing "Contract" paragraphs: what each input and output means
         (:func:`phongfx.deliver.contract.contract_lines`); none for a bare block.
+    module : str, optional
+        :func:`shipped_verilog` of the same top, when the caller made it ahead (seconds of
+        Amaranth and Yosys: the compiler makes it beside its witness search).
 
     Returns
     -------
@@ -283,7 +286,8 @@ def top_verilog(block_component, name, *, overflow=False, timing=None, contract=
     """
     top = Top(block_component, name, overflow=overflow)
     noun = "pixel" if isinstance(block_component.config, ShaderConfig) else "vector"
-    return header(top.ports, name, top.latency, top.interval, timing, noun, contract) + shipped_verilog(top, name)
+    return (header(top.ports, name, top.latency, top.interval, timing, noun, contract)
+            + (shipped_verilog(top, name) if module is None else module))
 
 
 def shipped_verilog(top, name):

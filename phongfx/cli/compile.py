@@ -197,8 +197,10 @@ def _warm(_):
     not there yet), by a check's build of the smallest block, so that the check of the chosen
     design compiles only its own; a failure is the check's to report."""
     from phongfx.core.registry import get_block
+    from phongfx.explore.compile.workers import step_aside
     from phongfx.sim.fast_backend import build
 
+    step_aside()  # wanted only when the search has ended: the searches go first
     try:
         build(get_block("lirp").component(), optimize=False)
     except Exception:  # no Verilator, or its build fails: the RTL check says so itself
@@ -211,7 +213,7 @@ def cmd_compile(args):
     from phongfx.compiler.compile import compile_scene
     from phongfx.compiler.request import CompileRequest, check_methods
     from phongfx.core.methods import BASELINE
-    from phongfx.explore.compile.emit import emit, prepare_check
+    from phongfx.explore.compile.emit import emit, prepare_outputs
     from phongfx.explore.compile.architecture import Speed
     from phongfx.explore.compile.workers import Pending
     from phongfx.scene.file import load_scene, with_requirement, with_throughput
@@ -242,7 +244,8 @@ def cmd_compile(args):
                 prove=args.prove, prove_timeout=args.prove_timeout,
                 certify="none" if args.sampled else "search",
                 certificates=None if args.sampled else folder("compile") / "certificates",
-                progress=progress, prepare=None if args.no_check else partial(prepare_check, vcd=args.vcd)))
+                progress=progress,
+                prepare=partial(prepare_outputs, scene=spec.name, check=not args.no_check, vcd=args.vcd)))
             if warming is not None:
                 warming.result()
         finally:  # interrupted, or the compile failed: the build need not finish

@@ -96,6 +96,7 @@ class Compiled:
     witness: dict = None                # the chosen design's worst input found (witness.search)
     certificate: object = None          # phongfx.certify's bound of the chosen design (certified search)
     certified: bool = False             # the search was certified (every width point bounded too)
+    prepared: object = None             # what request.prepare made for the chosen design (its return)
     rounds: list = field(default_factory=list)  # each witness over the requirement and what it did
     speed: Speed = Speed()              # the pixel rate and clock asked
     refused: dict = None                # nothing chosen for speed or fit: refusal(...)
@@ -210,7 +211,7 @@ def compile_scene(request):
                 progress(f"certifying {out.chosen}")
             out.certificate = certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis)
         if for_chosen(out, prepared):
-            prepared[2].result()
+            out.prepared = prepared[2].result()
     finally:  # not taken (another design chosen, or none), or interrupted
         if prepared is not None:
             prepared[2].cancel()

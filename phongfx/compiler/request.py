@@ -79,8 +79,9 @@ class CompileRequest:
         "candidate i of N (label): stage, T s".
     :ivar prepare: ``prepare(result, analysis)``, work the caller will need for the chosen
         design (``result`` a search result), begun for the likeliest choice in a forked process
-        beside its witness search and waited for when that design is chosen (the command builds
-        its RTL check's simulator: :func:`~phongfx.explore.compile.emit.prepare_check`).
+        beside its witness search and waited for when that design is chosen, its return kept as
+        the compiled design's ``prepared`` (the command builds its RTL check's simulator and
+        makes its shipped module: :func:`~phongfx.explore.compile.emit.prepare_outputs`).
     """
 
     spec: object

@@ -13,11 +13,12 @@ from phongfx.compiler.compile import compile_scene
 from phongfx.compiler.request import CompileRequest
 from phongfx.core.registry import get_block
 from phongfx.deliver.manifest import design_of
-from phongfx.explore.compile.emit import emit, prepare_check, submodules
+from phongfx.explore.compile.emit import emit, module_name, prepare_outputs, submodules
 from phongfx.explore.compile.measure import SceneEval, meets
 from phongfx.explore.compile.run import block_name, build
 from phongfx.explore.compile.run import frame_inputs as run_frame_inputs
 from phongfx.explore.compile.search import width_params
+from phongfx.hdl import top as tops
 from phongfx.hdl.emit import verilog
 from phongfx.scene.file import load_scene, parse_scene
 from phongfx.sim import fast_backend
@@ -115,7 +116,8 @@ def test_the_rtl_check_runs_on_the_simulator_prepared_beside_the_witness(tmp_pat
     assert missed.rounds and missed.rounds[0]["params"] != missed.best["params"] and prepared == []
     compiled = compile_scene(CompileRequest(_torus(), methods=["conventional"], prepare=prepare))
     assert not compiled.rounds and prepared == [(compiled.chosen, compiled.best["params"])]
-    # prepare_check builds what emit's RTL check then finds in the cache: the same build
+    # prepare_outputs builds what emit's RTL check then finds in the cache: the same build; and
+    # the shipped module, which emit writes as made, without making it again
     builds, real = [], fast_backend.checked_build
 
     def spy(*args, **options):
@@ -123,10 +125,17 @@ def test_the_rtl_check_runs_on_the_simulator_prepared_beside_the_witness(tmp_pat
         builds.append(found[2])
         return found
     monkeypatch.setattr(fast_backend, "checked_build", spy)
-    prepare_check(compiled.best, compiled.analysis)
+    compiled.prepared = prepare_outputs(compiled.best, compiled.analysis, compiled.spec.name)
+    module = module_name(compiled.spec.name, compiled.chosen)
+    assert compiled.prepared["module"] == module == "tiny_conventional"
+    made = []
+    monkeypatch.setattr(tops, "shipped_verilog", lambda *args: made.append(args))
     data = emit(compiled, tmp_path / "out")
     assert len(builds) == 2 and builds[0].directory == builds[1].directory and not builds[1].built
     assert data["rtl_check"]["mismatches"] == 0
+    shipped = (tmp_path / "out" / data["top"]["file"]).read_text()
+    assert made == [] and shipped.endswith(compiled.prepared["shipped"])
+    assert f"module {module}_top(" in compiled.prepared["shipped"]
 
 
 def test_widths_are_locally_minimal_measured_afresh():

@@ -52,7 +52,7 @@ from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 from . import run as runs
 from .architecture import design_block, timing_of
 
-__all__ = ["CHECK_STALLS", "CHECK_OPTIMIZE", "formats", "submodules", "scene_path", "manifest", "prepare_check", "emit"]
+__all__ = ["CHECK_STALLS", "CHECK_OPTIMIZE", "formats", "submodules", "scene_path", "manifest", "module_name", "prepare_outputs", "emit"]
 
 #: The sub-configs of each Lyon datapath that its hardware uses (the others are idle defaults).
 def formats(config, prefix=""):
@@ -199,8 +199,9 @@ def _picture(geometry, values, fill=0.0):
     return image
 
 
-def _identifier(text):
-    name = re.sub(r"\W", "_", text)
+def module_name(scene, method):
+    """The shipped module's name (``<module>_top``) of ``method`` on the scene named ``scene``."""
+    name = re.sub(r"\W", "_", f"{scene}_{method}")
     return name if name[:1].isalpha() else f"m_{name}"
 
 
@@ -211,19 +212,32 @@ CHECK_STALLS = 0.2
 CHECK_OPTIMIZE = False
 
 
-def prepare_check(result, analysis, vcd=None):
-    """Build the RTL check's simulator of ``result`` (a search result) into the build cache as
-    :func:`emit`'s check builds it, so that the check finds it built (the ``prepare`` of
-    :func:`~phongfx.compiler.compile.compile_scene`, beside the witness search); a
-    failure is left for the check to report."""
+def prepare_outputs(result, analysis, scene, check=True, vcd=None):
+    """What :func:`emit` needs of ``result`` (a search result on the scene named ``scene``) that
+    takes seconds and depends on the design alone, made ahead (the ``prepare`` of
+    :func:`~phongfx.compiler.compile.compile_scene`, beside the witness search): with ``check``,
+    the RTL check's simulator built into the cache as the check builds it, so that the check
+    finds it built; and the shipped top's module (:func:`~phongfx.hdl.top.shipped_verilog`),
+    returned as ``{"module": name, "shipped": text}``, which emit then writes (the compiled
+    design's ``prepared``).  A failure is left for emit to meet and report."""
+    from phongfx.hdl.top import Top, shipped_verilog
     from phongfx.sim.fast_backend import checked_build
     from phongfx.sim.stream import stream_mode
 
+    block, made = design_block(result, analysis), {}
+    module = module_name(scene, result["method"])
+    # the module first, while the witness takes the other core: the build's last steps (Verilator,
+    # then the C++ compiler on two jobs) then have the core the witness leaves
     try:
-        checked_build(design_block(result, analysis), stream_mode(CHECK_STALLS, None), vcd=vcd,
-                      optimize=CHECK_OPTIMIZE)
-    except Exception:  # no Verilator, or its build fails: the check says so itself
+        made = {"module": module, "shipped": shipped_verilog(Top(block.component(), module), module)}
+    except Exception:  # emit writes it again, and meets the error itself
         pass
+    if check:
+        try:
+            checked_build(block, stream_mode(CHECK_STALLS, None), vcd=vcd, optimize=CHECK_OPTIMIZE)
+        except Exception:  # no Verilator, or its build fails: the check says so itself
+            pass
+    return made
 
 
 def emit(compiled, out_dir, *, check=True, progress=None, testbench=False, vcd=None):
@@ -261,14 +275,16 @@ def _write(compiled, out_dir, check, progress, vcd, final):
     method, scene = best["method"], compiled.scene
     block = design_block(best, compiled.analysis)
     config = block.config
-    module = _identifier(f"{compiled.spec.name}_{method}")
+    module = module_name(compiled.spec.name, method)
+    prepared = compiled.prepared or {}
     timing = timing_of(best["cost"])
     header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
     contract = input_contract(config, compiled.spec, method, n_scale=runs.hooks(method).n_scale)
     shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx},
                           contract=contract_lines(contract)
                           + [error_paragraph(compiled.certificate and compiled.certificate.as_dict(),
-                                             compiled.spec.requirement.as_dict())])
+                                             compiled.spec.requirement.as_dict())],
+                          module=prepared.get("shipped") if prepared.get("module") == module else None)
     atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
     instances = submodules(shipped, f"{module}_top.{BLOCK_PATH}")
     done, result, written, sheets = set(), None, None, ([], [], [])

@@ -14,7 +14,7 @@ from phongfx.core.methods import METHODS
 
 from . import run as runs
 from .infeasible import summary
-from .workers import MIN_POINTS, count, fork_map
+from .workers import MIN_POINTS, count, fork_map, step_aside
 
 __all__ = ["width_params", "widest", "search_widths", "MeasuredTest", "search_all"]
 
@@ -97,6 +97,7 @@ def search_widths(scene, method, progress=None, passes=None):
     result = {"method": method, "default": {"params": default, **scene.measured(method, default)}}
     start, scan = (default, {}) if passes(default) else widest(scene, method, widths)
     if not passes(start):
+        step_aside()  # infeasible: its summary and price are not likely to be what the compile waits for
         return {**result, **summary(scene, method, start, scan)}
     params, changed, first = dict(start), True, True
     while changed:

@@ -28,7 +28,8 @@ import multiprocessing.connection
 import os
 import signal
 
-__all__ = ["GRACE", "MIN_POINTS", "count", "spare_core", "fork_imap", "fork_map", "Pending", "Twin"]
+__all__ = ["GRACE", "MIN_POINTS", "NICE", "count", "spare_core", "step_aside", "fork_imap", "fork_map", "Pending",
+           "Twin"]
 
 #: Domain points from which a measurement or a search is worth worker processes.
 MIN_POINTS = 1 << 17
@@ -59,6 +60,23 @@ def spare_core():
     ended: the last ones run alone), or it computes a :class:`Pending` that the process which
     began it waits for (on a machine of two cores or more).  False anywhere else."""
     return _RUNNING is not None and _RUNNING.value < count()
+
+#: How much a worker lowers its priority when it steps aside (:func:`step_aside`).
+NICE = 10
+
+
+def step_aside():
+    """Lower this process's priority by :data:`NICE` when it is a forked worker of
+    :func:`fork_imap` or a :class:`Pending` (never the process that forked it, whose priority
+    would stay low for the rest of its run): work that is not likely to be the last to end
+    yields the cores to work that is, the cores being shared by weight, and what each computes
+    is the same.  Nothing happens where the priority cannot be lowered."""
+    if multiprocessing.current_process().daemon:
+        try:
+            os.nice(NICE)
+        except OSError:
+            pass
+
 
 #: Seconds a worker is given to end after SIGTERM before it is killed.
 GRACE = 5

@@ -112,3 +112,15 @@ def test_an_infeasible_method_is_not_synthesized(monkeypatch):
     monkeypatch.setattr(synth_module, "synth", lambda *a, **k: calls.append(a) or {})
     compiled = compile_scene(CompileRequest(_scene("[4, 128]"), methods=["fig7"], synth=True))
     assert calls == [] and compiled.results["fig7"]["default"]["cost"]["model"] == "ecp5-proxy"
+
+
+def test_an_infeasible_search_steps_aside_and_a_feasible_one_does_not(monkeypatch):
+    # once no start passes, what is left of a search (its summary, its price) yields the cores
+    # to the searches that go on (phongfx.explore.compile.workers.step_aside)
+    from phongfx.explore.compile import search as searches
+    from phongfx.explore.compile.measure import SceneEval
+
+    asides = []
+    monkeypatch.setattr(searches, "step_aside", lambda: asides.append(True))
+    assert not searches.search_widths(SceneEval(_scene("[4, 128]")), "fig7")["feasible"] and asides == [True]
+    assert searches.search_widths(SceneEval(_scene(8)), "fig7")["feasible"] and asides == [True]

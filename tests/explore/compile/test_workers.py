@@ -77,6 +77,22 @@ def test_a_pending_piece_of_work_runs_beside_this_process_and_gives_its_result()
     assert not multiprocessing.active_children()
 
 
+def _aside(_):
+    before = os.nice(0)
+    workers.step_aside()
+    return os.nice(0) - before
+
+
+def test_a_worker_steps_aside_and_the_process_that_forked_it_never_does():
+    # a worker's lower priority is its own; the compile's own process keeps its priority for the
+    # rest of its run, searches and witness alike
+    here = os.nice(0)
+    lowered = min(workers.NICE, 19 - here)  # the lowest priority is 19
+    assert fork_map(_aside, range(2), 2) == [lowered] * 2
+    assert workers.Pending(_aside, None).result() == lowered
+    assert fork_map(_aside, range(2), 1) == [0, 0] and os.nice(0) == here
+
+
 _BEGUN = _CHECKED = None  # barriers of the spare-core test, inherited by its workers
 
 
