@@ -18,7 +18,7 @@ from phongfx.core import words
 from . import witness as witnesses
 from .measure import GUARD, met_at
 
-__all__ = ["summary", "per_variant", "split", "hint"]
+__all__ = ["summary", "per_variant", "split", "complete", "hint"]
 
 
 def _finite(error):
@@ -87,15 +87,19 @@ def _why(scene, method, best, widest_point, scan, requirement):
 def summary(scene, method, widest_point, scan):
     """The result keys of an infeasible ``method``: ``feasible`` False, ``params`` and the
     error of the best point measured, ``widest`` (the fallback start and its max error),
-    ``why`` (sentences) and ``k_scan`` (per ``k``: max error, and per shininess variant)."""
+    ``why`` (sentences) and ``k_scan`` (per ``k``: max error, and per shininess variant).
+
+    A point that misses on the frames is measured there only (``domain_max`` None), as the
+    search measures it: its domain changes no verdict, and measuring it was the longest part of
+    some compiles (Lyon's spherical unit on the two-light scene, whose domain is fed as
+    rasterized poses: 11 s of the method's 13).  :func:`hint`, which quotes the numbers when no
+    method is feasible, measures its candidates' domains then (:func:`complete`)."""
     requirement = scene.spec.requirement.max_error_levels
     for key in sorted(k for k in scene.failed if k[0] == method):  # measured until they failed: whole now,
         scene.error(method, dict(key[1]))                           # so that every point tried can be the best
     best = _best(scene, method) or (widest_point, scene.error(method, widest_point))
-    # on the domain too (the search skips it where the frames already miss): what a hint quotes
-    best = (best[0], scene.error(method, best[0], complete=True))
     out = {"feasible": False, "params": _ordered(best[0], widest_point), **scene.measured(method, best[0]),
-           "widest": {"params": widest_point, "max": scene.error(method, widest_point, complete=True)["max"]},
+           "widest": {"params": widest_point, "max": scene.error(method, widest_point)["max"]},
            "why": _why(scene, method, best, widest_point, scan, requirement)}
     if scan:
         out["k_scan"] = {k: {"max": e["max"], "per_variant": per_variant(scene, e)} for k, e in scan.items()}
@@ -138,13 +142,26 @@ def _met(result):
     return max(met_at(result), (result.get("witness") or {}).get("error_levels", 0))
 
 
+def complete(scene, result):
+    """``result`` (an infeasible method's, :func:`summary`) with its best point and its widest
+    measured on the domain too where the frames missed, in place: the error a hint quotes."""
+    if result["feasible"] or scene.points is None or not math.isfinite(result["max"]):
+        return result
+    if result.get("domain_max") is None:
+        result.update(scene.measured(result["method"], result["params"], complete=True))
+    result["widest"]["max"] = scene.error(result["method"], result["widest"]["params"], complete=True)["max"]
+    return result
+
+
 def hint(compiled):
     """When no method meets the requirement: ``{"best": {method, max, params}, "command",
     "split" (:func:`split` of the best method with a ``k_scan``, or None), "text"}``,
-    or None when something is feasible or nothing was measured."""
+    or None when something is feasible or nothing was measured.  The infeasible methods'
+    results are first measured on the domain where their frames missed (:func:`complete`)."""
     if compiled.chosen is not None:
         return None
-    results = [r for r in compiled.results.values() if math.isfinite(r["max"])]
+    results = [complete(compiled.scene, r) for r in compiled.results.values()]
+    results = [r for r in results if math.isfinite(r["max"])]
     if not results:
         return None
     spec = compiled.spec

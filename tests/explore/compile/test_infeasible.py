@@ -124,3 +124,15 @@ def test_an_infeasible_search_steps_aside_and_a_feasible_one_does_not(monkeypatc
     monkeypatch.setattr(searches, "step_aside", lambda: asides.append(True))
     assert not searches.search_widths(SceneEval(_scene("[4, 128]")), "fig7")["feasible"] and asides == [True]
     assert searches.search_widths(SceneEval(_scene(8)), "fig7")["feasible"] and asides == [True]
+
+
+def test_an_infeasible_method_is_measured_on_the_domain_only_when_a_hint_quotes_it(wide):
+    # nothing feasible: the hint measured the best point's domain too, where its frames missed
+    result = wide.results["fig7"]
+    assert result["domain_max"] is not None and result["frames_max"] > 1.0
+    assert result["max"] == max(result["frames_max"], result["domain_max"])
+    # another method feasible: no hint, and the frames decided (the domain left unmeasured)
+    compiled = compile_scene(CompileRequest(_scene("[4, 128]"), methods=["fig7", "conventional"]))
+    assert compiled.chosen == "conventional" and compiled.hint is None
+    missed = compiled.results["fig7"]
+    assert missed["domain_max"] is None and missed["max"] == missed["frames_max"] == result["frames_max"]
