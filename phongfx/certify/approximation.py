@@ -31,6 +31,8 @@ import functools
 
 import numpy as np
 
+from .interval import least, most
+
 __all__ = ["CELLS", "BEND_PIECES", "PIECES", "scale_range", "shape_shift", "bend_shift", "diffuse_shift", "form_table", "form_distance", "halfway_vectors",
            "halfway_distance"]
 
@@ -76,7 +78,7 @@ def shape_shift(s, p, q, c, n_eff, k):
     are ``(lo, hi)`` arrays (``c`` Phong's ``R̂·L``), ``n_eff`` the ``n`` in ``x``."""
     s2 = (s[0] ** 2, s[1] ** 2)
     corners = [a * b for a in s2 for b in p]
-    s2p = (np.minimum.reduce(corners), np.maximum.reduce(corners))
+    s2p = (least(corners), most(corners))
     inner = (s2p[0] - q[1], s2p[1] - q[0])
     dx = 2 * n_eff * _magnitude((s2[0] - 1, s2[1] - 1)) * _magnitude(p) * _magnitude(inner)
     big = 2.0 ** k

@@ -46,7 +46,7 @@ import numpy as np
 from phongfx.core.format import Format
 from phongfx.golden.fixed import Fixed
 
-__all__ = ["Interval", "Condition", "rounding_error"]
+__all__ = ["Interval", "Condition", "rounding_error", "least", "most"]
 
 _GROW = 1.0 + 2.0 ** -50
 
@@ -69,6 +69,18 @@ def _round(value, frac, rounding):
     else:
         out = np.rint(scaled)
     return out * 2.0 ** -frac
+
+
+def least(values):
+    """The elementwise minimum of four arrays (an interval product's corners), without stacking
+    them (``np.minimum.reduce`` of a list copies it into one array first): the same floats, sooner
+    (a twelfth of the certificates' time went to stacking)."""
+    return np.minimum(np.minimum(values[0], values[1]), np.minimum(values[2], values[3]))
+
+
+def most(values):
+    """The elementwise maximum of four arrays, as :func:`least`."""
+    return np.maximum(np.maximum(values[0], values[1]), np.maximum(values[2], values[3]))
 
 
 def _widen(lo, hi):
@@ -156,12 +168,14 @@ class Interval(Fixed):
         """``max |hardware value|`` per element."""
         return np.maximum(np.abs(self.lo), np.abs(self.hi))
 
-    @property
+    @functools.cached_property
     def mid(self):
+        """The middle of the hardware range (kept: a product asks for it twice per operand)."""
         return 0.5 * (self.lo + self.hi)
 
-    @property
+    @functools.cached_property
     def radius(self):
+        """Half the hardware range (kept, as :attr:`mid`)."""
         return 0.5 * (self.hi - self.lo)
 
     def _make(self, lo, hi, err, fmt, other=None, terms=None):
@@ -202,7 +216,7 @@ class Interval(Fixed):
             err = 2 * np.abs(self.mid) * self.err + 2 * self.radius * dev + dev * dev
             return self._make(low, m * m, err, fmt, terms=self._terms(2 * self.mid))
         corners = [self.lo * other.lo, self.lo * other.hi, self.hi * other.lo, self.hi * other.hi]
-        lo, hi = np.minimum.reduce(corners), np.maximum.reduce(corners)
+        lo, hi = least(corners), most(corners)
         da, db = self.dev, other.dev
         err = (np.abs(self.mid) * other.err + self.radius * db
                + np.abs(other.mid) * self.err + (other.radius + db) * da)

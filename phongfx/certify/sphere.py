@@ -19,6 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .interval import least, most
+
 __all__ = ["Boxes", "frame", "cover", "cos_range", "product", "projection"]
 
 _SLACK = 1e-14
@@ -42,6 +44,16 @@ class Boxes:
 
     def __len__(self):
         return len(self.n)
+
+    def polar(self, scale):
+        """``(cos, sin)`` ranges (:func:`cos_range`) of ``scale·θ`` over each box: every
+        :func:`projection` of these boxes shares them (one to six per box set, so kept here)."""
+        known = self.__dict__.setdefault("polar_ranges", {})
+        if scale not in known:
+            theta = self.theta * scale
+            known[scale] = (cos_range(theta[:, 0], theta[:, 1]),
+                            cos_range(theta[:, 0] - np.pi / 2, theta[:, 1] - np.pi / 2))
+        return known[scale]
 
     def take(self, index):
         return Boxes(self.theta[index], self.phi[index], self.z[index], self.n[index], self.material[index],
@@ -136,8 +148,8 @@ def cos_range(lo, hi):
 
 def product(a, b):
     """Interval product of ``a = (lo, hi)`` and ``b``."""
-    corners = [a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1]]
-    return np.minimum.reduce(corners) - _SLACK, np.maximum.reduce(corners) + _SLACK
+    corners = (a[0] * b[0], a[0] * b[1], a[1] * b[0], a[1] * b[1])
+    return least(corners) - _SLACK, most(corners) + _SLACK
 
 
 def projection(boxes, basis, w, reflected=False):
@@ -146,10 +158,7 @@ def projection(boxes, basis, w, reflected=False):
     v, e1, e2 = basis
     w = np.asarray(w, dtype=np.float64)
     along, rho, psi = float(w @ v), float(np.hypot(w @ e1, w @ e2)), float(np.arctan2(w @ e2, w @ e1))
-    scale = 2.0 if reflected else 1.0
-    theta = boxes.theta * scale
-    c = cos_range(theta[:, 0], theta[:, 1])
-    s = cos_range(theta[:, 0] - np.pi / 2, theta[:, 1] - np.pi / 2)
+    c, s = boxes.polar(2.0 if reflected else 1.0)
     turn = cos_range(boxes.phi[:, 0] - psi, boxes.phi[:, 1] - psi)
     first = product((along, along), c)
     second = product(product((rho, rho), s), turn)

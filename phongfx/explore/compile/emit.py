@@ -52,7 +52,8 @@ from phongfx.render.figure import contact_sheet, error_figure, frame_figure
 from . import run as runs
 from .architecture import design_block, timing_of
 
-__all__ = ["CHECK_STALLS", "CHECK_OPTIMIZE", "formats", "submodules", "scene_path", "manifest", "module_name", "prepare_outputs", "emit"]
+__all__ = ["CHECK_STALLS", "CHECK_OPTIMIZE", "formats", "submodules", "scene_path", "manifest", "module_name",
+           "prepare_outputs", "emit"]
 
 #: The sub-configs of each Lyon datapath that its hardware uses (the others are idle defaults).
 def formats(config, prefix=""):
