@@ -62,3 +62,28 @@ def test_split_halves_the_widest_side():
     halves = boxes.split()
     assert len(halves) == 2
     assert np.allclose(halves.phi[:, 1] - halves.phi[:, 0], np.pi)
+
+
+def test_a_box_set_keeps_its_polar_ranges_for_every_projection_and_its_halves_their_own():
+    # every projection of one box set shares the cos and sin ranges of θ (or 2θ, reflected):
+    # computed once per scale, the same floats as computed afresh, and a split's are its own
+    boxes = cover(-0.2, 0.9, [(4, 0)], 10, 20, 1).split()
+    once, again = boxes.polar(1.0), boxes.polar(1.0)
+    assert once is again and boxes.polar(2.0) is not once
+    fresh = cos_range(2 * boxes.theta[:, 0] - np.pi / 2, 2 * boxes.theta[:, 1] - np.pi / 2)
+    assert all(np.array_equal(a, b) for a, b in zip(boxes.polar(2.0)[1], fresh))
+    halves = boxes.split()
+    assert np.array_equal(halves.polar(1.0)[0][0], cos_range(halves.theta[:, 0], halves.theta[:, 1])[0])
+    light = np.array([0.3, -0.5, 0.8])
+    first = projection(boxes, frame([0.0, 0.0, 1.0]), light)
+    assert all(np.array_equal(a, b) for a, b in zip(first, projection(boxes, frame([0.0, 0.0, 1.0]), light)))
+
+
+def test_the_corners_least_and_most_are_numpys_reductions():
+    from phongfx.certify.interval import least, most
+
+    g = np.random.default_rng(3)
+    corners = [g.normal(size=50) for _ in range(4)]
+    corners[2][7] = -np.inf
+    assert np.array_equal(least(corners), np.minimum.reduce(corners))
+    assert np.array_equal(most(corners), np.maximum.reduce(corners))
