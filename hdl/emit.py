@@ -161,10 +161,7 @@ def verilog(component, name, *, emit_src=True, lint=False, assigns=False, rtlil=
     """
     if not name.isidentifier():
         raise ValueError(f"module name must be a Verilog identifier, not {name!r}")
-    if rtlil is not None or assigns:
-        text = _yosys(_rtlil.convert(component, name=name, emit_src=emit_src) if rtlil is None else rtlil, assigns)
-    else:
-        text = _verilog.convert(component, name=name, emit_src=emit_src)
+    text = _yosys(_rtlil.convert(component, name=name, emit_src=emit_src) if rtlil is None else rtlil, assigns)
     if emit_src:
         text = portable_src(text)
     return waive_lint(explicit_widths(text)) if lint else text

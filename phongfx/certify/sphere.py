@@ -15,7 +15,7 @@ Every projection a bound needs has the form ``W·N̂ = (W·V) cos θ + ρ sin θ
 interval (their extrema where the interval holds one), widened by ``1e-14`` for float64.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -41,6 +41,8 @@ class Boxes:
     material: np.ndarray
     cells: np.ndarray = None
     cell_scale: tuple = (0.0, np.inf)
+    #: ``{scale: (cos, sin) ranges}`` made by :meth:`polar`, this set's own (not its halves')
+    polar_ranges: dict = field(default_factory=dict, repr=False, compare=False)
 
     def __len__(self):
         return len(self.n)
@@ -48,12 +50,11 @@ class Boxes:
     def polar(self, scale):
         """``(cos, sin)`` ranges (:func:`cos_range`) of ``scale·θ`` over each box: every
         :func:`projection` of these boxes shares them (one to six per box set, so kept here)."""
-        known = self.__dict__.setdefault("polar_ranges", {})
-        if scale not in known:
+        if scale not in self.polar_ranges:
             theta = self.theta * scale
-            known[scale] = (cos_range(theta[:, 0], theta[:, 1]),
-                            cos_range(theta[:, 0] - np.pi / 2, theta[:, 1] - np.pi / 2))
-        return known[scale]
+            self.polar_ranges[scale] = (cos_range(theta[:, 0], theta[:, 1]),
+                                        cos_range(theta[:, 0] - np.pi / 2, theta[:, 1] - np.pi / 2))
+        return self.polar_ranges[scale]
 
     def take(self, index):
         return Boxes(self.theta[index], self.phi[index], self.z[index], self.n[index], self.material[index],

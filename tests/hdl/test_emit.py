@@ -122,13 +122,20 @@ def test_write_verilog_leaves_old_file_on_failure(tmp_path, monkeypatch):
 
 
 def test_verilog_from_the_callers_rtlil_is_amaranths_own():
-    # the build cache hands over the RTLIL it hashed for its key: the text Yosys writes from it
-    # must be the one Amaranth's back end writes of the component, Amaranth's passes and all
+    # the text Yosys writes from the RTLIL (converted here, or handed over by the build cache,
+    # which hashed it for its key) must be the one Amaranth's back end writes of the component,
+    # Amaranth's passes and all
     from amaranth.back import rtlil
+    from amaranth.back import verilog as amaranth_verilog
+
+    from phongfx.hdl.emit import portable_src
 
     text = rtlil.convert(get_block("lirp").component(), name="lirp", emit_src=False)
-    own = verilog(get_block("lirp").component(), "lirp", emit_src=False)
+    own = amaranth_verilog.convert(get_block("lirp").component(), name="lirp", emit_src=False)
     assert verilog(get_block("lirp").component(), "lirp", emit_src=False, rtlil=text) == own
+    assert verilog(get_block("lirp").component(), "lirp", emit_src=False) == own
+    assert verilog(get_block("fig7").component(), "fig7") == portable_src(
+        amaranth_verilog.convert(get_block("fig7").component(), name="fig7"))
     assert "module lirp" in own
     # and a different design's RTLIL gives that design, not the component's
     other = rtlil.convert(get_block("fig7").component(), name="lirp", emit_src=False)

@@ -71,7 +71,7 @@ def step_aside():
     would stay low for the rest of its run): work that is not likely to be the last to end
     yields the cores to work that is, the cores being shared by weight, and what each computes
     is the same.  Nothing happens where the priority cannot be lowered."""
-    if multiprocessing.current_process().daemon:
+    if _is_worker():
         try:
             os.nice(NICE)
         except OSError:
@@ -141,10 +141,15 @@ def _serve(link):
             link.send((index, (False, RuntimeError(f"{type(error).__name__}: {error}"))))
 
 
+def _is_worker():
+    """Whether this process is a worker of :func:`fork_imap` or a :class:`Pending` (daemonic)."""
+    return multiprocessing.current_process().daemon
+
+
 def _context():
     """The ``fork`` context, or None where this process forks no workers (the platform cannot,
     or this is a worker: a worker has no workers of its own)."""
-    if "fork" not in multiprocessing.get_all_start_methods() or multiprocessing.current_process().daemon:
+    if "fork" not in multiprocessing.get_all_start_methods() or _is_worker():
         return None
     return multiprocessing.get_context("fork")
 
