@@ -53,8 +53,7 @@ def certify(method, params, spec, domain, *, shader=None, analysis=None, max_box
     if why:
         return done(False, None, why=why)
     need = spec.requirement.max_error_levels
-    # floor(B + 1/2) <= need exactly when B < floor(need) + 1/2
-    target = np.floor(need) + 0.5
+    target = spec.requirement.bound_limit
     bound, parts = by_region(how, shader, spec, domain, max_boxes=max_boxes, enough=target if early else None,
                              target=target, regions_first=regions_first)
     if not np.isfinite(bound):

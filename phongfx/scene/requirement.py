@@ -8,6 +8,7 @@ pixel clock as ``mpixels_per_second``).  Without either, the compiler keeps the 
 architecture whatever its speed and reports the rate it reaches.
 """
 
+import math
 from dataclasses import dataclass
 
 __all__ = ["Requirement", "KEYS", "MPX_MAX", "SIDE_MAX", "FPS_MAX", "parse_requirement", "max_error",
@@ -31,6 +32,13 @@ class Requirement:
     mpixels_per_second: float = None
     #: ``(width, height, fps)`` of the display driven, when the rate was given that way
     display: tuple = None
+
+    @property
+    def bound_limit(self):
+        """The continuous error bound ``B`` a certificate must stay under: the displayed error it
+        guarantees, ``floor(B + 1/2)``, is at most ``max_error_levels`` exactly when
+        ``B < floor(max_error_levels) + 1/2``."""
+        return math.floor(self.max_error_levels) + 0.5
 
     def as_dict(self):
         """The manifest's ``"requirement"``."""

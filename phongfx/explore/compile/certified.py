@@ -77,6 +77,15 @@ class CertifiedTest:
     def __call__(self, params):
         return not self.scene.fails_screen(self.method, params) and self.certificate(params).certified
 
+    def margin(self, params):
+        """How far under the requirement's limit the bound of a point this test passed stayed
+        (levels), None for a point it has not certified: the search's hint of where the
+        widths' edge is (:func:`~phongfx.explore.compile.search.search_widths`)."""
+        found = self.certificates.get(tuple(sorted(params.items())))
+        if found is None or not found[1].certified:
+            return None
+        return self.scene.spec.requirement.bound_limit - found[1].bound_levels
+
     def failure(self, params):
         """What the proof of minimality says of a point this test failed: measured past the
         requirement (frames or screen), or its certificate's bound (``bound_levels``, None

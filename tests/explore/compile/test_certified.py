@@ -6,6 +6,7 @@ from types import SimpleNamespace
 
 from phongfx.certify.certificate import Certificate
 from phongfx.explore.compile.certified import CertifiedTest
+from phongfx.scene.requirement import Requirement
 
 
 class Screen:
@@ -13,7 +14,7 @@ class Screen:
 
     def __init__(self, floor):
         self.floor, self.asked = floor, []
-        self.spec, self.analysis = SimpleNamespace(name="s"), None
+        self.spec, self.analysis = SimpleNamespace(name="s", requirement=Requirement()), None
 
     def fails_screen(self, method, params):
         self.asked.append(dict(params))
@@ -56,3 +57,14 @@ def test_a_failed_point_is_explained_by_its_screen_or_its_certificate():
         "bound_levels": 2.4,
         "why": "its certificate misses the requirement: the bound 2.400 levels rounds to 2, over the required 1"}
     assert calls == [(9, False)]
+
+
+def test_a_passed_points_margin_is_how_far_its_bound_stayed_under_the_limit():
+    calls = []
+    test = CertifiedTest(Screen(floor=8), "fig7", None, _certifier(calls, needs_regions_under=0))
+    assert test({"vec_frac": 12}) and not test({"vec_frac": 9})
+    # 1.2 under the limit 1.5 of a 1-level requirement; none for a failed or an unasked point
+    assert abs(test.margin({"vec_frac": 12}) - 0.3) < 1e-12
+    assert test.margin({"vec_frac": 9}) is None and test.margin({"vec_frac": 13}) is None
+    assert calls == [(12, False), (9, False)]  # the margins asked no certificate
+
