@@ -5,9 +5,9 @@ Run ``python -m bench.compile`` (``--help`` for options).  Each of the example s
 user runs it (``--no-check``: without the cycle-by-cycle RTL check), in a fresh process
 whose per-user cache is a new empty folder (``PHONGFX_CACHE``): every width point measured,
 every design elaborated and priced, the RTL check's simulator built, nothing remembered.
-Then ``make sim``'s steps the same way: ``phongfx render --backend verilator-fast`` beside
-``phongfx compile scenes/lyon-balls.toml --testbench``, as the Makefile runs them, then its
-Icarus testbench when ``iverilog`` is installed.  Each time is printed against its target, :data:`TARGET`
+Then ``make sim``'s steps the same way, as the Makefile runs them: ``phongfx compile
+scenes/lyon-balls.toml --testbench``, then its Icarus testbench (when ``iverilog`` is
+installed) beside ``phongfx render --backend verilator-fast``.  Each time is printed against its target, :data:`TARGET`
 seconds per scene (:data:`GOAL` the aim) and :data:`SIM_TARGET` for ``make sim``, with the
 design each scene chose (method, widths, cost, certified), the processor time of the
 compile and its workers, and the machine's load (a shared machine's times are longer than
@@ -90,7 +90,7 @@ def compile_scene(name, out_dir, check=True, workers=None):
 
 def make_sim(out_dir):
     """``make sim``'s steps (module docstring) from one empty cache, as the Makefile runs them:
-    the render beside the compile, then the testbench; each :func:`timed`, and the whole."""
+    the compile, then the testbench beside the render; each :func:`timed`, and the whole."""
     folder = os.path.join(out_dir, "sim")
     shutil.rmtree(folder, ignore_errors=True)
     log = os.path.join(out_dir, "sim.log")
@@ -100,13 +100,13 @@ def make_sim(out_dir):
     out = {}
     start, before = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
     with tempfile.TemporaryDirectory(prefix="phongfx-bench-cache-") as cache:
+        out["compile"] = timed(compile_, cache, log)
         beside = threading.Thread(target=lambda: out.update(render=timed(render, cache, log + ".render")))
         beside.start()
-        out["compile"] = timed(compile_, cache, log)
-        beside.join()
         if shutil.which("iverilog"):
             out["testbench"] = timed(["sh", os.path.join(folder, "lyon-balls", "testbench", "run.sh"), "icarus"],
                                      cache, log)
+        beside.join()
     seconds, after = time.perf_counter() - start, resource.getrusage(resource.RUSAGE_CHILDREN)
     # the steps side by side share the children's counters: the whole's processor time only
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
