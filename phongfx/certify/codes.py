@@ -28,7 +28,7 @@ from .outputs import coefficient_tables
 from .normalizer import cosine_range
 from .sphere import product
 
-__all__ = ["code_ranges", "cell_cosine", "code_errors"]
+__all__ = ["code_ranges", "cell_cosine", "cell_geometry", "code_errors"]
 
 
 def code_ranges(vec, boxes, basis):
@@ -59,11 +59,11 @@ def _listed(first, last):
     return box, codes
 
 
-def cell_cosine(x, lsb, w, view=None):
+def cell_cosine(x, lsb, w, view=None, geometry=None):
     """``(lo, hi)`` of ``N̂·W`` (or of ``R·V = 2(N̂·W)(N̂·V) - W·V`` with ``view``) over the cells
-    of centres ``x`` (C, 3) and side ``lsb`` (module docstring); ``w``, ``view`` unit."""
-    r = np.linalg.norm(x, axis=-1)
-    u = x / r[:, None]
+    of centres ``x`` (C, 3) and side ``lsb`` (module docstring); ``w``, ``view`` unit;
+    ``geometry``: the centres' :func:`cell_geometry`, when already known."""
+    r, u = cell_geometry(x) if geometry is None else geometry
     a = u @ w
     grad = (w - a[:, None] * u) / r[:, None]
     curve = 3.0
@@ -76,6 +76,12 @@ def cell_cosine(x, lsb, w, view=None):
     spread = np.abs(grad).sum(axis=-1) * half + 0.5 * curve * reach ** 2 / (r - reach) ** 2
     spread = spread * (1 + 1e-9) + 1e-13
     return a - spread, a + spread
+
+
+def cell_geometry(x):
+    """``(|x|, x/|x|)`` of cell centres ``x`` (C, 3): what every :func:`cell_cosine` of them reads."""
+    r = np.linalg.norm(x, axis=-1)
+    return r, x / r[:, None]
 
 
 def _lit(d, hw, levels):
@@ -98,6 +104,7 @@ def code_errors(shader, golden, boxes, basis, lights, seconds, reflected, n_hw, 
     box, codes = _listed(first, last)
     count = len(box)
     x = codes * vec.lsb
+    geometry = cell_geometry(x)
     (ac, dc, sc), (ae, de, se) = coefficient_tables(shader.blend)
     m = boxes.material[box]
     low = (ac - ae)[m].copy()
@@ -108,19 +115,25 @@ def code_errors(shader, golden, boxes, basis, lights, seconds, reflected, n_hw, 
                      Fixed(n_hw[box], config.fmt("n")))
         diff, spec = out["diffuse"].to_float(), out["specular"].to_float()
         gate = diff > 0  # the blend's backside test
-        d = cell_cosine(x, vec.lsb, light)
-        c = cell_cosine(x, vec.lsb, light, view) if reflected else cell_cosine(x, vec.lsb, second)
+        d = cell_cosine(x, vec.lsb, light, geometry=geometry)
+        c = (cell_cosine(x, vec.lsb, light, view, geometry) if reflected
+             else cell_cosine(x, vec.lsb, second, geometry=geometry))
         n = n_ref[box]
         ref = (np.clip(c[0], 0.0, 1.0) ** n, np.clip(c[1], 0.0, 1.0) ** n)
         may_true, may_false = _lit(d, gate, shader.blend.levels)
+        diffuse, specular = de[m, i], se[m, i]
         hw = dc[m, i] * diff[:, None] + sc[m, i] * np.where(gate, spec, 0.0)[:, None]
-        low += hw - de[m, i] * np.maximum(d[1], 0.0)[:, None] - np.where(may_true[:, None], se[m, i] * ref[1][:, None], 0.0)
-        high += hw - de[m, i] * np.maximum(d[0], 0.0)[:, None] - np.where(may_false[:, None], 0.0, se[m, i] * ref[0][:, None])
+        low += hw - diffuse * np.maximum(d[1], 0.0)[:, None] - np.where(may_true[:, None], specular * ref[1][:, None], 0.0)
+        high += hw - diffuse * np.maximum(d[0], 0.0)[:, None] - np.where(may_false[:, None], 0.0, specular * ref[0][:, None])
     worst = np.maximum(np.abs(low), np.abs(high)) * (1 + 1e-9) + 1e-9
+    # the codes are listed box by box (_listed): each box's largest is one reduction of its run
+    starts = np.flatnonzero(np.r_[True, box[1:] != box[:-1]])
     out = np.zeros((len(boxes), 3))
-    np.maximum.at(out, box, worst)
+    out[box[starts]] = np.maximum.reduceat(worst, starts, axis=0)
     return out
 
 
 def _codes(vector, vec, count):
-    return Fixed.from_float(np.broadcast_to(vector, (count, 3)), vec, "round_half_up", "saturate")
+    """The code of ``vector`` in ``vec``, ``count`` times (a read-only view of one row)."""
+    one = Fixed.from_float(np.asarray(vector, dtype=np.float64)[None, :], vec, "round_half_up", "saturate")
+    return Fixed(np.broadcast_to(one.raw, (count, 3)), vec)

@@ -264,3 +264,26 @@ def test_codes_are_listed_only_above_the_floor():
     mixed = np.max(some[0] + some[1], axis=-1)
     above = plain > floor
     assert np.array_equal(mixed[~above], plain[~above]) and np.array_equal(mixed[above], total[above])
+
+
+def test_the_code_by_code_bound_of_boxes_together_is_each_boxs_own():
+    """Boxes listed together (their codes run through the unit in one call, each box's largest
+    reduced from its run of codes) get the bounds each gets alone."""
+    spec, dom = _scene("torus")
+    shader = shader_config("conventional", TORUS, spec)
+    basis = frame(dom.camera[1])
+    light = np.asarray(dom.lights[0][1])
+    theta = np.radians([[24.5, 24.6], [22.0, 22.3], [25.0, 25.05]])
+    phi = np.radians([[316.0, 316.2], [315.0, 315.4], [317.0, 317.1]])
+    z = np.array([[0.998, 1.0], [0.995, 1.0], [0.999, 1.0]])
+    boxes = Boxes(theta, phi, z, np.array([16, 16, 16]), np.array([0, 0, 0]))
+    counts = code_ranges(shader.units[0].fmt("vec"), boxes, basis)[2]
+    assert len(set(counts.tolist())) == 3  # runs of different lengths
+
+    def bound(which):
+        return code_errors(shader, conventional, which, basis, [light], [basis[0]], True, np.full(len(which), 16),
+                           np.full(len(which), 16))
+
+    together = bound(boxes)
+    alone = np.concatenate([bound(boxes.take(np.arange(3) == i)) for i in range(3)])
+    assert together.shape == (3, 3) and np.array_equal(together, alone) and np.all(together > 0)
