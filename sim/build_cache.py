@@ -38,8 +38,8 @@ from phongfx.hdl.emit import verilog
 from phongfx.hdl.handshake import Handshake
 from phongfx.hdl.identity import design_identity
 
-__all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "runtime_lock", "seed_runtime",
-           "keep_runtime", "cached_build"]
+__all__ = ["BUILD_ARGS", "TOOL_ERRORS", "Build", "cache_root", "digest", "log_tail", "runtime_kept", "runtime_lock",
+           "seed_runtime", "keep_runtime", "cached_build"]
 
 _MARKER = "phongfx-build-ok"  # written last: its presence means a complete build
 _LOG_TAIL = 40
@@ -111,6 +111,11 @@ def _runtime_files(directory):
     return [f for f in directory.glob("verilated*") if f.suffix in (".o", ".d")]
 
 
+def runtime_kept(root, waves, flavour=()):
+    """Whether the run-time objects of this flavour are kept in the cache ``root``."""
+    return (_runtime_dir(root, waves, flavour) / _MARKER).is_file()
+
+
 @contextlib.contextmanager
 def runtime_lock(root, waves, flavour=()):
     """Held by a build around its :func:`seed_runtime` and :func:`keep_runtime` while no
@@ -118,7 +123,7 @@ def runtime_lock(root, waves, flavour=()):
     this one's objects instead of compiling them too (a compile's RTL check and a render begun
     together, as ``make sim`` begins them, each compiled them).  One lock per cache root, on
     the folder itself (``flock``: released when this process ends, however it ends)."""
-    if (_runtime_dir(root, waves, flavour) / _MARKER).is_file():
+    if runtime_kept(root, waves, flavour):
         yield
         return
     import fcntl

@@ -193,16 +193,16 @@ def fit_lines(fit):
 
 
 def _warm(_):
-    """Build the RTL check's simulator run-time objects into the cache (4 to 5 s of C++ when
-    not there yet), by a check's build of the smallest block, so that the check of the chosen
-    design compiles only its own; a failure is the check's to report."""
+    """Build the RTL check's simulator run-time objects into the cache (10 processor-seconds of
+    C++ when not there yet), so that the check of the chosen design compiles only its own; a
+    failure is the check's to report."""
     from phongfx.core.registry import get_block
     from phongfx.explore.compile.workers import step_aside
-    from phongfx.sim.fast_backend import build
+    from phongfx.sim.fast_backend import warm
 
     step_aside()  # wanted only when the search has ended: the searches go first
     try:
-        build(get_block("lirp").component(), optimize=False)
+        warm(get_block("lirp").component(), optimize=False)
     except Exception:  # no Verilator, or its build fails: the RTL check says so itself
         pass
 

@@ -109,6 +109,21 @@ def test_an_unoptimized_build_checks_the_same_and_is_kept_apart(tmp_path):
     assert len(list(tmp_path.glob("runtime-*"))) == 1
 
 
+def test_warm_compiles_the_run_time_objects_alone_and_a_build_then_only_its_design(tmp_path):
+    """``warm`` (the compile's, beside its search) keeps the run-time objects of the flavour and
+    compiles no design; the next build copies them in and compiles its design only."""
+    lirp = get_block("lirp")
+    assert fast_backend.warm(lirp.component(), build_dir=tmp_path, optimize=False)
+    runtime = list(tmp_path.glob("runtime-*"))
+    assert len(runtime) == 1 and sorted(p.name for p in runtime[0].glob("*.o")) == ["verilated.o",
+                                                                                  "verilated_threads.o"]
+    assert list(tmp_path.glob("runtime-*.part-*")) == [] and list(tmp_path.glob("*/phongfx_sim")) == []
+    assert not fast_backend.warm(lirp.component(), build_dir=tmp_path, optimize=False)  # kept: nothing to do
+    fast_backend.build(get_block("shape").component(), build_dir=tmp_path, optimize=False)
+    log = next(tmp_path.glob("*/build.log")).read_text()
+    assert "Vtop__ALL.o" in log and "-o verilated.o" not in log and "-o verilated_threads.o" not in log
+
+
 def test_fig7_wide_payload_back_to_back():
     block = get_block("fig7")
     result = check(block, backend="verilator-fast", count=500, bubbles=0, seed=11)
