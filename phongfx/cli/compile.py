@@ -251,13 +251,16 @@ def cmd_compile(args):
         finally:  # interrupted, or the compile failed: the build need not finish
             if warming is not None:
                 warming.cancel()
-        if compiled.refused and compiled.refused["why"] in ("fit", "certificate"):
-            for line in compiled.refused["text"]:
-                print(f"phongfx: refused: {line}", file=sys.stderr)
-            print(f"phongfx: nothing written to {args.output}", file=sys.stderr)
-            return 1
-        data = emit(compiled, args.output, check=not args.no_check, progress=progress,
-                    testbench=args.testbench, vcd=args.vcd)
+        try:
+            if compiled.refused and compiled.refused["why"] in ("fit", "certificate"):
+                for line in compiled.refused["text"]:
+                    print(f"phongfx: refused: {line}", file=sys.stderr)
+                print(f"phongfx: nothing written to {args.output}", file=sys.stderr)
+                return 1
+            data = emit(compiled, args.output, check=not args.no_check, progress=progress,
+                        testbench=args.testbench, vcd=args.vcd)
+        finally:  # the outputs prepared beside, when emit did not take them
+            compiled.close()
     for name, reason in data["rejected"].items():
         print(f"  {name:12s} rejected: {reason}")
     asked = data["requirement"].get("mpixels_per_second") or data["requirement"].get("clock_mhz")

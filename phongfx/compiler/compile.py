@@ -97,6 +97,7 @@ class Compiled:
     certificate: object = None          # phongfx.certify's bound of the chosen design (certified search)
     certified: bool = False             # the search was certified (every width point bounded too)
     prepared: object = None             # what request.prepare made for the chosen design (its return)
+    pending: object = None              # request.prepare still running beside for it (take_prepared)
     rounds: list = field(default_factory=list)  # each witness over the requirement and what it did
     speed: Speed = Speed()              # the pixel rate and clock asked
     refused: dict = None                # nothing chosen for speed or fit: refusal(...)
@@ -104,6 +105,25 @@ class Compiled:
     @property
     def best(self):
         return self.results.get(self.chosen)
+
+    def take_prepared(self):
+        """:attr:`prepared`, waited for first when ``request.prepare`` still runs beside (begun
+        with the witness search, it may outlast it: its caller does what needs no prepared output
+        first, as emit draws its pictures); None without one."""
+        if self.pending is not None:
+            pending, self.pending = self.pending, None
+            try:
+                self.prepared = pending.result()
+            finally:  # interrupted while waiting: the work too
+                pending.cancel()
+        return self.prepared
+
+    def close(self):
+        """End ``request.prepare`` if it still runs beside, not taken (nothing written, or emit
+        failed first)."""
+        if self.pending is not None:
+            self.pending.cancel()
+            self.pending = None
 
 
 def _designs(name, result, synth):
@@ -210,8 +230,8 @@ def compile_scene(request):
             if progress:
                 progress(f"certifying {out.chosen}")
             out.certificate = certifier(out.chosen, out.best["params"], spec, domain, analysis=scene.analysis)
-        if for_chosen(out, prepared):
-            out.prepared = prepared[2].result()
+        if for_chosen(out, prepared):  # its caller takes it when it needs it (Compiled.take_prepared)
+            out.pending, prepared = prepared[2], None
     finally:  # not taken (another design chosen, or none), or interrupted
         if prepared is not None:
             prepared[2].cancel()

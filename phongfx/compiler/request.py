@@ -79,9 +79,12 @@ class CompileRequest:
         "candidate i of N (label): stage, T s".
     :ivar prepare: ``prepare(result, analysis)``, work the caller will need for the chosen
         design (``result`` a search result), begun for the likeliest choice in a forked process
-        beside its witness search and waited for when that design is chosen, its return kept as
-        the compiled design's ``prepared`` (the command builds its RTL check's simulator and
-        makes its shipped module: :func:`~phongfx.explore.compile.emit.prepare_outputs`).
+        beside its witness search and, when that design is chosen, left running for the caller,
+        who takes its return when it needs it (:meth:`~phongfx.compiler.compile.Compiled.take_prepared`,
+        or :meth:`~phongfx.compiler.compile.Compiled.close` to end it): the command builds its RTL
+        check's simulator and makes its shipped module
+        (:func:`~phongfx.explore.compile.emit.prepare_outputs`), and emit takes them after drawing
+        its pictures.
     """
 
     spec: object

@@ -106,16 +106,21 @@ def test_the_cheapest_feasible_method_is_chosen_and_the_rest_say_why_not():
 
 @pytest.mark.needs_verilator
 def test_the_rtl_check_runs_on_the_simulator_prepared_beside_the_witness(tmp_path, monkeypatch):
-    # compile_scene's prepare runs for the likeliest choice when it is chosen, and not for a
-    # design whose witness missed
+    # compile_scene's prepare runs for the likeliest choice when it is chosen, taken by its caller
+    # when needed (here, unforked on a small sample, computed then), and not for a design whose
+    # witness missed
     prepared = []
 
     def prepare(result, analysis):
         prepared.append((result["method"], result["params"]))
+        return {"made": result["method"]}
     missed = compile_scene(CompileRequest(_torus(), methods=["fig7"], prepare=prepare))
-    assert missed.rounds and missed.rounds[0]["params"] != missed.best["params"] and prepared == []
+    assert missed.rounds and missed.rounds[0]["params"] != missed.best["params"]
+    assert missed.take_prepared() is None and prepared == []
     compiled = compile_scene(CompileRequest(_torus(), methods=["conventional"], prepare=prepare))
-    assert not compiled.rounds and prepared == [(compiled.chosen, compiled.best["params"])]
+    assert not compiled.rounds and compiled.take_prepared() == {"made": "conventional"}
+    assert prepared == [(compiled.chosen, compiled.best["params"])] and compiled.pending is None
+    assert compiled.take_prepared() == {"made": "conventional"} and len(prepared) == 1  # taken once
     # prepare_outputs builds what emit's RTL check then finds in the cache: the same build; and
     # the shipped module, which emit writes as made, without making it again
     builds, real = [], fast_backend.checked_build
@@ -566,3 +571,25 @@ def test_bad_sample_counts_exit_2(tmp_path, capsys, option, value):
     assert main(["compile", str(path), "-o", str(tmp_path / "o"), option, value, "--quiet"]) == 2
     name = option[2:].replace("-", "_")
     assert capsys.readouterr().err == f"phongfx: error: {name} must be a positive integer, not {value}\n"
+
+
+def test_emit_draws_the_pictures_before_it_waits_for_the_outputs_prepared_beside(tmp_path):
+    """What needs nothing prepared is written while the prepare still runs (the two-light scene's
+    pictures took 2.3 s); then emit waits for it, once, and a compile that emits nothing ends it."""
+    compiled = compile_scene(CompileRequest(_torus(), methods=["conventional"]))
+    seen, ended = [], []
+
+    class Beside:
+        def result(self):
+            seen.append(sorted(p.name for p in tmp_path.rglob("*.png")))
+            return {}
+
+        def cancel(self):
+            ended.append(True)
+    compiled.pending = Beside()
+    emit(compiled, tmp_path / "out", check=False)
+    assert seen == [["frame_000.png", "frame_000.png", "sheet.png", "sheet.png"]] and ended == [True]
+    assert compiled.pending is None
+    compiled.pending = Beside()
+    compiled.close()
+    assert ended == [True, True] and compiled.pending is None and len(seen) == 1

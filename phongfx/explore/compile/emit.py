@@ -277,20 +277,11 @@ def _write(compiled, out_dir, check, progress, vcd, final):
     block = design_block(best, compiled.analysis)
     config = block.config
     module = module_name(compiled.spec.name, method)
-    prepared = compiled.prepared or {}
-    timing = timing_of(best["cost"])
-    header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
-    contract = input_contract(config, compiled.spec, method, n_scale=runs.hooks(method).n_scale)
-    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx},
-                          contract=contract_lines(contract)
-                          + [error_paragraph(compiled.certificate and compiled.certificate.as_dict(),
-                                             compiled.spec.requirement.as_dict())],
-                          module=prepared.get("shipped") if prepared.get("module") == module else None)
-    atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
-    instances = submodules(shipped, f"{module}_top.{BLOCK_PATH}")
-    done, result, written, sheets = set(), None, None, ([], [], [])
+    done, first, sheets = set(), None, ([], [], [])
     scale = 2 * compiled.spec.requirement.max_error_levels
     against = "true Phong" if compiled.spec.requirement.against == "phong" else f"{method}'s float form"
+    # the pictures first: they need nothing prepared, which may still be made beside (the two-light
+    # scene's took 2.3 s to draw, the witness search ended 4 s before its prepared outputs)
     for index, (g, _n) in enumerate(scene.renders):
         if g.frame in done:
             continue
@@ -307,29 +298,43 @@ def _write(compiled, out_dir, check, progress, vcd, final):
                      f"channel, max {levels(np.nanmax(error, initial=0))}", scale)
         for sheet, value in zip(sheets, (picture, error, f"frame {g.frame}")):
             sheet.append(value)
-        if check and result is None:
-            if progress:
-                progress(f"RTL check of frame {g.frame} ({len(next(iter(raw.values())))} pixels)")
-            from phongfx.sim.harness import check as run_check
-            start = time.perf_counter()
-            count = len(next(iter(raw.values())))
-            r = run_check(block, raw, expected=out, backend="verilator-fast", stalls=CHECK_STALLS,
-                          reset_at=count // 2, seed=1, optimize=CHECK_OPTIMIZE, **({"vcd": vcd} if vcd else {}))
-            result = {"frame": g.frame, "backend": r.backend, "pixels": len(g), "vectors": r.vectors,
-                      "copies": runs.copies(method, compiled.analysis), "cycles": r.cycles,
-                      "mismatches": r.mismatch_count, "ok": r.ok, "simulate_seconds": r.seconds,
-                      "stalls": CHECK_STALLS, "reset_at_cycle": count // 2, "vcd": vcd,
-                      "seconds": time.perf_counter() - start}  # with the Verilator build
-        if written is None:
-            from phongfx.sim.testbench import write_testbench
-            if progress:
-                progress(f"testbench of frame {g.frame}")
-            write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module, top=shipped)
-            written = (g.frame, len(next(iter(out.values()))))
+        if first is None:
+            first = (g, raw, out)
     title = f"{compiled.spec.name}: {method}, {plural(len(done), 'frame')}"
     contact_sheet(os.path.join(out_dir, "frames", "sheet.png"), sheets[0], sheets[2], title=title)
     contact_sheet(os.path.join(out_dir, "error", "sheet.png"), sheets[1], sheets[2], white_levels=scale,
                   title=f"{title}: error against {against} (display levels)")
+    prepared = compiled.take_prepared() or {}
+    timing = timing_of(best["cost"])
+    header = {k: timing.get(k) for k in ("clock_mhz", "clock_source", "pixel_rate_mpx", "met")}
+    contract = input_contract(config, compiled.spec, method, n_scale=runs.hooks(method).n_scale)
+    shipped = top_verilog(block.component(), module, timing={**header, "requirement_mpx": compiled.speed.mpx},
+                          contract=contract_lines(contract)
+                          + [error_paragraph(compiled.certificate and compiled.certificate.as_dict(),
+                                             compiled.spec.requirement.as_dict())],
+                          module=prepared.get("shipped") if prepared.get("module") == module else None)
+    atomic_write(os.path.join(out_dir, "verilog", f"{module}_top.v"), lambda p: open(p, "w").write(shipped))
+    instances = submodules(shipped, f"{module}_top.{BLOCK_PATH}")
+    g, raw, out = first
+    count = len(next(iter(raw.values())))
+    result = None
+    if check:
+        if progress:
+            progress(f"RTL check of frame {g.frame} ({count} pixels)")
+        from phongfx.sim.harness import check as run_check
+        start = time.perf_counter()
+        r = run_check(block, raw, expected=out, backend="verilator-fast", stalls=CHECK_STALLS,
+                      reset_at=count // 2, seed=1, optimize=CHECK_OPTIMIZE, **({"vcd": vcd} if vcd else {}))
+        result = {"frame": g.frame, "backend": r.backend, "pixels": len(g), "vectors": r.vectors,
+                  "copies": runs.copies(method, compiled.analysis), "cycles": r.cycles,
+                  "mismatches": r.mismatch_count, "ok": r.ok, "simulate_seconds": r.seconds,
+                  "stalls": CHECK_STALLS, "reset_at_cycle": count // 2, "vcd": vcd,
+                  "seconds": time.perf_counter() - start}  # with the Verilator build
+    from phongfx.sim.testbench import write_testbench
+    if progress:
+        progress(f"testbench of frame {g.frame}")
+    write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module, top=shipped)
+    written = (g.frame, len(next(iter(out.values()))))
     data = manifest(compiled, module, instances, result, final)
     data["error_png_white_levels"] = scale
     data["pictures"] = {"frames": "frames/frame_NNN.png, frames/sheet.png (all frames)",
