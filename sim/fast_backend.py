@@ -149,10 +149,14 @@ def build(component, *, build_dir=None, design=None, trace=False, optimize=True)
     root = cache_root(build_dir)
 
     def compile_(work, source, log):
-        with runtime_lock(root, trace, runtime), open(log, "w") as out:
+        with open(log, "w") as out:
+            run_ = dict(cwd=work, stdout=out, stderr=subprocess.STDOUT, check=True)
+            # before the lock: a build that waits for another's run-time objects (the compile's
+            # check, for its warm-up) has its design verilated by then
+            _verilate(work, source, top, verilator_args, optimize, run_)
+        with runtime_lock(root, trace, runtime), open(log, "a") as out:
             seeded = seed_runtime(root, work, trace, runtime)
             run_ = dict(cwd=work, stdout=out, stderr=subprocess.STDOUT, check=True)
-            _verilate(work, source, top, verilator_args, optimize, run_)
             # make rebuilds objects older than Vtop.mk, just written: refresh the seeded ones
             if seeded:
                 subprocess.run(["touch", "-c", *map(str, seeded)], **run_)
