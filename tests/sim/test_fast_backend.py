@@ -91,8 +91,8 @@ def test_mismatch_count_exceeds_the_detailed_report():
 
 def test_an_unoptimized_build_checks_the_same_and_is_kept_apart(tmp_path):
     """``optimize=False`` (the compile's one-frame RTL check) builds at -O0 without Verilator's
-    merge of conditionals in its own cache entry, sharing the run-time objects, and finds the
-    same mismatches."""
+    merge of conditionals in its own cache entry, with run-time objects of its own (-O0 too), and
+    finds the same mismatches."""
     block = get_block("shape")
     inputs, _, expected = _corrupt(block, 100, 1, "spec", [3, 10, 40])
     found = [check(block, inputs, expected=expected, backend="verilator-fast", bubbles=0.2, seed=2,
@@ -106,7 +106,10 @@ def test_an_unoptimized_build_checks_the_same_and_is_kept_apart(tmp_path):
     merged = sorted("-fno-merge-cond" in path.read_text().splitlines()[1]
                     for path in tmp_path.glob("*/Vtop__verFiles.dat"))
     assert merged == [False, True]
-    assert len(list(tmp_path.glob("runtime-*"))) == 1
+    assert len(list(tmp_path.glob("runtime-*"))) == 2
+    compiled = sorted(line.split()[1] for path in tmp_path.glob("*/build.log")
+                      for line in path.read_text().splitlines() if "-o verilated.o" in line)
+    assert compiled == ["-O0", "-Os"]
 
 
 def test_warm_compiles_the_run_time_objects_alone_and_a_build_then_only_its_design(tmp_path):
