@@ -23,7 +23,7 @@ import time
 
 from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
-from phongfx.sim import fast_backend, verilator_backend
+from phongfx.sim import fast_backend, fast_build, verilator_backend
 from phongfx.sim.harness import check
 
 __all__ = ["FRAME", "TARGET_SECONDS", "measure", "table", "main"]
@@ -41,7 +41,7 @@ def _stimulus(block, count, seed):
 def _cold_builds(block):
     """Seconds of a build from nothing (no design, no run-time objects cached)."""
     out = {}
-    for name, build in (("verilator-fast", fast_backend.build),
+    for name, build in (("verilator-fast", fast_build.build),
                         ("verilator", verilator_backend.build)):
         with tempfile.TemporaryDirectory() as directory:
             start = time.perf_counter()

@@ -17,7 +17,7 @@ import time
 
 from phongfx.core.files import atomic_write
 from phongfx.core.registry import get_block
-from phongfx.sim import fast_backend
+from phongfx.sim import fast_backend, fast_build
 
 __all__ = ["BLOCKS", "SIZES", "measure", "plot", "main"]
 
@@ -31,7 +31,7 @@ def measure(blocks=BLOCKS, sizes=SIZES, seed=0):
     for name in blocks:
         block = get_block(name)
         start = time.perf_counter()
-        fast_backend.build(block.component())  # cached after the first run
+        fast_build.build(block.component())  # cached after the first run
         build = time.perf_counter() - start
         stimulus = block.stimulus(count=max(sizes), seed=seed)
         for pixels in sizes:

@@ -198,7 +198,7 @@ def _warm(_):
     failure is the check's to report."""
     from phongfx.core.registry import get_block
     from phongfx.explore.compile.workers import step_aside
-    from phongfx.sim.fast_backend import warm
+    from phongfx.sim.fast_build import warm
 
     step_aside()  # wanted only when the search has ended: the searches go first
     try:

@@ -12,7 +12,7 @@ import pytest
 
 from phongfx.core.format import Format
 from phongfx.core.registry import get_block
-from phongfx.sim import build_cache, fast_backend, fast_top
+from phongfx.sim import fast_backend, fast_top
 from phongfx.sim.harness import check, pack, run_backend, schedule
 
 pytestmark = pytest.mark.needs_verilator
@@ -112,21 +112,6 @@ def test_an_unoptimized_build_checks_the_same_and_is_kept_apart(tmp_path):
     assert compiled == ["-O0", "-Os"]
 
 
-def test_warm_compiles_the_run_time_objects_alone_and_a_build_then_only_its_design(tmp_path):
-    """``warm`` (the compile's, beside its search) keeps the run-time objects of the flavour and
-    compiles no design; the next build copies them in and compiles its design only."""
-    lirp = get_block("lirp")
-    assert fast_backend.warm(lirp.component(), build_dir=tmp_path, optimize=False)
-    runtime = list(tmp_path.glob("runtime-*"))
-    assert len(runtime) == 1 and sorted(p.name for p in runtime[0].glob("*.o")) == ["verilated.o",
-                                                                                  "verilated_threads.o"]
-    assert list(tmp_path.glob("runtime-*.part-*")) == [] and list(tmp_path.glob("*/phongfx_sim")) == []
-    assert not fast_backend.warm(lirp.component(), build_dir=tmp_path, optimize=False)  # kept: nothing to do
-    fast_backend.build(get_block("shape").component(), build_dir=tmp_path, optimize=False)
-    log = next(tmp_path.glob("*/build.log")).read_text()
-    assert "Vtop__ALL.o" in log and "-o verilated.o" not in log and "-o verilated_threads.o" not in log
-
-
 def test_fig7_wide_payload_back_to_back():
     block = get_block("fig7")
     result = check(block, backend="verilator-fast", count=500, bubbles=0, seed=11)
@@ -148,12 +133,6 @@ def test_run_matches_amaranth_cycle_for_cycle():
     slow = run_backend("amaranth", block.component(), valid, payload, cycles)
     assert fast == slow
     assert sum(fast[0]) == sum(valid)
-
-
-def test_build_failure_raises_with_log(monkeypatch, tmp_path):
-    monkeypatch.setattr(build_cache, "verilog", lambda *args, **kwargs: "module broken(;\n")
-    with pytest.raises(RuntimeError, match=r"^Verilator build of lirp failed .*log .*build\.log"):
-        fast_backend.build(get_block("lirp").component(), build_dir=tmp_path)
 
 
 def test_short_stimulus_is_refused():
