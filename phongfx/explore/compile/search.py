@@ -79,7 +79,7 @@ def _at_edge(passes, params, name, good):
     cannot say).  Lowering ``name`` from its start to ``good`` spent some of the start's margin;
     a bit less doubles that width's rounding step, so one lower spends about as much again: it
     is tried first when the margin left is under twice what was spent.  The result is the
-    binary search's wherever one lower failing means every lower fails; only the order of the
+    binary search's wherever every value under a failing one fails too; only the order of the
     questions changes (on Lyon's spheres, ``shape_t_frac`` passed at 13 by 0.0016 levels, and
     the binary search then failed at 8, 10, 11 and 12, 9 s of certificates)."""
     margin = getattr(passes, "margin", None)
