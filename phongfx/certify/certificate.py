@@ -11,6 +11,8 @@ a level, and the displayed error is an integer), which is what the scene's
 import math
 from dataclasses import dataclass, field
 
+from phongfx.scene.requirement import bound_limit
+
 __all__ = ["Certificate", "integer_bound", "meets"]
 
 
@@ -21,7 +23,7 @@ def integer_bound(bound_levels):
 
 def meets(bound_levels, max_error_levels):
     """Whether a bound ``B`` (None: no bound) guarantees ``max_error_levels``."""
-    return bound_levels is not None and integer_bound(bound_levels) <= max_error_levels
+    return bound_levels is not None and bound_levels < bound_limit(max_error_levels)
 
 
 @dataclass(frozen=True)

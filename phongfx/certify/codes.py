@@ -59,11 +59,11 @@ def _listed(first, last):
     return box, codes
 
 
-def cell_cosine(x, lsb, w, view=None, geometry=None):
+def cell_cosine(geometry, lsb, w, view=None):
     """``(lo, hi)`` of ``N̂·W`` (or of ``R·V = 2(N̂·W)(N̂·V) - W·V`` with ``view``) over the cells
-    of centres ``x`` (C, 3) and side ``lsb`` (module docstring); ``w``, ``view`` unit;
-    ``geometry``: the centres' :func:`cell_geometry`, when already known."""
-    r, u = cell_geometry(x) if geometry is None else geometry
+    of side ``lsb`` whose centres have the :func:`cell_geometry` ``geometry`` (module docstring);
+    ``w``, ``view`` unit."""
+    r, u = geometry
     a = u @ w
     grad = (w - a[:, None] * u) / r[:, None]
     curve = 3.0
@@ -103,8 +103,7 @@ def code_errors(shader, golden, boxes, basis, lights, seconds, reflected, n_hw, 
     first, last, _ = code_ranges(vec, boxes, basis)
     box, codes = _listed(first, last)
     count = len(box)
-    x = codes * vec.lsb
-    geometry = cell_geometry(x)
+    geometry = cell_geometry(codes * vec.lsb)
     (ac, dc, sc), (ae, de, se) = coefficient_tables(shader.blend)
     m = boxes.material[box]
     low = (ac - ae)[m].copy()
@@ -115,9 +114,8 @@ def code_errors(shader, golden, boxes, basis, lights, seconds, reflected, n_hw, 
                      Fixed(n_hw[box], config.fmt("n")))
         diff, spec = out["diffuse"].to_float(), out["specular"].to_float()
         gate = diff > 0  # the blend's backside test
-        d = cell_cosine(x, vec.lsb, light, geometry=geometry)
-        c = (cell_cosine(x, vec.lsb, light, view, geometry) if reflected
-             else cell_cosine(x, vec.lsb, second, geometry=geometry))
+        d = cell_cosine(geometry, vec.lsb, light)
+        c = cell_cosine(geometry, vec.lsb, light, view) if reflected else cell_cosine(geometry, vec.lsb, second)
         n = n_ref[box]
         ref = (np.clip(c[0], 0.0, 1.0) ** n, np.clip(c[1], 0.0, 1.0) ** n)
         may_true, may_false = _lit(d, gate, shader.blend.levels)

@@ -11,7 +11,7 @@ architecture whatever its speed and reports the rate it reaches.
 import math
 from dataclasses import dataclass
 
-__all__ = ["Requirement", "KEYS", "MPX_MAX", "SIDE_MAX", "FPS_MAX", "parse_requirement", "max_error",
+__all__ = ["Requirement", "bound_limit", "KEYS", "MPX_MAX", "SIDE_MAX", "FPS_MAX", "parse_requirement", "max_error",
            "throughput"]
 
 #: Keys of the ``[requirement]`` table.
@@ -35,10 +35,8 @@ class Requirement:
 
     @property
     def bound_limit(self):
-        """The continuous error bound ``B`` a certificate must stay under: the displayed error it
-        guarantees, ``floor(B + 1/2)``, is at most ``max_error_levels`` exactly when
-        ``B < floor(max_error_levels) + 1/2``."""
-        return math.floor(self.max_error_levels) + 0.5
+        """:func:`bound_limit` of :attr:`max_error_levels`."""
+        return bound_limit(self.max_error_levels)
 
     def as_dict(self):
         """The manifest's ``"requirement"``."""
@@ -47,6 +45,13 @@ class Requirement:
         if self.display:
             out["display"] = dict(zip(_DISPLAY, self.display))
         return out
+
+
+def bound_limit(max_error_levels):
+    """The continuous error bound ``B`` a certificate must stay under: the displayed error it
+    guarantees, ``floor(B + 1/2)``, is at most ``max_error_levels`` exactly when
+    ``B < floor(max_error_levels) + 1/2``."""
+    return math.floor(max_error_levels) + 0.5
 
 
 def max_error(reader, value, field):

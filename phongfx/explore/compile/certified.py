@@ -32,6 +32,7 @@ __all__ = ["REFINED", "CertifiedTest", "uncertifiable", "certified_search", "ref
 
 from phongfx.core.words import levels
 
+from .measure import point_key
 from .search import search_widths, width_params
 
 
@@ -65,7 +66,7 @@ class CertifiedTest:
         whole domain missed miss there too (on Lyon's spheres a third of each certificate's time).
         A failing point's regions say nothing of wider widths (on the two-light scene, whose whole
         domain certifies its passing points, the regions first cost 12 s more)."""
-        key = tuple(sorted(params.items()))
+        key = point_key(self.method, params)
         if key not in self.certificates:
             more = {"regions_first": True} if self.regions_needed else {}
             found = self.certifier(self.method, dict(params), self.scene.spec, self.domain, early=True,
@@ -81,7 +82,7 @@ class CertifiedTest:
         """How far under the requirement's limit the bound of a point this test passed stayed
         (levels), None for a point it has not certified: the search's hint of where the
         widths' edge is (:func:`~phongfx.explore.compile.search.search_widths`)."""
-        found = self.certificates.get(tuple(sorted(params.items())))
+        found = self.certificates.get(point_key(self.method, params))
         if found is None or not found[1].certified:
             return None
         return self.scene.spec.requirement.bound_limit - found[1].bound_levels

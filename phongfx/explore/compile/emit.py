@@ -334,7 +334,6 @@ def _write(compiled, out_dir, check, progress, vcd, final):
     if progress:
         progress(f"testbench of frame {g.frame}")
     write_testbench(block, raw, out, os.path.join(out_dir, "testbench"), module, top=shipped)
-    written = (g.frame, len(next(iter(out.values()))))
     data = manifest(compiled, module, instances, result, final)
     data["error_png_white_levels"] = scale
     data["pictures"] = {"frames": "frames/frame_NNN.png, frames/sheet.png (all frames)",
@@ -345,7 +344,7 @@ def _write(compiled, out_dir, check, progress, vcd, final):
                    "interval": getattr(config, "interval", 1),
                    "ports": port_map(block.config)}
     data["contract"] = contract
-    data["testbench"] = {"folder": "testbench", "frame": written[0], "vectors": written[1],
+    data["testbench"] = {"folder": "testbench", "frame": g.frame, "vectors": count,
                          "run": "sh testbench/run.sh (Icarus Verilog and Verilator)"}
     data["flow"] = _flow(out_dir, module, data)
     atomic_write(os.path.join(out_dir, "manifest.json"),

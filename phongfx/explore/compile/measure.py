@@ -43,7 +43,7 @@ from .analysis import analyse
 from .journal import Journal, scene_key
 
 __all__ = ["GUARD", "meets", "met_at", "SceneEval", "cosines", "diffuse", "phong_terms", "shade_points", "point_errors",
-           "worst_per_point"]
+           "worst_per_point", "point_key"]
 
 
 #: Levels of continuous error the width search keeps under the requirement on the domain (:func:`meets`).
@@ -122,8 +122,9 @@ def worst_per_point(method, config, params, against, g, n, phong=None, own=None)
     return levels.max(axis=-1), raw.max(axis=-1)
 
 
-def _key(method, params):
-    """A width point's key in the cache, the journal and :attr:`SceneEval.failed`."""
+def point_key(method, params):
+    """A width point's key in the cache, the journal, :attr:`SceneEval.failed` and the certified
+    search's certificates."""
     return method, tuple(sorted(params.items()))
 
 
@@ -215,7 +216,7 @@ class SceneEval:
         (cached; module docstring); a config that cannot be built or overflows has ``max =
         inf`` and says why in ``"why"``.  ``complete``: measure the domain even where the
         frames miss (an infeasible method's best point, which a hint quotes)."""
-        key = _key(method, params)
+        key = point_key(method, params)
         cached = self.cache.get(key)
         if cached is None or (complete and self.points is not None and cached.get("domain_max") is None
                               and math.isfinite(cached["max"])):
@@ -230,7 +231,7 @@ class SceneEval:
         ``meets(self.error(method, params), ...)``, with a point that fails on the domain
         measured only until it does (module docstring)."""
         required = self.spec.requirement.max_error_levels
-        key = _key(method, params)
+        key = point_key(method, params)
         if key in self.cache:
             return meets(self.cache[key], required)
         if key in self.failed:
@@ -282,7 +283,7 @@ class SceneEval:
         certificate, in place of measuring the whole sample, which a sound certificate
         answers; a point found past it fails :meth:`passes` too, and is kept as failed."""
         required = self.spec.requirement.max_error_levels
-        key = _key(method, params)
+        key = point_key(method, params)
         if key in self.cache:
             return self.cache[key]["max"] > required
         if key in self.failed:
